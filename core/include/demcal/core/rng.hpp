@@ -1,0 +1,42 @@
+#pragma once
+// Seeded random numbers. Every random thing in demcal takes a seed and draws
+// from an Rng, so the same inputs and seed give the same numbers. Uniform
+// doubles, integers and shuffles are computed here rather than by the standard
+// library's distributions, whose algorithms differ between implementations.
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace demcal {
+
+class Rng {
+ public:
+  using result_type = std::uint64_t;
+
+  // `stream` separates independent streams of one seed (e.g. one per design
+  // point or per restart) without them overlapping in practice.
+  explicit Rng(std::uint64_t seed, std::uint64_t stream = 0);
+
+  static constexpr result_type min() { return std::mt19937_64::min(); }
+  static constexpr result_type max() { return std::mt19937_64::max(); }
+  result_type operator()() { return engine_(); }
+
+  double uniform();                        // [0, 1) with 53 random bits
+  double uniform(double low, double high);  // [low, high)
+  std::uint64_t below(std::uint64_t n);     // unbiased integer in [0, n)
+  double normal(double mean, double std_dev);
+  double cauchy();                          // standard Cauchy
+
+  template <typename T>
+  void shuffle(std::vector<T>& values) {
+    for (std::size_t i = values.size(); i > 1; --i) std::swap(values[i - 1], values[below(i)]);
+  }
+
+ private:
+  std::mt19937_64 engine_;
+  bool has_spare_normal_ = false;
+  double spare_normal_ = 0.0;
+};
+
+}  // namespace demcal

@@ -1,0 +1,101 @@
+// CSV reading and writing of a Table.
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "demcal/core/atomic_file.hpp"
+#include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/core/table.hpp"
+
+namespace demcal {
+namespace {
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.push_back(field);
+      field.clear();
+    } else if (c != '\r') {
+      field += c;
+    }
+  }
+  fields.push_back(field);
+  for (auto& f : fields) {
+    while (!f.empty() && (f.front() == ' ' || f.front() == '\t')) f.erase(f.begin());
+    while (!f.empty() && (f.back() == ' ' || f.back() == '\t')) f.pop_back();
+  }
+  return fields;
+}
+
+}  // namespace
+
+Table Table::read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open CSV file");
+  std::string line;
+  std::size_t line_number = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    header = split_fields(line);
+  }
+  if (header.empty()) throw Error(path + ": empty CSV file (no header)");
+  bool has_run = header.front() == "run";
+  std::size_t first = has_run ? 1 : 0;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i].empty()) throw Error(path + ": header column " + std::to_string(i + 1) + " has no name");
+    for (std::size_t j = 0; j < i; ++j)
+      if (header[i] == header[j]) throw Error(path + ": header names column \"" + header[i] + "\" twice");
+  }
+
+  std::vector<int> runs;
+  std::vector<std::vector<double>> columns(header.size() - first);
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::vector<std::string> fields = split_fields(line);
+    if (fields.size() != header.size())
+      throw Error(path + ":" + std::to_string(line_number) + ": " + std::to_string(fields.size()) +
+                  " fields, the header has " + std::to_string(header.size()));
+    if (has_run) {
+      double run = 0;
+      if (!parse_double(fields[0], run) || !std::isfinite(run) || run != std::floor(run))
+        throw Error(path + ":" + std::to_string(line_number) + ": run id \"" + fields[0] + "\" is not an integer");
+      runs.push_back(static_cast<int>(run));
+    } else {
+      runs.push_back(static_cast<int>(runs.size()) + 1);
+    }
+    for (std::size_t i = first; i < fields.size(); ++i) {
+      double value = 0;
+      if (!parse_double(fields[i], value))
+        throw Error(path + ":" + std::to_string(line_number) + ": column \"" + header[i] + "\": \"" + fields[i] +
+                    "\" is not a number");
+      columns[i - first].push_back(value);
+    }
+  }
+  Table table(runs);
+  for (std::size_t i = first; i < header.size(); ++i) table.add_column(header[i], std::move(columns[i - first]));
+  return table;
+}
+
+void Table::write_csv(const std::string& path) const {
+  std::ostringstream out;
+  out << "run";
+  for (const auto& name : names_) out << ',' << name;
+  out << '\n';
+  for (std::size_t r = 0; r < rows(); ++r) {
+    out << run_ids_[r];
+    for (const auto& column : columns_) out << ',' << format_double(column[r]);
+    out << '\n';
+  }
+  write_file_atomically(path, out.str());
+}
+
+}  // namespace demcal

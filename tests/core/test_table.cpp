@@ -1,0 +1,115 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/rng.hpp"
+#include "demcal/core/table.hpp"
+
+using demcal::Error;
+using demcal::Table;
+
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "demcal_table_" + std::to_string(::getpid()) + "_" + name;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+Table sample_table() {
+  demcal::Rng rng(7);
+  Table table(std::vector<int>{3, 1, 7, 2});
+  std::vector<double> a, b;
+  for (int i = 0; i < 4; ++i) {
+    a.push_back(rng.normal(0, 1e5) * rng.uniform());
+    b.push_back(rng.uniform() * 1e-300);
+  }
+  b[2] = std::numeric_limits<double>::quiet_NaN();
+  table.add_column("sigma_u_MPa", a);
+  table.add_column("tiny", b);
+  table.attributes()["kind"] = "oa";
+  table.attributes()["seed"] = "42";
+  return table;
+}
+
+void expect_same(const Table& x, const Table& y) {
+  ASSERT_EQ(x.names(), y.names());
+  ASSERT_EQ(x.run_ids(), y.run_ids());
+  for (std::size_t c = 0; c < x.cols(); ++c)
+    for (std::size_t r = 0; r < x.rows(); ++r) {
+      double u = x.column(c)[r], v = y.column(c)[r];
+      if (std::isnan(u)) EXPECT_TRUE(std::isnan(v));
+      else EXPECT_EQ(u, v) << "bit-exact round trip of " << x.names()[c] << " row " << r;
+    }
+}
+
+}  // namespace
+
+TEST(Table, CsvRoundTripIsBitExact) {
+  Table table = sample_table();
+  std::string path = temp_path("a.csv");
+  table.write_csv(path);
+  expect_same(table, Table::read_csv(path));
+  std::remove(path.c_str());
+}
+
+TEST(Table, HdfRoundTripKeepsColumnsRunsAndAttributes) {
+  Table table = sample_table();
+  std::string path = temp_path("a.h5");
+  std::remove(path.c_str());
+  table.write_hdf5(path, "/design");
+  table.write_hdf5(path, "/other/group");  // a second group in the same file
+  Table back = Table::read_hdf5(path, "/design");
+  expect_same(table, back);
+  EXPECT_EQ(back.attributes().at("kind"), "oa");
+  EXPECT_EQ(back.attributes().at("seed"), "42");
+  expect_same(table, Table::read(path, "/other/group"));
+  table.write_hdf5(path, "/design");  // overwriting a group replaces it
+  expect_same(table, Table::read_hdf5(path, "/design"));
+  std::remove(path.c_str());
+}
+
+TEST(Table, CsvWithoutRunColumnNumbersRuns) {
+  std::string path = temp_path("b.csv");
+  write_text(path, "a,b\n1,2\n3,4\n");
+  Table t = Table::read_csv(path);
+  EXPECT_EQ(t.run_ids(), (std::vector<int>{1, 2}));
+  EXPECT_EQ(t.column("b")[1], 4.0);
+  std::remove(path.c_str());
+}
+
+TEST(Table, CsvErrorsNameFileLineAndColumn) {
+  std::string path = temp_path("c.csv");
+  write_text(path, "run,a,b\n1,2,3\n2,x,4\n");
+  try {
+    Table::read_csv(path);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":3: column \"a\": \"x\" is not a number");
+  }
+  write_text(path, "run,a,b\n1,2\n");
+  EXPECT_THROW(Table::read_csv(path), Error);
+  write_text(path, "run,a,a\n1,2,3\n");
+  EXPECT_THROW(Table::read_csv(path), Error);
+  std::remove(path.c_str());
+  EXPECT_THROW(Table::read_csv(path), Error);  // missing file
+  EXPECT_THROW(Table::read_hdf5(path + ".h5", "/design"), Error);
+}
+
+TEST(Table, MissingColumnListsTheColumns) {
+  Table table = sample_table();
+  try {
+    table.column("E_GPa");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "table: no column \"E_GPa\" (columns: sigma_u_MPa, tiny)");
+  }
+  EXPECT_THROW(table.add_column("short", {1.0}), Error);
+  EXPECT_THROW(table.add_column("tiny", {1, 2, 3, 4}), Error);
+}
