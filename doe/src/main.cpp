@@ -1,0 +1,223 @@
+// demcal-doe: writes a design of experiments (coded and natural units) and
+// its property report.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/log.hpp"
+#include "demcal/core/parameter_space.hpp"
+#include "demcal/doe/factorial.hpp"
+#include "demcal/doe/natural_units.hpp"
+#include "demcal/doe/orthogonal_array.hpp"
+#include "demcal/doe/properties.hpp"
+#include "demcal/doe/response_surface.hpp"
+#include "demcal/doe/space_filling.hpp"
+
+namespace {
+
+using namespace demcal;
+
+struct Arguments {
+  std::string kind;
+  std::string space_path;
+  int factors = 0;
+  std::string out;
+  std::uint64_t seed = 1;
+  bool report = false;
+  bool quiet = false;
+  int runs = 0;
+  std::string levels;
+  int blanks = 0;
+  std::string doubled = "low";
+  std::string generators;
+  std::string alpha = "rotatable";
+  int center = -1;
+  std::string type = "circumscribed";
+  std::string criterion = "random";
+  int iterations = 0;
+};
+
+// Options each kind understands; giving another is an error, not a silent no-op.
+const std::map<std::string, std::set<std::string>> kOptionsByKind = {
+    {"oa", {"--runs", "--levels", "--blank", "--doubled-level"}},
+    {"fullfact", {"--levels"}},
+    {"fracfact", {"--runs", "--generators"}},
+    {"pb", {"--runs"}},
+    {"ccd", {"--alpha", "--center", "--type"}},
+    {"bbd", {"--center"}},
+    {"lhs", {"--runs", "--criterion", "--iterations"}},
+    {"sobol", {"--runs"}},
+};
+const std::vector<std::string> kKindOptions = {"--runs", "--levels", "--blank", "--doubled-level", "--generators",
+                                               "--alpha", "--center", "--type", "--criterion", "--iterations"};
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  for (std::string part; std::getline(stream, part, ',');)
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
+// Level count shared by all parameters of the space, or 0.
+int common_space_levels(const ParameterSpace& space) {
+  int levels = -1;
+  for (const Parameter& p : space.parameters()) {
+    int n = static_cast<int>(p.levels.size());
+    if (levels < 0) levels = n;
+    if (n != levels) return 0;
+  }
+  return levels < 0 ? 0 : levels;
+}
+
+doe::Design build(const Arguments& a, int factors, const ParameterSpace* space) {
+  auto need_runs = [&]() {
+    if (a.runs <= 0) throw Error(a.kind + ": --runs N is required");
+    return a.runs;
+  };
+  if (a.kind == "oa") {
+    std::string levels = a.levels;
+    if (levels.empty() && space) {
+      int common = common_space_levels(*space);
+      if (common == 0) throw Error("oa: give --levels (the space's parameters do not all list the same number of levels)");
+      levels = std::to_string(common);
+    }
+    if (levels.empty()) throw Error("oa: --levels is required (e.g. 3, or 2^1,3^7)");
+    doe::OaRequest request;
+    request.runs = need_runs();
+    request.levels = doe::parse_levels(levels, factors);
+    request.blanks = a.blanks;
+    request.doubled = a.doubled;
+    int requested = 0;
+    for (auto [level, count] : request.levels) requested += count;
+    if (factors > 0 && requested != factors)
+      throw Error("oa: --levels " + levels + " names " + std::to_string(requested) + " factors, but there are " +
+                  std::to_string(factors));
+    doe::Design design = doe::orthogonal_array(request);
+    for (std::size_t j = static_cast<std::size_t>(requested); j < design.width(); ++j) design.blank[j] = true;
+    return design;
+  }
+  if (a.kind == "fullfact") {
+    if (a.levels.empty()) throw Error("fullfact: --levels is required (one count for all factors, or one per factor)");
+    std::vector<int> levels;
+    for (const std::string& part : split_list(a.levels)) {
+      try {
+        levels.push_back(std::stoi(part));
+      } catch (const std::exception&) {
+        throw Error("fullfact: --levels \"" + a.levels + "\": expected integers");
+      }
+    }
+    if (levels.size() == 1) levels.assign(static_cast<std::size_t>(factors), levels[0]);
+    if (static_cast<int>(levels.size()) != factors)
+      throw Error("fullfact: --levels lists " + std::to_string(levels.size()) + " counts for " + std::to_string(factors) + " factors");
+    return doe::full_factorial(levels);
+  }
+  if (a.kind == "fracfact") return doe::fractional_factorial(factors, split_list(a.generators), a.runs);
+  if (a.kind == "pb") return doe::plackett_burman(factors, a.runs);
+  if (a.kind == "ccd") {
+    doe::CcdOptions options;
+    options.factors = factors;
+    options.alpha = a.alpha;
+    options.center = a.center;
+    options.type = a.type;
+    return doe::central_composite(options);
+  }
+  if (a.kind == "bbd") return doe::box_behnken(factors, a.center);
+  if (a.kind == "lhs") {
+    doe::LhsOptions options;
+    options.runs = need_runs();
+    options.factors = factors;
+    options.criterion = doe::parse_lhs_criterion(a.criterion);
+    options.seed = a.seed;
+    options.outer_iterations = a.iterations;
+    return doe::latin_hypercube(options);
+  }
+  if (a.kind == "sobol") return doe::sobol(need_runs(), factors, a.seed);
+  throw Error("unknown design kind \"" + a.kind + "\" (expected oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol)");
+}
+
+int run(const Arguments& a, const CLI::App& app) {
+  auto options = kOptionsByKind.find(a.kind);
+  if (options == kOptionsByKind.end())
+    throw Error("unknown design kind \"" + a.kind + "\" (expected oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol)");
+  for (const std::string& name : kKindOptions)
+    if (app.count(name) > 0 && options->second.count(name) == 0)
+      throw Error("option " + name + " does not apply to " + a.kind);
+  if (a.center < -1) throw Error(a.kind + ": --center must be >= 0");
+
+  std::unique_ptr<ParameterSpace> space;
+  int factors = a.factors;
+  if (!a.space_path.empty()) {
+    space = std::make_unique<ParameterSpace>(ParameterSpace::load(a.space_path));
+    if (factors > 0 && factors != static_cast<int>(space->size()))
+      throw Error("--factors " + std::to_string(factors) + " disagrees with " + a.space_path + ", which has " +
+                  std::to_string(space->size()) + " parameters");
+    factors = static_cast<int>(space->size());
+  }
+  if (factors <= 0 && a.kind == "oa" && a.levels.find('^') != std::string::npos) {
+    for (auto [level, count] : doe::parse_levels(a.levels, 0)) factors += count;
+  }
+  if (factors <= 0) throw Error("give --space FILE.json or --factors N (N >= 1)");
+
+  doe::Design design = build(a, factors, space.get());
+  design.settings["seed"] = std::to_string(a.seed);
+  if (space) doe::name_factors(design, *space);
+  Table table = doe::design_table(design, space.get());
+  if (space) table.attributes()["space"] = a.space_path;
+  table.write(a.out, "/design");
+  log::info("wrote " + std::to_string(design.runs()) + " runs of " + design.description + " to " + a.out);
+  if (a.report) std::cout << doe::properties_markdown(design, doe::analyse(design));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  demcal::log::set_program("demcal-doe");
+  Arguments a;
+  CLI::App app{
+      "demcal-doe: designs of experiments in coded and natural units.\n"
+      "  demcal-doe KIND (--space FILE.json | --factors N) [options] --out FILE.csv|FILE.h5 [--seed S] [--report]\n"
+      "KIND: oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol",
+      "demcal-doe"};
+  app.add_option("kind", a.kind, "design kind: oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol")->required();
+  app.add_option("--space", a.space_path, "parameter space JSON: factor names, bounds and levels (natural units)");
+  app.add_option("--factors", a.factors, "number of factors (columns x1..xN in coded units)");
+  app.add_option("--out", a.out, "output design: .csv for people, .h5 for the pipeline")->required();
+  app.add_option("--seed", a.seed, "seed for randomised designs (lhs, sobol)")->capture_default_str();
+  app.add_flag("--report", a.report, "print the design's property report (Markdown) on stdout");
+  app.add_flag("--quiet", a.quiet, "no progress messages on stderr");
+  app.add_option("--runs", a.runs, "oa, fracfact, pb, lhs, sobol: number of runs");
+  app.add_option("--levels", a.levels, "oa: levels (3, or groups 2^1,3^7); fullfact: one count or one per factor");
+  app.add_option("--blank", a.blanks, "oa: extra blank (error) columns after the factors")->capture_default_str();
+  app.add_option("--doubled-level", a.doubled, "oa, collapsed arrays: level that takes the collapsed one (low, middle, high)")
+      ->capture_default_str();
+  app.add_option("--generators", a.generators, "fracfact: generators of the added factors, e.g. D=ABC,E=ABD");
+  app.add_option("--alpha", a.alpha, "ccd: rotatable, orthogonal, face or a number")->capture_default_str();
+  app.add_option("--center", a.center, "ccd, bbd: centre points (default as Minitab)");
+  app.add_option("--type", a.type, "ccd: circumscribed, inscribed or faced")->capture_default_str();
+  app.add_option("--criterion", a.criterion, "lhs: random, center, maximin or phip")->capture_default_str();
+  app.add_option("--iterations", a.iterations, "lhs maximin/phip: outer iterations of the optimiser (0: by size)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "demcal-doe: error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  if (a.quiet) demcal::log::set_level(demcal::log::Level::Quiet);
+  try {
+    return run(a, app);
+  } catch (const demcal::Error& e) {
+    demcal::log::error(e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    demcal::log::error(std::string("unexpected failure: ") + e.what());
+    return 1;
+  }
+}
