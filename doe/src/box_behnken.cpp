@@ -40,12 +40,7 @@ Design box_behnken(int factors, int center) {
     for (int corner = 0; corner < per_block; ++corner, ++r)
       for (std::size_t b = 0; b < block.size(); ++b) coded(r, block[b]) = (corner >> b) & 1 ? 1.0 : -1.0;
 
-  Design design;
-  design.kind = "bbd";
-  design.coded = coded;
-  design.columns = default_names(static_cast<std::size_t>(factors));
-  design.levels.assign(static_cast<std::size_t>(factors), 3);
-  design.blank.assign(static_cast<std::size_t>(factors), false);
+  Design design = make_design("bbd", std::move(coded), 3);
   design.description = "Box-Behnken, " + std::to_string(factors) + " factors, " + std::to_string(blocks.size()) +
                        " blocks of " + std::to_string(blocks.front().size()) + ", " + std::to_string(center) +
                        " centre points, " + std::to_string(runs) + " runs";

@@ -52,12 +52,7 @@ Design central_composite(const CcdOptions& options) {
   }
   if (options.type == "inscribed") coded /= alpha;
 
-  Design design;
-  design.kind = "ccd";
-  design.coded = coded;
-  design.columns = default_names(static_cast<std::size_t>(k));
-  design.levels.assign(static_cast<std::size_t>(k), 0);
-  design.blank.assign(static_cast<std::size_t>(k), false);
+  Design design = make_design("ccd", std::move(coded), 0);
   design.description = "central composite (" + options.type + "), " + std::to_string(k) + " factors, alpha = " +
                        format_double(std::round(alpha * 1e4) / 1e4) + ", " + std::to_string(center) +
                        " centre points, " + std::to_string(runs) + " runs";

@@ -16,6 +16,18 @@ double coded_level(int index, int levels) {
   return -1.0 + 2.0 * static_cast<double>(index) / static_cast<double>(levels - 1);
 }
 
+Design make_design(std::string kind, Eigen::MatrixXd coded, int levels, Coding coding) {
+  Design design;
+  std::size_t width = static_cast<std::size_t>(coded.cols());
+  design.kind = std::move(kind);
+  design.coded = std::move(coded);
+  design.coding = coding;
+  design.columns = default_names(width);
+  design.levels.assign(width, levels);
+  design.blank.assign(width, false);
+  return design;
+}
+
 Design design_from_levels(const LevelMatrix& level_indices, const std::vector<int>& levels_per_column,
                           std::string kind, std::string description) {
   Design design;

@@ -251,12 +251,7 @@ Design fractional_factorial(int factors, const std::vector<std::string>& generat
   }
   int resolution = added.empty() ? INT_MAX : resolution_of(word_length_pattern(words, factors));
 
-  Design design;
-  design.kind = "fracfact";
-  design.coded = coded;
-  design.columns = default_names(static_cast<std::size_t>(factors));
-  design.levels.assign(static_cast<std::size_t>(factors), 2);
-  design.blank.assign(static_cast<std::size_t>(factors), false);
+  Design design = make_design("fracfact", std::move(coded), 2);
   design.description = "2^(" + std::to_string(factors) + "-" + std::to_string(added.size()) + ") fractional factorial, " +
                        std::to_string(n) + " runs, resolution " + roman(resolution) +
                        (generator_text.empty() ? "" : ", generators " + generator_text);

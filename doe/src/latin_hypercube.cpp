@@ -180,13 +180,7 @@ Design latin_hypercube(const LhsOptions& options) {
     x = optimise_ese(x, p, outer, rng);
     name = options.criterion == LhsCriterion::Maximin ? "maximin (ESE on phi_50)" : "phi_p (ESE, p = " + format_double(p) + ")";
   }
-  Design design;
-  design.kind = "lhs";
-  design.coded = x;
-  design.coding = Coding::Unit;
-  design.columns = default_names(static_cast<std::size_t>(options.factors));
-  design.levels.assign(static_cast<std::size_t>(options.factors), 0);
-  design.blank.assign(static_cast<std::size_t>(options.factors), false);
+  Design design = make_design("lhs", std::move(x), 0, Coding::Unit);
   design.description = "Latin hypercube, " + name + ", " + std::to_string(options.runs) + " runs";
   design.settings["criterion"] = name;
   design.settings["seed"] = std::to_string(options.seed);

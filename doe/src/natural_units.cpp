@@ -32,10 +32,9 @@ void name_factors(Design& design, const ParameterSpace& space) {
 }
 
 Table design_table(const Design& design, const ParameterSpace* space) {
-  Table table;
   std::vector<int> runs(design.runs());
   for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = static_cast<int>(i) + 1;
-  table = Table(runs);
+  Table table(runs);
   auto coded_column = [&](std::size_t j) {
     Eigen::VectorXd c = design.coded.col(static_cast<Eigen::Index>(j));
     return std::vector<double>(c.data(), c.data() + c.size());

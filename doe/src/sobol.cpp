@@ -48,13 +48,7 @@ Design sobol(int runs, int factors, std::uint64_t seed) {
       std::uint32_t scrambled = owen_scramble(value, seeds[static_cast<std::size_t>(j)]);
       x(i, j) = (static_cast<double>(scrambled) + rng.uniform()) * 0x1.0p-32;
     }
-  Design design;
-  design.kind = "sobol";
-  design.coded = x;
-  design.coding = Coding::Unit;
-  design.columns = default_names(static_cast<std::size_t>(factors));
-  design.levels.assign(static_cast<std::size_t>(factors), 0);
-  design.blank.assign(static_cast<std::size_t>(factors), false);
+  Design design = make_design("sobol", std::move(x), 0, Coding::Unit);
   bool power_of_two = (runs & (runs - 1)) == 0;
   design.description = "scrambled Sobol (Owen), " + std::to_string(runs) + " runs" +
                        (power_of_two ? "" : " (not a power of two: the stratification of a full net is lost)");

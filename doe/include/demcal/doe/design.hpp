@@ -36,6 +36,9 @@ struct Design {
 // Level indices 0..s-1 to coded values evenly spread over [-1, 1]
 // (2 levels: -1/+1, 3 levels: -1/0/+1).
 double coded_level(int index, int levels);
+// A design of `coded` with every column a factor named x1..xN holding
+// `levels` distinct levels (0 = continuous).
+Design make_design(std::string kind, Eigen::MatrixXd coded, int levels, Coding coding = Coding::Symmetric);
 // Builds a Symmetric design from a level-index array (level counts per column).
 Design design_from_levels(const LevelMatrix& level_indices, const std::vector<int>& levels_per_column,
                           std::string kind, std::string description);
