@@ -116,7 +116,6 @@ TEST(ParameterSpace, RejectsNonFiniteValuesInARun) {
 
 TEST(ParameterSpace, SubsetFixesTheRest) {
   ParameterSpace space = ParameterSpace::from_json(valid_space(), "space.json");
-  json no_reference = valid_space();
   ParameterSpace kept = space.subset({"Ec_GPa"}, {{"R_min_m", 2e-4}});
   EXPECT_EQ(kept.size(), 1u);
   EXPECT_DOUBLE_EQ(kept.fixed().at("R_min_m"), 2e-4);
