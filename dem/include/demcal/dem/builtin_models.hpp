@@ -1,0 +1,12 @@
+#pragma once
+// One registration function per built-in contact model (each in its own file).
+#include "demcal/dem/contact_model.hpp"
+
+namespace demcal::dem {
+
+void register_linear_model(ContactModelRegistry& registry);
+
+// Calls every registration above; ContactModelRegistry::instance() runs it once.
+void register_builtin_models(ContactModelRegistry& registry);
+
+}  // namespace demcal::dem

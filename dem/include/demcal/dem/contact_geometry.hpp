@@ -1,0 +1,115 @@
+#pragma once
+// The geometry shared by all contact models: overlap, normal, relative
+// velocity at the contact point, and how a contact force acts on the two
+// bodies. Models supply only their force law; these loops are templates so
+// the law is inlined into them.
+//
+// Sign conventions (2D): n is the unit normal from i to j (from the wall to
+// the disk for walls), t = (-n_y, n_x). The force on j (the disk, for walls)
+// is fn n + fs t, fn > 0 pushing the bodies apart; i gets the opposite. vn > 0
+// when the bodies separate, vs is the sliding velocity of j relative to i
+// along t. `moment` is an extra couple on j (and -moment on i), for bonds.
+#include <cmath>
+
+#include "demcal/dem/bodies.hpp"
+#include "demcal/dem/contacts.hpp"
+#include "demcal/dem/walls.hpp"
+
+namespace demcal::dem {
+
+struct Geometry {
+  double nx, ny;
+  double overlap;        // > 0 when touching, m
+  double vn, vs;         // m/s
+  double relative_w;     // w_j - w_i, rad/s (w_disk for walls)
+  double arm_i, arm_j;   // distance from each centre to the contact point, m
+  double cx, cy;         // contact point, m
+};
+
+struct PairForce {
+  double fn = 0, fs = 0, moment = 0;
+};
+
+// Law: PairForce law(std::size_t k, const Geometry& g) for a pair in range;
+// Skip: bool skip(std::size_t k, double gap) true when the pair can be
+// ignored this step at separation `gap` (> 0 apart).
+template <typename Law, typename Skip>
+inline void for_disk_pairs(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, Law law, Skip skip) {
+  const std::int32_t* ci = c.i.data();
+  const std::int32_t* cj = c.j.data();
+  const double* x = b.x.data();
+  const double* y = b.y.data();
+  const double* r = b.radius.data();
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::int32_t i = ci[k], j = cj[k];
+    const double dx = x[j] - x[i], dy = y[j] - y[i];
+    const double distance = std::sqrt(dx * dx + dy * dy);
+    const double overlap = r[i] + r[j] - distance;
+    if (skip(k, -overlap)) continue;
+    Geometry g;
+    const double inverse = 1.0 / distance;
+    g.nx = dx * inverse;
+    g.ny = dy * inverse;
+    g.overlap = overlap;
+    g.arm_i = r[i] - 0.5 * overlap;
+    g.arm_j = r[j] - 0.5 * overlap;
+    g.cx = x[i] + g.nx * g.arm_i;
+    g.cy = y[i] + g.ny * g.arm_i;
+    const double dvx = b.vx[j] - b.vx[i], dvy = b.vy[j] - b.vy[i];
+    g.vn = dvx * g.nx + dvy * g.ny;
+    g.vs = -dvx * g.ny + dvy * g.nx - (g.arm_i * b.w[i] + g.arm_j * b.w[j]);
+    g.relative_w = b.w[j] - b.w[i];
+    const PairForce f = law(k, g);
+    const double fx = f.fn * g.nx - f.fs * g.ny;
+    const double fy = f.fn * g.ny + f.fs * g.nx;
+    b.fx[j] += fx;
+    b.fy[j] += fy;
+    b.fx[i] -= fx;
+    b.fy[i] -= fy;
+    b.moment[i] += -g.arm_i * f.fs - f.moment;
+    b.moment[j] += -g.arm_j * f.fs + f.moment;
+  }
+}
+
+// Disk-wall pairs: c.i is the disk, c.j the wall.
+template <typename Law, typename Skip>
+inline void for_wall_pairs(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
+                           Law law, Skip skip) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::int32_t i = c.i[k];
+    Wall& wall = walls[static_cast<std::size_t>(c.j[k])];
+    if (!wall.active) continue;
+    // Closest point of the segment to the disk centre.
+    const double ex = wall.x1 - wall.x0, ey = wall.y1 - wall.y0;
+    const double length2 = ex * ex + ey * ey;
+    double s = length2 > 0 ? ((b.x[i] - wall.x0) * ex + (b.y[i] - wall.y0) * ey) / length2 : 0.0;
+    s = s < 0 ? 0 : (s > 1 ? 1 : s);
+    const double px = wall.x0 + s * ex, py = wall.y0 + s * ey;
+    const double dx = b.x[i] - px, dy = b.y[i] - py;
+    const double distance = std::sqrt(dx * dx + dy * dy);
+    const double overlap = b.radius[i] - distance;
+    if (skip(k, -overlap) || distance == 0.0) continue;
+    Geometry g;
+    g.nx = dx / distance;
+    g.ny = dy / distance;
+    g.overlap = overlap;
+    g.arm_i = 0;
+    g.arm_j = b.radius[i] - 0.5 * overlap;
+    g.cx = b.x[i] - g.nx * g.arm_j;
+    g.cy = b.y[i] - g.ny * g.arm_j;
+    const double dvx = b.vx[i] - wall.vx, dvy = b.vy[i] - wall.vy;
+    g.vn = dvx * g.nx + dvy * g.ny;
+    g.vs = -dvx * g.ny + dvy * g.nx - g.arm_j * b.w[i];
+    g.relative_w = b.w[i];
+    const PairForce f = law(k, g);
+    const double fx = f.fn * g.nx - f.fs * g.ny;
+    const double fy = f.fn * g.ny + f.fs * g.nx;
+    b.fx[i] += fx;
+    b.fy[i] += fy;
+    b.moment[i] += -g.arm_j * f.fs + f.moment;
+    wall.fx -= fx;
+    wall.fy -= fy;
+  }
+}
+
+}  // namespace demcal::dem

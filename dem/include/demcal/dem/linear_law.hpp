@@ -1,0 +1,41 @@
+#pragma once
+// The linear contact law with Coulomb friction, shared by every model that
+// falls back to it (a broken bond behaves as a linear contact).
+#include <cmath>
+
+#include "demcal/dem/contact_geometry.hpp"
+
+namespace demcal::dem {
+
+// Deformability method (PFC): kn = A E_c / L with A = 2 r t, r the smaller
+// radius and L = r_i + r_j for two disks; r = L = the disk radius for a wall.
+inline double deformability_kn(double modulus_pa, double radius_i_m, double radius_j_m, bool wall, double thickness_m) {
+  double r = wall ? radius_i_m : std::min(radius_i_m, radius_j_m);
+  double length = wall ? radius_i_m : radius_i_m + radius_j_m;
+  return 2.0 * r * thickness_m * modulus_pa / length;
+}
+
+inline void release(ContactSet& c, std::size_t k) {
+  c.fs[k] = 0.0;
+  c.flags[k] &= static_cast<std::uint8_t>(~kTouching);
+}
+
+// Normal force kn * overlap, shear force updated incrementally and capped at
+// mu * fn. Pairs that do not overlap carry no force and forget their shear.
+inline PairForce linear_force(ContactSet& c, std::size_t k, const Geometry& g, double dt) {
+  PairForce f;
+  if (g.overlap <= 0) {
+    release(c, k);
+    return f;
+  }
+  c.flags[k] |= kTouching;
+  f.fn = c.kn[k] * g.overlap;
+  double fs = c.fs[k] - c.ks[k] * g.vs * dt;
+  const double limit = c.mu[k] * f.fn;
+  if (std::abs(fs) > limit) fs = std::copysign(limit, fs);
+  c.fs[k] = fs;
+  f.fs = fs;
+  return f;
+}
+
+}  // namespace demcal::dem

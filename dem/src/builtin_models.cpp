@@ -1,0 +1,9 @@
+#include "demcal/dem/builtin_models.hpp"
+
+namespace demcal::dem {
+
+void register_builtin_models(ContactModelRegistry& registry) {
+  register_linear_model(registry);
+}
+
+}  // namespace demcal::dem

@@ -1,0 +1,179 @@
+// Neighbour list of the World: a cell grid finds the pairs closer than the
+// sum of their radii plus the skin; the pairs are kept sorted by (model, i, j)
+// so each model computes one contiguous range, and contact state carries over
+// from the previous list by a merge on that order.
+#include <algorithm>
+#include <cmath>
+
+#include "demcal/core/error.hpp"
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+namespace {
+
+// (model, i, j) packed so that sorting the keys sorts the pairs.
+std::uint64_t pair_key(std::uint8_t model, std::uint32_t i, std::uint32_t j) {
+  return (static_cast<std::uint64_t>(model) << 56) | (static_cast<std::uint64_t>(i) << 28) | j;
+}
+
+std::uint64_t key_of(const ContactSet& c, std::size_t k) {
+  return pair_key(c.model[k], static_cast<std::uint32_t>(c.i[k]), static_cast<std::uint32_t>(c.j[k]));
+}
+
+}  // namespace
+
+std::uint8_t World::model_for(std::uint8_t a, std::uint8_t b) const {
+  std::uint8_t m = table_[a][b];
+  if (m == kNoModel)
+    throw Error("no contact model assigned to material groups " + std::to_string(a) + " and " + std::to_string(b));
+  return m;
+}
+
+void World::build_disk_pairs(ContactSet& fresh) {
+  const std::size_t n = bodies.size();
+  if (n < 2) return;
+  double rmax = *std::max_element(bodies.radius.begin(), bodies.radius.end());
+  double xmin = *std::min_element(bodies.x.begin(), bodies.x.end());
+  double xmax = *std::max_element(bodies.x.begin(), bodies.x.end());
+  double ymin = *std::min_element(bodies.y.begin(), bodies.y.end());
+  double ymax = *std::max_element(bodies.y.begin(), bodies.y.end());
+  if (!std::isfinite(xmin + xmax + ymin + ymax))
+    throw Error("a disk position is not finite (the model went unstable)");
+  double cell = 2.0 * rmax + skin_m_;
+  // A disk far from the rest must not blow up the grid: widen the cells.
+  while (((xmax - xmin) / cell + 1) * ((ymax - ymin) / cell + 1) > 4.0 * static_cast<double>(n) + 64) cell *= 2;
+  const long ncx = static_cast<long>((xmax - xmin) / cell) + 1;
+  const long ncy = static_cast<long>((ymax - ymin) / cell) + 1;
+
+  std::vector<std::uint32_t> cell_of(n), start(static_cast<std::size_t>(ncx * ncy + 1), 0), order(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    long cx = static_cast<long>((bodies.x[i] - xmin) / cell), cy = static_cast<long>((bodies.y[i] - ymin) / cell);
+    cell_of[i] = static_cast<std::uint32_t>(cy * ncx + cx);
+    ++start[cell_of[i] + 1];
+  }
+  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  }
+
+  std::vector<std::uint64_t> keys;
+  keys.reserve(4 * n);
+  const long offsets[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // half stencil
+  for (long cy = 0; cy < ncy; ++cy)
+    for (long cx = 0; cx < ncx; ++cx) {
+      const long c = cy * ncx + cx;
+      for (const auto& o : offsets) {
+        const long nx = cx + o[0], ny = cy + o[1];
+        if (nx < 0 || nx >= ncx || ny >= ncy) continue;
+        const long d = ny * ncx + nx;
+        for (std::uint32_t a = start[static_cast<std::size_t>(c)]; a < start[static_cast<std::size_t>(c) + 1]; ++a) {
+          const std::uint32_t i = order[a];
+          std::uint32_t b0 = (d == c) ? a + 1 : start[static_cast<std::size_t>(d)];
+          for (std::uint32_t b = b0; b < start[static_cast<std::size_t>(d) + 1]; ++b) {
+            const std::uint32_t j = order[b];
+            const double dx = bodies.x[j] - bodies.x[i], dy = bodies.y[j] - bodies.y[i];
+            const double reach = bodies.radius[i] + bodies.radius[j] + skin_m_;
+            if (dx * dx + dy * dy >= reach * reach) continue;
+            const std::uint32_t lo = std::min(i, j), hi = std::max(i, j);
+            keys.push_back(pair_key(model_for(bodies.group[lo], bodies.group[hi]), lo, hi));
+          }
+        }
+      }
+    }
+  std::sort(keys.begin(), keys.end());
+  fresh.reserve(keys.size());
+  for (std::uint64_t key : keys)
+    fresh.add(static_cast<std::int32_t>((key >> 28) & 0xFFFFFFF), static_cast<std::int32_t>(key & 0xFFFFFFF),
+              static_cast<std::uint8_t>(key >> 56));
+}
+
+void World::build_wall_pairs(ContactSet& fresh) {
+  std::vector<std::uint64_t> keys;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const Wall& wall = walls[w];
+    if (!wall.active) continue;
+    const double ex = wall.x1 - wall.x0, ey = wall.y1 - wall.y0;
+    const double length2 = ex * ex + ey * ey;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      double s = length2 > 0 ? ((bodies.x[i] - wall.x0) * ex + (bodies.y[i] - wall.y0) * ey) / length2 : 0.0;
+      s = std::clamp(s, 0.0, 1.0);
+      const double dx = bodies.x[i] - (wall.x0 + s * ex), dy = bodies.y[i] - (wall.y0 + s * ey);
+      const double reach = bodies.radius[i] + skin_m_;
+      if (dx * dx + dy * dy >= reach * reach) continue;
+      keys.push_back(pair_key(model_for(bodies.group[i], wall.group), static_cast<std::uint32_t>(i),
+                              static_cast<std::uint32_t>(w)));
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  fresh.reserve(keys.size());
+  for (std::uint64_t key : keys)
+    fresh.add(static_cast<std::int32_t>((key >> 28) & 0xFFFFFFF), static_cast<std::int32_t>(key & 0xFFFFFFF),
+              static_cast<std::uint8_t>(key >> 56));
+}
+
+// Pairs already known keep their state; new ones get their model's constants.
+void World::merge_into(ContactSet& fresh, ContactSet& old, bool wall) {
+  std::size_t o = 0;
+  for (std::size_t k = 0; k < fresh.size(); ++k) {
+    const std::uint64_t key = key_of(fresh, k);
+    while (o < old.size() && key_of(old, o) < key) ++o;
+    if (o < old.size() && key_of(old, o) == key) {
+      fresh.copy_state(k, old, o);
+      continue;
+    }
+    const std::size_t i = static_cast<std::size_t>(fresh.i[k]), j = static_cast<std::size_t>(fresh.j[k]);
+    PairInfo info;
+    info.radius_i = bodies.radius[i];
+    info.group_i = bodies.group[i];
+    info.wall = wall;
+    info.radius_j = wall ? 0.0 : bodies.radius[j];
+    info.group_j = wall ? walls[j].group : bodies.group[j];
+    models_[fresh.model[k]]->initialise(fresh, k, info, settings_.thickness_m);
+  }
+}
+
+void World::rebuild() {
+  if (skin_m_ <= 0) {
+    if (settings_.skin_m > 0) {
+      skin_m_ = settings_.skin_m;
+    } else {
+      double sum = 0;
+      for (double r : bodies.radius) sum += r;
+      skin_m_ = bodies.size() ? 0.25 * sum / static_cast<double>(bodies.size()) : 0.0;
+    }
+  }
+  ContactSet fresh_pairs, fresh_walls;
+  build_disk_pairs(fresh_pairs);
+  build_wall_pairs(fresh_walls);
+  merge_into(fresh_pairs, pairs_, false);
+  merge_into(fresh_walls, wall_pairs_, true);
+  pairs_ = std::move(fresh_pairs);
+  wall_pairs_ = std::move(fresh_walls);
+
+  auto runs = [](const ContactSet& c, std::vector<std::pair<std::size_t, std::size_t>>& out,
+                 std::vector<std::uint8_t>& models) {
+    out.clear();
+    models.clear();
+    for (std::size_t k = 0; k < c.size();) {
+      std::size_t end = k;
+      while (end < c.size() && c.model[end] == c.model[k]) ++end;
+      out.emplace_back(k, end);
+      models.push_back(c.model[k]);
+      k = end;
+    }
+  };
+  runs(pairs_, pair_runs_, run_models_);
+  runs(wall_pairs_, wall_runs_, wall_run_models_);
+
+  x_built_ = bodies.x;
+  y_built_ = bodies.y;
+  wall_built_.resize(walls.size());
+  for (std::size_t w = 0; w < walls.size(); ++w) wall_built_[w] = {walls[w].x0, walls[w].y0};
+  max_disk_move2_ = 0;
+  ++rebuilds_;
+  built_ = true;
+  update_time_step();
+}
+
+}  // namespace demcal::dem

@@ -1,0 +1,167 @@
+#include "demcal/dem/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "demcal/core/error.hpp"
+
+namespace demcal::dem {
+
+World::World(WorldSettings settings) : settings_(settings) {
+  for (auto& row : table_) row.fill(kNoModel);
+  if (!(settings_.thickness_m > 0)) throw Error("thickness must be positive");
+  if (settings_.damping < 0 || settings_.damping >= 1) throw Error("local damping must lie in [0, 1)");
+  if (!(settings_.safety_factor > 0) || settings_.safety_factor > 1)
+    throw Error("time-step safety factor must lie in (0, 1]");
+}
+
+std::uint8_t World::add_model(std::unique_ptr<ContactModel> model) {
+  if (models_.size() >= kNoModel) throw Error("too many contact models (at most 254)");
+  models_.push_back(std::move(model));
+  return static_cast<std::uint8_t>(models_.size() - 1);
+}
+
+void World::assign(std::uint8_t group_a, std::uint8_t group_b, std::uint8_t model_index) {
+  if (model_index >= models_.size()) throw Error("assign: no contact model with index " + std::to_string(model_index));
+  table_[group_a][group_b] = model_index;
+  table_[group_b][group_a] = model_index;
+  built_ = false;
+}
+
+void World::refresh() { rebuild(); }
+
+void World::update_time_step() {
+  if (settings_.fixed_dt_s > 0) {
+    dt_s_ = settings_.fixed_dt_s;
+    return;
+  }
+  const std::size_t n = bodies.size();
+  std::vector<double> kt(n, 0.0), kr(n, 0.0);
+  auto add = [&](const ContactSet& c, bool wall) {
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const std::size_t i = static_cast<std::size_t>(c.i[k]);
+      double t = 0, r = 0;
+      models_[c.model[k]]->stiffness(c, k, bodies.radius[i], t, r);
+      kt[i] += t;
+      kr[i] += r;
+      if (!wall) {
+        const std::size_t j = static_cast<std::size_t>(c.j[k]);
+        models_[c.model[k]]->stiffness(c, k, bodies.radius[j], t, r);
+        kt[j] += t;
+        kr[j] += r;
+      }
+    }
+  };
+  add(pairs_, false);
+  add(wall_pairs_, true);
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies.fixed[i]) continue;
+    if (kt[i] <= 0) {
+      // No neighbour yet: bound the step by one contact of the stiffest model.
+      for (const auto& m : models_) kt[i] = std::max(kt[i], m->normal_stiffness_estimate(bodies.radius[i], settings_.thickness_m));
+      kr[i] = kt[i] * bodies.radius[i] * bodies.radius[i];
+    }
+    if (kt[i] > 0) dt = std::min(dt, std::sqrt(bodies.mass[i] / kt[i]));
+    if (kr[i] > 0) dt = std::min(dt, std::sqrt(bodies.inertia[i] / kr[i]));
+  }
+  if (!std::isfinite(dt) || dt <= 0) throw Error("cannot find a stable time step (no stiffness or no mass)");
+  dt_s_ = settings_.safety_factor * dt;
+}
+
+void World::compute_forces() {
+  bodies.clear_forces();
+  for (Wall& wall : walls) wall.fx = wall.fy = 0;
+  StepContext context{dt_s_, time_s_, settings_.thickness_m, &breaks_};
+  for (std::size_t r = 0; r < pair_runs_.size(); ++r)
+    models_[run_models_[r]]->disk_forces(pairs_, pair_runs_[r].first, pair_runs_[r].second, bodies, context);
+  for (std::size_t r = 0; r < wall_runs_.size(); ++r)
+    models_[wall_run_models_[r]]->wall_forces(wall_pairs_, wall_runs_[r].first, wall_runs_[r].second, bodies, walls,
+                                              context);
+}
+
+void World::integrate() {
+  const std::size_t n = bodies.size();
+  const double dt = dt_s_, alpha = settings_.damping;
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  double* x = bodies.x.data();
+  double* y = bodies.y.data();
+  double* vx = bodies.vx.data();
+  double* vy = bodies.vy.data();
+  double* w = bodies.w.data();
+  double max_move2 = max_disk_move2_;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies.fixed[i]) {
+      vx[i] = vy[i] = w[i] = 0;
+      continue;
+    }
+    const double m = bodies.mass[i];
+    // Local non-viscous damping opposes the velocity with a fraction of the force.
+    const double fx = bodies.fx[i] + m * gx;
+    const double fy = bodies.fy[i] + m * gy;
+    const double mz = bodies.moment[i];
+    const double sx = vx[i] > 0 ? 1.0 : (vx[i] < 0 ? -1.0 : 0.0);
+    const double sy = vy[i] > 0 ? 1.0 : (vy[i] < 0 ? -1.0 : 0.0);
+    const double sw = w[i] > 0 ? 1.0 : (w[i] < 0 ? -1.0 : 0.0);
+    vx[i] += (fx - alpha * std::abs(fx) * sx) / m * dt;
+    vy[i] += (fy - alpha * std::abs(fy) * sy) / m * dt;
+    w[i] += (mz - alpha * std::abs(mz) * sw) / bodies.inertia[i] * dt;
+    x[i] += vx[i] * dt;
+    y[i] += vy[i] * dt;
+    const double ddx = x[i] - x_built_[i], ddy = y[i] - y_built_[i];
+    max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
+  }
+  max_disk_move2_ = max_move2;
+}
+
+void World::move_walls() {
+  for (Wall& wall : walls) {
+    if (!wall.active) continue;
+    if (wall.servo) {
+      // Stress the disks exert on the wall along its inward normal.
+      const double loaded = wall.servo_length_m * settings_.thickness_m;
+      const double stress = -(wall.fx * wall.inward_nx + wall.fy * wall.inward_ny) / loaded;
+      double speed = wall.servo_gain_m_s_per_pa * (wall.servo_target_stress_pa - stress);
+      speed = std::clamp(speed, -wall.servo_max_speed_m_s, wall.servo_max_speed_m_s);
+      wall.vx = speed * wall.inward_nx;
+      wall.vy = speed * wall.inward_ny;
+    }
+    wall.advance(dt_s_);
+  }
+}
+
+void World::step() {
+  if (!built_) rebuild();
+  // Rebuild once some disk may have closed the skin with a neighbour or a wall.
+  double disk_move = std::sqrt(max_disk_move2_);
+  double wall_move = 0;
+  for (std::size_t w = 0; w < walls.size() && w < wall_built_.size(); ++w)
+    wall_move = std::max(wall_move, std::hypot(walls[w].x0 - wall_built_[w][0], walls[w].y0 - wall_built_[w][1]));
+  if (2.0 * disk_move > skin_m_ || disk_move + wall_move > skin_m_ || wall_built_.size() != walls.size()) rebuild();
+  compute_forces();
+  integrate();
+  move_walls();
+  time_s_ += dt_s_;
+  ++steps_;
+}
+
+void World::run(std::uint64_t steps) {
+  for (std::uint64_t s = 0; s < steps; ++s) step();
+}
+
+double World::kinetic_energy() const {
+  double energy = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    energy += 0.5 * bodies.mass[i] * (bodies.vx[i] * bodies.vx[i] + bodies.vy[i] * bodies.vy[i]) +
+              0.5 * bodies.inertia[i] * bodies.w[i] * bodies.w[i];
+  return energy;
+}
+
+std::size_t World::touching_pairs() const {
+  std::size_t count = 0;
+  for (std::uint8_t f : pairs_.flags) count += (f & kTouching) != 0;
+  return count;
+}
+
+}  // namespace demcal::dem

@@ -1,0 +1,121 @@
+// The cell-grid neighbour list finds exactly the pairs a brute-force search
+// finds, keeps contact state across rebuilds, and rebuilds only when needed.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/rng.hpp"
+#include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/world.hpp"
+
+using namespace demcal::dem;
+
+namespace {
+
+std::unique_ptr<ContactModel> linear() {
+  return ContactModelRegistry::instance().create("linear", {{"modulus_pa", 1e8}, {"kn_ks", 2.0}, {"friction", 0.5}},
+                                                 "test");
+}
+
+World random_world(std::size_t n, std::uint64_t seed, double skin) {
+  WorldSettings settings;
+  settings.skin_m = skin;
+  World world(settings);
+  world.assign(0, 0, world.add_model(linear()));
+  world.assign(0, 1, world.add_model(linear()));  // a second model for group-1 disks
+  world.assign(1, 1, 0);
+  demcal::Rng rng(seed);
+  for (std::size_t k = 0; k < n; ++k)
+    world.bodies.add_disk(rng.uniform(0, 0.05), rng.uniform(0, 0.03), rng.uniform(4e-4, 1e-3), 2000, 1, rng.below(2));
+  return world;
+}
+
+std::set<std::pair<int, int>> brute_force(const World& world, double skin) {
+  std::set<std::pair<int, int>> pairs;
+  const Bodies& b = world.bodies;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t j = i + 1; j < b.size(); ++j) {
+      double reach = b.radius[i] + b.radius[j] + skin;
+      if (std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]) < reach) pairs.insert({int(i), int(j)});
+    }
+  return pairs;
+}
+
+}  // namespace
+
+TEST(NeighbourList, FindsExactlyTheBruteForcePairs) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    World world = random_world(600, seed, 2e-4);
+    world.refresh();
+    std::set<std::pair<int, int>> found;
+    for (std::size_t k = 0; k < world.pairs().size(); ++k) {
+      EXPECT_LT(world.pairs().i[k], world.pairs().j[k]);
+      found.insert({world.pairs().i[k], world.pairs().j[k]});
+    }
+    EXPECT_EQ(found.size(), world.pairs().size()) << "no pair twice";
+    EXPECT_EQ(found, brute_force(world, 2e-4));
+    // Pairs of one model form one contiguous run.
+    for (std::size_t k = 1; k < world.pairs().size(); ++k) EXPECT_LE(world.pairs().model[k - 1], world.pairs().model[k]);
+  }
+}
+
+TEST(NeighbourList, StateSurvivesARebuild) {
+  World world = random_world(300, 4, 2e-4);
+  world.refresh();
+  ContactSet& pairs = world.pairs();
+  for (std::size_t k = 0; k < pairs.size(); ++k) pairs.fs[k] = 1.0 + static_cast<double>(pairs.i[k]) * 1e-3 + pairs.j[k];
+  auto before = pairs.fs;
+  auto i_before = pairs.i, j_before = pairs.j;
+  world.refresh();
+  ASSERT_EQ(world.pairs().size(), before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    EXPECT_EQ(world.pairs().i[k], i_before[k]);
+    EXPECT_EQ(world.pairs().fs[k], before[k]);
+  }
+}
+
+TEST(NeighbourList, RebuildsOnlyAfterHalfTheSkinIsUsed) {
+  WorldSettings settings;
+  settings.skin_m = 1e-4;
+  settings.damping = 0;
+  World world(settings);
+  world.assign(0, 0, world.add_model(linear()));
+  world.bodies.add_disk(0, 0, 1e-3, 2000, 1, 0);
+  world.bodies.add_disk(0.01, 0, 1e-3, 2000, 1, 0);
+  world.bodies.vx[0] = 1.0;  // moves 1 m/s: half the skin (5e-5 m) takes 5e-5 s
+  world.step();
+  std::uint64_t first = world.rebuilds();
+  double dt = world.dt_s();
+  world.run(static_cast<std::uint64_t>(4e-5 / dt));
+  EXPECT_EQ(world.rebuilds(), first);
+  world.run(static_cast<std::uint64_t>(2e-5 / dt) + 2);
+  EXPECT_EQ(world.rebuilds(), first + 1);
+}
+
+TEST(ContactModels, RegistryNamesModelsAndRejectsBadParameters) {
+  auto& registry = ContactModelRegistry::instance();
+  const std::vector<std::string> names = registry.names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "linear"), names.end());
+  EXPECT_THROW(registry.create("hertz", {}, "scene.json"), demcal::Error);
+  EXPECT_THROW(registry.create("linear", {{"modulus_pa", 0.0}, {"kn_ks", 2.0}, {"friction", 0.5}}, "s"), demcal::Error);
+  EXPECT_THROW(registry.create("linear", {{"modulus_pa", -1e9}, {"kn_ks", 2.0}, {"friction", 0.5}}, "s"), demcal::Error);
+  EXPECT_THROW(registry.create("linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}}, "s"), demcal::Error);
+  EXPECT_THROW(registry.create("linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"fricton", 1}}, "s"),
+               demcal::Error);
+  try {
+    registry.create("linear", {{"modulus_pa", 1e9}, {"kn_ks", -2.0}, {"friction", 0.5}}, "scene.json: mortar");
+    FAIL() << "expected an error";
+  } catch (const demcal::Error& e) {
+    EXPECT_EQ(std::string(e.what()), "scene.json: mortar: kn_ks must be positive (got -2)");
+  }
+}
+
+TEST(ContactModels, PairsWithoutAModelAreAnError) {
+  World world;
+  world.add_model(linear());
+  world.bodies.add_disk(0, 0, 1e-3, 2000, 1, 0);
+  world.bodies.add_disk(1.5e-3, 0, 1e-3, 2000, 1, 3);
+  EXPECT_THROW(world.refresh(), demcal::Error);
+}
