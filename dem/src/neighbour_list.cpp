@@ -81,7 +81,11 @@ void World::build_disk_pairs(ContactSet& fresh) {
         }
       }
     }
+  // A bond holds its pair in the list however far the disks have moved apart.
+  for (std::size_t k = 0; k < pairs_.size(); ++k)
+    if (pairs_.flags[k] & kBonded) keys.push_back(key_of(pairs_, k));
   std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   fresh.reserve(keys.size());
   for (std::uint64_t key : keys)
     fresh.add(static_cast<std::int32_t>((key >> 28) & 0xFFFFFFF), static_cast<std::int32_t>(key & 0xFFFFFFF),

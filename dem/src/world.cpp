@@ -31,6 +31,20 @@ void World::assign(std::uint8_t group_a, std::uint8_t group_b, std::uint8_t mode
 
 void World::refresh() { rebuild(); }
 
+std::size_t World::install_bonds(double tolerance_m, Rng& rng) {
+  rebuild();
+  std::size_t installed = 0;
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(pairs_.i[k]), j = static_cast<std::size_t>(pairs_.j[k]);
+    const double gap = std::hypot(bodies.x[j] - bodies.x[i], bodies.y[j] - bodies.y[i]) - bodies.radius[i] - bodies.radius[j];
+    if (gap > tolerance_m) continue;
+    PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false};
+    installed += models_[pairs_.model[k]]->install_bond(pairs_, k, info, settings_.thickness_m, rng) ? 1 : 0;
+  }
+  update_time_step();  // bonds stiffen the disks
+  return installed;
+}
+
 void World::update_time_step() {
   if (settings_.fixed_dt_s > 0) {
     dt_s_ = settings_.fixed_dt_s;

@@ -12,6 +12,10 @@
 #include "demcal/dem/contacts.hpp"
 #include "demcal/dem/walls.hpp"
 
+namespace demcal {
+class Rng;
+}
+
 namespace demcal::dem {
 
 struct WorldSettings {
@@ -44,6 +48,9 @@ class World {
   void run(std::uint64_t steps);
   // Rebuilds the neighbour list now (after bodies were moved or added by hand).
   void refresh();
+  // Material genesis: bonds every disk pair whose gap is at most `tolerance_m`
+  // and whose model has a bond. Returns the number of bonds installed.
+  std::size_t install_bonds(double tolerance_m, Rng& rng);
 
   double time_s() const { return time_s_; }
   std::uint64_t steps_done() const { return steps_; }
