@@ -9,8 +9,10 @@
 #include "demcal/core/rng.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
+#include "imposed_motion.hpp"
 
 using namespace demcal::dem;
+using demcal::dem::testing::imposed_step;
 
 namespace {
 
@@ -39,17 +41,6 @@ World bonded_pair(double sigma_c, double tau_c) {
   demcal::Rng rng(1);
   EXPECT_EQ(world.install_bonds(1e-9, rng), 1u);
   return world;
-}
-
-// One step with disk 1 moving at (vx, vy) and the disks spinning at -w and +w.
-void imposed_step(World& world, double vx, double vy, double w) {
-  world.bodies.vx[1] = vx;
-  world.bodies.vy[1] = vy;
-  world.bodies.w[0] = -w;
-  world.bodies.w[1] = w;
-  world.step();
-  world.bodies.x[1] += vx * kDt;
-  world.bodies.y[1] += vy * kDt;
 }
 
 }  // namespace

@@ -1,0 +1,101 @@
+// Contact bond (PFC's linearcbond): a linear contact glued at a point. While
+// bonded it carries tension and unlimited shear; it breaks when the tensile
+// force reaches the normal strength or the shear force the shear strength,
+// and then slides with Coulomb friction like the linear model.
+//   parameters: {"modulus_pa", "kn_ks", "friction",
+//                "tensile_strength_pa", "tensile_strength_std_pa" (default 0),
+//                "shear_strength_pa", "shear_strength_std_pa" (default 0)}
+// Strengths are stresses; each bond gets force strengths stress x 2 R_mean t
+// with R_mean = (R_i + R_j) / 2, drawn per bond from a normal distribution
+// truncated at zero.
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "demcal/dem/bond_strength.hpp"
+#include "demcal/dem/builtin_models.hpp"
+#include "demcal/dem/linear_law.hpp"
+#include "demcal/dem/model_parameters.hpp"
+
+namespace demcal::dem {
+namespace {
+
+class ContactBondModel : public ContactModel {
+ public:
+  ContactBondModel(const nlohmann::json& p, const std::string& where)
+      : modulus_pa_(positive(p, "modulus_pa", where)),
+        kn_ks_(positive(p, "kn_ks", where)),
+        friction_(non_negative(p, "friction", where)),
+        sigma_c_(non_negative(p, "tensile_strength_pa", where)),
+        sigma_c_std_(non_negative_or(p, "tensile_strength_std_pa", 0.0, where)),
+        tau_c_(non_negative(p, "shear_strength_pa", where)),
+        tau_c_std_(non_negative_or(p, "shear_strength_std_pa", 0.0, where)) {
+    require_only(p, {"modulus_pa", "kn_ks", "friction", "tensile_strength_pa", "tensile_strength_std_pa",
+                     "shear_strength_pa", "shear_strength_std_pa"},
+                 where);
+  }
+  std::string name() const override { return "contact_bond"; }
+
+  void initialise(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m) const override {
+    c.kn[k] = deformability_kn(modulus_pa_, pair.radius_i, pair.radius_j, pair.wall, thickness_m);
+    c.ks[k] = c.kn[k] / kn_ks_;
+    c.mu[k] = friction_;
+  }
+
+  bool install_bond(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
+    if (pair.wall) return false;
+    const double width = (pair.radius_i + pair.radius_j) * thickness_m;  // 2 R_mean t
+    c.strength_n[k] = draw_strength(sigma_c_, sigma_c_std_, rng) * width;
+    c.strength_s[k] = draw_strength(tau_c_, tau_c_std_, rng) * width;
+    c.flags[k] |= kBonded;
+    return true;
+  }
+
+  void disk_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b,
+                   const StepContext& step) const override {
+    const double dt = step.dt_s;
+    for_disk_pairs(
+        c, begin, end, b,
+        [&](std::size_t k, const Geometry& g) {
+          if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
+          PairForce f;
+          f.fn = c.kn[k] * g.overlap;  // negative in tension
+          c.fs[k] -= c.ks[k] * g.vs * dt;
+          f.fs = c.fs[k];
+          const bool tension = -f.fn >= c.strength_n[k];
+          if (tension || std::abs(f.fs) >= c.strength_s[k]) {
+            if (step.breaks)
+              step.breaks->push_back({step.time_s, g.cx, g.cy, tension ? BreakMode::Tension : BreakMode::Shear,
+                                      b.group[static_cast<std::size_t>(c.i[k])], b.group[static_cast<std::size_t>(c.j[k])]});
+            c.flags[k] &= static_cast<std::uint8_t>(~kBonded);
+            return linear_force(c, k, g, dt);
+          }
+          c.flags[k] = static_cast<std::uint8_t>(g.overlap > 0 ? (c.flags[k] | kTouching) : (c.flags[k] & ~kTouching));
+          return f;
+        },
+        [&](std::size_t k, double gap) { return gap >= 0 && !(c.flags[k] & kBonded) ? (release(c, k), true) : false; });
+  }
+
+  void wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
+                   const StepContext& step) const override {
+    for_wall_pairs(c, begin, end, b, walls, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
+                   [&](std::size_t k, double gap) { return gap >= 0 ? (release(c, k), true) : false; });
+  }
+
+  double normal_stiffness_estimate(double radius_m, double thickness_m) const override {
+    return deformability_kn(modulus_pa_, radius_m, radius_m, false, thickness_m);
+  }
+
+ private:
+  double modulus_pa_, kn_ks_, friction_;
+  double sigma_c_, sigma_c_std_, tau_c_, tau_c_std_;
+};
+
+}  // namespace
+
+void register_contact_bond_model(ContactModelRegistry& registry) {
+  registry.add("contact_bond", [](const nlohmann::json& p, const std::string& where) {
+    return std::make_unique<ContactBondModel>(p, where);
+  });
+}
+
+}  // namespace demcal::dem

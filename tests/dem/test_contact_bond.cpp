@@ -1,0 +1,80 @@
+// The contact bond against its closed form: linear in tension and shear while
+// bonded, broken when the force reaches strength x 2 R_mean t, then a frictional
+// contact.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/rng.hpp"
+#include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/world.hpp"
+#include "imposed_motion.hpp"
+
+using namespace demcal::dem;
+using demcal::dem::testing::imposed_step;
+
+namespace {
+
+constexpr double kR1 = 1e-3, kR2 = 1.5e-3, kDt = 1e-8, kModulus = 1e9, kKnKs = 2.5;
+// kn = A E / L with A = 2 min(R) t, L = R1 + R2; strengths as forces: stress x (R1 + R2) t.
+constexpr double kKn = 2 * kR1 * kModulus / (kR1 + kR2);
+constexpr double kWidth = kR1 + kR2;
+
+World bonded_pair(double sigma_c, double tau_c) {
+  WorldSettings settings;
+  settings.fixed_dt_s = kDt;
+  World world(settings);
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                        "contact_bond",
+                        {{"modulus_pa", kModulus}, {"kn_ks", kKnKs}, {"friction", 0.3},
+                         {"tensile_strength_pa", sigma_c}, {"shear_strength_pa", tau_c}},
+                        "test")));
+  world.bodies.add_disk(0, 0, kR1, 2650, 1, 0);
+  world.bodies.add_disk(kR1 + kR2, 0, kR2, 2650, 1, 0);
+  world.bodies.fixed[0] = world.bodies.fixed[1] = 1;
+  demcal::Rng rng(3);
+  EXPECT_EQ(world.install_bonds(1e-9, rng), 1u);
+  return world;
+}
+
+}  // namespace
+
+TEST(ContactBond, TensionIsKnDeltaUntilTheNormalStrengthForce) {
+  const double sigma_c = 2e6, v = 1.0;
+  World world = bonded_pair(sigma_c, 1e9);
+  double last = 0;
+  int steps = 0;
+  while (world.breaks().empty() && steps < 100000) {
+    imposed_step(world, v, 0, 0);
+    ++steps;
+    // The force follows the gap of the positions the step started from.
+    if (world.breaks().empty()) {
+      last = world.bodies.fx[0];
+      ASSERT_NEAR(last, kKn * v * kDt * (steps - 1), 1e-9 * kKn * v * kDt * steps + 1e-12);
+    }
+  }
+  ASSERT_EQ(world.breaks().size(), 1u);
+  EXPECT_EQ(world.breaks()[0].mode, BreakMode::Tension);
+  EXPECT_LT(last, sigma_c * kWidth);
+  EXPECT_GE(last + 1.000001 * kKn * v * kDt, sigma_c * kWidth);
+  EXPECT_EQ(world.bodies.fx[0], 0.0);  // broken, apart: no force
+}
+
+TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
+  const double tau_c = 1e5, v = 1.0, ks = kKn / kKnKs;
+  World world = bonded_pair(1e9, tau_c);
+  world.bodies.x[1] -= 1e-6;  // a small overlap so friction has a normal force afterwards
+  world.refresh();
+  int steps = 0;
+  while (world.breaks().empty() && steps < 100000) {
+    imposed_step(world, 0, v, 0);
+    ++steps;
+  }
+  ASSERT_EQ(world.breaks().size(), 1u);
+  EXPECT_EQ(world.breaks()[0].mode, BreakMode::Shear);
+  EXPECT_NEAR(ks * v * kDt * steps, tau_c * kWidth, 1.01 * ks * v * kDt);
+  // After the break the shear force is capped at mu * Fn.
+  imposed_step(world, 0, v, 0);
+  EXPECT_NEAR(std::abs(world.pairs().fs[0]), 0.3 * kKn * 1e-6, 1e-3 * 0.3 * kKn * 1e-6);
+}
