@@ -1,0 +1,257 @@
+#include "demcal/dem/genesis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/log.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/core/rng.hpp"
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+namespace {
+
+constexpr std::uint8_t kDiskGroup = 0, kWallGroup = 1;
+
+// Mean unbalanced force over mean contact force: PFC's measure of equilibrium.
+double force_ratio(const World& world) {
+  const Bodies& b = world.bodies;
+  double unbalanced = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) unbalanced += std::hypot(b.fx[i], b.fy[i]);
+  double contact = 0;
+  std::size_t touching = 0;
+  const ContactSet& c = world.pairs();
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
+    if (overlap > 0) {
+      contact += c.kn[k] * overlap;
+      ++touching;
+    }
+  }
+  if (touching == 0 || b.size() == 0) return 0.0;
+  return (unbalanced / static_cast<double>(b.size())) / (contact / static_cast<double>(touching));
+}
+
+// Contacts per disk, walls included, from the current overlaps.
+std::vector<int> contact_counts(const World& world) {
+  const Bodies& b = world.bodies;
+  std::vector<int> count(b.size(), 0);
+  const ContactSet& c = world.pairs();
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    if (b.radius[i] + b.radius[j] > std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i])) {
+      ++count[i];
+      ++count[j];
+    }
+  }
+  const ContactSet& w = world.wall_pairs();
+  for (std::size_t k = 0; k < w.size(); ++k)
+    if (w.flags[k] & kTouching) ++count[static_cast<std::size_t>(w.i[k])];
+  return count;
+}
+
+void set_radius(Bodies& b, std::size_t i, double radius, double density, double thickness) {
+  b.radius[i] = radius;
+  b.mass[i] = density * M_PI * radius * radius * thickness;
+  b.inertia[i] = 0.5 * b.mass[i] * radius * radius;
+}
+
+// Cycles until the force ratio falls below `ratio` (checked every 50 steps).
+void cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps) {
+  for (std::uint64_t done = 0; done < max_steps; done += 50) {
+    world.run(50);
+    if (force_ratio(world) < ratio) return;
+  }
+}
+
+Wall make_wall(double x0, double y0, double x1, double y1, double nx, double ny) {
+  Wall wall;
+  wall.x0 = x0;
+  wall.y0 = y0;
+  wall.x1 = x1;
+  wall.y1 = y1;
+  wall.group = kWallGroup;
+  wall.inward_nx = nx;
+  wall.inward_ny = ny;
+  return wall;
+}
+
+}  // namespace
+
+std::size_t SpecimenSpec::disk_count() const {
+  const double r_mean = 0.5 * (radius_min_m + radius_max_m);
+  return static_cast<std::size_t>(std::floor(width_m * height_m * (1 - porosity) / (M_PI * r_mean * r_mean)));
+}
+
+std::string SpecimenSpec::cache_key() const {
+  std::ostringstream key;
+  key << "genesis-v2 W=" << format_double(width_m) << " H=" << format_double(height_m)
+      << " t=" << format_double(thickness_m) << " n=" << format_double(porosity) << " Rmin=" << format_double(radius_min_m)
+      << " Rmax=" << format_double(radius_max_m) << " rho=" << format_double(density_kg_m3)
+      << " E=" << format_double(genesis_modulus_pa) << " s0=" << format_double(isotropic_stress_pa)
+      << " tol=" << format_double(stress_tolerance) << " nc=" << min_contacts << " seed=" << seed;
+  return key.str();
+}
+
+void SpecimenSpec::validate() const {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("specimen: ") + name + " must be positive (got " + format_double(v) + ")");
+  };
+  positive(width_m, "width_m");
+  positive(height_m, "height_m");
+  positive(thickness_m, "thickness_m");
+  positive(radius_min_m, "radius_min_m");
+  positive(radius_max_m, "radius_max_m");
+  positive(density_kg_m3, "density_kg_m3");
+  positive(genesis_modulus_pa, "genesis_modulus_pa");
+  if (!(porosity > 0.05 && porosity < 0.5))
+    throw Error("specimen: porosity must lie in (0.05, 0.5) for a 2D disk packing (got " + format_double(porosity) + ")");
+  if (radius_max_m < radius_min_m) throw Error("specimen: radius_max_m must be >= radius_min_m");
+  if (radius_max_m * 6 > std::min(width_m, height_m))
+    throw Error("specimen: radius_max_m is too large for the specimen (need at least 6 radii across)");
+  if (disk_count() > 5000000) throw Error("specimen: more than 5 million disks; use larger radii");
+  if (disk_count() < 10) throw Error("specimen: fewer than 10 disks; use smaller radii");
+}
+
+Specimen pack_specimen(const SpecimenSpec& spec) {
+  spec.validate();
+  Rng rng(spec.seed, 0x67656e65 /* "gene" */);
+  const std::size_t n = spec.disk_count();
+  const double area = spec.width_m * spec.height_m;
+
+  // Final radii: uniform in [Rmin, Rmax], scaled so the solid area gives the porosity exactly.
+  std::vector<double> final_radius(n);
+  double solid = 0;
+  for (double& r : final_radius) {
+    r = rng.uniform(spec.radius_min_m, spec.radius_max_m);
+    solid += M_PI * r * r;
+  }
+  const double to_target = std::sqrt((1 - spec.porosity) * area / solid);
+  for (double& r : final_radius) r *= to_target;
+
+  WorldSettings settings;
+  settings.thickness_m = spec.thickness_m;
+  settings.damping = 0.7;
+  settings.skin_m = 0.25 * spec.radius_min_m;
+  World world(settings);
+  const std::uint8_t model = world.add_model(ContactModelRegistry::instance().create(
+      "linear", {{"modulus_pa", spec.genesis_modulus_pa}, {"kn_ks", 1.0}, {"friction", 0.0}}, "genesis"));
+  world.assign(kDiskGroup, kDiskGroup, model);
+  world.assign(kDiskGroup, kWallGroup, model);
+  world.bodies.reserve(n);
+  // Start at 30 % solid fraction: m = sqrt((1 - n) / (1 - n0)) expands from there.
+  const double start_scale = std::sqrt(0.30 / (1 - spec.porosity));
+  for (std::size_t i = 0; i < n; ++i) {
+    double r = final_radius[i];
+    world.bodies.add_disk(rng.uniform(r, spec.width_m - r), rng.uniform(r, spec.height_m - r), r * start_scale,
+                          spec.density_kg_m3, spec.thickness_m, kDiskGroup);
+  }
+  const double W = spec.width_m, H = spec.height_m, margin = 0.1 * std::max(W, H);
+  world.walls.push_back(make_wall(-margin, 0, W + margin, 0, 0, 1));        // bottom
+  world.walls.push_back(make_wall(-margin, H, W + margin, H, 0, -1));       // top
+  world.walls.push_back(make_wall(0, -margin, 0, H + margin, 1, 0));        // left
+  world.walls.push_back(make_wall(W, -margin, W, H + margin, -1, 0));       // right
+
+  // Expansion in stages, cycling to near equilibrium after each.
+  const int stages = 10;
+  for (int stage = 1; stage <= stages; ++stage) {
+    const double scale = start_scale + (1 - start_scale) * stage / stages;
+    for (std::size_t i = 0; i < n; ++i)
+      set_radius(world.bodies, i, final_radius[i] * scale, spec.density_kg_m3, spec.thickness_m);
+    world.refresh();
+    cycle_to_equilibrium(world, stage < stages ? 2e-2 : 1e-3, 20000);
+  }
+
+  // Isotropic stress by servo-controlled walls.
+  const double r_mean = 0.5 * (spec.radius_min_m + spec.radius_max_m);
+  for (Wall& wall : world.walls) {
+    wall.servo = true;
+    wall.servo_target_stress_pa = spec.isotropic_stress_pa;
+    // Each step closes about 5 % of the stress error (wall stiffness ~ E t L / R).
+    wall.servo_gain_m_s_per_pa = 0.05 * r_mean / (spec.genesis_modulus_pa * world.dt_s());
+    wall.servo_max_speed_m_s = 0.01 * r_mean / world.dt_s();
+  }
+  auto wall_stress = [&](const Wall& wall, double loaded_length) {
+    return -(wall.fx * wall.inward_nx + wall.fy * wall.inward_ny) / (loaded_length * spec.thickness_m);
+  };
+  for (int round = 0; round < 400; ++round) {
+    const double w_now = world.walls[3].x0 - world.walls[2].x0, h_now = world.walls[1].y0 - world.walls[0].y0;
+    world.walls[0].servo_length_m = world.walls[1].servo_length_m = w_now;
+    world.walls[2].servo_length_m = world.walls[3].servo_length_m = h_now;
+    world.run(50);
+    bool reached = true;
+    for (int w = 0; w < 4; ++w) {
+      double s = wall_stress(world.walls[static_cast<std::size_t>(w)], w < 2 ? w_now : h_now);
+      reached = reached && std::abs(s - spec.isotropic_stress_pa) <= spec.stress_tolerance * spec.isotropic_stress_pa;
+    }
+    if (reached && force_ratio(world) < 1e-3) break;
+  }
+  for (Wall& wall : world.walls) {
+    wall.servo = false;
+    wall.vx = wall.vy = 0;
+  }
+
+  // Floaters: grow them a little at a time; drop the few that still float.
+  std::vector<int> count = contact_counts(world);
+  for (int round = 0; round < 10; ++round) {
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (count[i] < spec.min_contacts && world.bodies.radius[i] < 1.05 * final_radius[i]) {
+        set_radius(world.bodies, i, world.bodies.radius[i] * 1.005, spec.density_kg_m3, spec.thickness_m);
+        any = true;
+      }
+    if (!any) break;
+    world.refresh();
+    world.run(200);
+    count = contact_counts(world);
+  }
+
+  // Release the locked-in overlaps: shrink every disk by half its largest
+  // overlap with a disk (all of it with a wall), so no contact overlaps. The
+  // test's stiffness differs from the packing's; stored overlaps would
+  // otherwise turn into forces of the test's stiffness at its first step.
+  std::vector<double> shrink(n, 0.0);
+  const Bodies& b = world.bodies;
+  const ContactSet& pairs = world.pairs();
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(pairs.i[k]), j = static_cast<std::size_t>(pairs.j[k]);
+    const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
+    shrink[i] = std::max(shrink[i], 0.5 * overlap);
+    shrink[j] = std::max(shrink[j], 0.5 * overlap);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    shrink[i] = std::max(shrink[i], b.radius[i] - (b.x[i] - world.walls[2].x0));
+    shrink[i] = std::max(shrink[i], b.radius[i] - (world.walls[3].x0 - b.x[i]));
+    shrink[i] = std::max(shrink[i], b.radius[i] - (b.y[i] - world.walls[0].y0));
+    shrink[i] = std::max(shrink[i], b.radius[i] - (world.walls[1].y0 - b.y[i]));
+  }
+
+  Specimen out;
+  const double x0 = world.walls[2].x0, y0 = world.walls[0].y0;
+  out.width_m = world.walls[3].x0 - x0;
+  out.height_m = world.walls[1].y0 - y0;
+  out.thickness_m = spec.thickness_m;
+  out.density_kg_m3 = spec.density_kg_m3;
+  double kept_solid = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (count[i] < spec.min_contacts) {
+      ++out.floaters_removed;
+      continue;
+    }
+    const double radius = b.radius[i] - shrink[i];
+    out.x.push_back(b.x[i] - x0);
+    out.y.push_back(b.y[i] - y0);
+    out.radius.push_back(radius);
+    kept_solid += M_PI * radius * radius;
+  }
+  out.porosity = 1 - kept_solid / (out.width_m * out.height_m);
+  out.steps = world.steps_done();
+  return out;
+}
+
+}  // namespace demcal::dem

@@ -1,0 +1,81 @@
+// HDF5 cache of packed specimens, keyed by the text of their genesis spec.
+#include <cstdio>
+#include <functional>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/hdf5_file.hpp"
+#include "demcal/core/log.hpp"
+#include "demcal/dem/genesis.hpp"
+
+namespace demcal::dem {
+
+void save_specimen(const Specimen& s, const std::string& key, const std::string& path) {
+  // Write beside the target and rename, so a crash never leaves half a cache file.
+  const std::string temporary = path + ".tmp." + std::to_string(::getpid());
+  {
+    h5::File file(temporary, h5::Mode::Truncate);
+    h5::Group group = file.group("/specimen", true);
+    group.write("x", s.x);
+    group.write("y", s.y);
+    group.write("radius", s.radius);
+    group.set_attribute("key", key);
+    group.set_attribute("width_m", s.width_m);
+    group.set_attribute("height_m", s.height_m);
+    group.set_attribute("thickness_m", s.thickness_m);
+    group.set_attribute("density_kg_m3", s.density_kg_m3);
+    group.set_attribute("porosity", s.porosity);
+    group.set_attribute("floaters_removed", static_cast<std::int64_t>(s.floaters_removed));
+    group.set_attribute("steps", static_cast<std::int64_t>(s.steps));
+    file.flush();
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw Error(path + ": cannot store the packed specimen");
+  }
+}
+
+Specimen load_specimen(const std::string& path, const std::string& key) {
+  h5::File file(path, h5::Mode::ReadOnly);
+  h5::Group group = file.group("/specimen", false);
+  if (group.string_attribute("key") != key) throw Error(path + ": cached specimen was packed for another spec");
+  Specimen s;
+  s.x = group.read_doubles("x");
+  s.y = group.read_doubles("y");
+  s.radius = group.read_doubles("radius");
+  if (s.y.size() != s.x.size() || s.radius.size() != s.x.size()) throw Error(path + ": inconsistent specimen arrays");
+  s.width_m = group.double_attribute("width_m");
+  s.height_m = group.double_attribute("height_m");
+  s.thickness_m = group.double_attribute("thickness_m");
+  s.density_kg_m3 = group.double_attribute("density_kg_m3");
+  s.porosity = group.double_attribute("porosity");
+  s.floaters_removed = static_cast<std::size_t>(group.integer_attribute("floaters_removed"));
+  s.steps = static_cast<std::uint64_t>(group.integer_attribute("steps"));
+  return s;
+}
+
+Specimen cached_specimen(const SpecimenSpec& spec, const std::string& cache_dir) {
+  if (cache_dir.empty()) return pack_specimen(spec);
+  ::mkdir(cache_dir.c_str(), 0755);
+  const std::string key = spec.cache_key();
+  std::ostringstream name;
+  name << cache_dir << "/specimen_" << std::hex << std::hash<std::string>{}(key) << ".h5";
+  const std::string path = name.str();
+  struct stat info;
+  if (::stat(path.c_str(), &info) == 0) {
+    try {
+      return load_specimen(path, key);
+    } catch (const Error& e) {
+      log::warn(std::string(e.what()) + "; packing again");
+    }
+  }
+  log::info("packing specimen (" + std::to_string(spec.disk_count()) + " disks, seed " + std::to_string(spec.seed) +
+            ") into " + path);
+  Specimen s = pack_specimen(spec);
+  save_specimen(s, key, path);
+  return s;
+}
+
+}  // namespace demcal::dem

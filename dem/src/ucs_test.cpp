@@ -1,0 +1,186 @@
+#include "demcal/dem/ucs_test.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/progress.hpp"
+#include "demcal/core/rng.hpp"
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+namespace {
+
+constexpr std::uint8_t kDiskGroup = 0, kPlatenGroup = 1;
+
+double mean_x(const Bodies& b, const std::vector<std::size_t>& ids) {
+  double sum = 0;
+  for (std::size_t i : ids) sum += b.x[i];
+  return sum / static_cast<double>(ids.size());
+}
+
+}  // namespace
+
+std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve) {
+  if (curve.size() < 5) throw Error("too few curve points to evaluate the test");
+  std::size_t peak = 0;
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    if (curve[k].stress_pa > curve[peak].stress_pa) peak = k;
+  const double sigma_u = curve[peak].stress_pa;
+  std::size_t half = 0;
+  while (half < peak && curve[half].stress_pa < 0.5 * sigma_u) ++half;
+  // Tangent at the half-peak point: least-squares slope over its neighbours.
+  const std::size_t window = std::max<std::size_t>(2, peak / 20);
+  const std::size_t from = half > window ? half - window : 0, to = std::min(peak, half + window);
+  double se = 0, ss = 0, see = 0, ses = 0;
+  const double n = static_cast<double>(to - from + 1);
+  for (std::size_t k = from; k <= to; ++k) {
+    se += curve[k].axial_strain;
+    ss += curve[k].stress_pa;
+    see += curve[k].axial_strain * curve[k].axial_strain;
+    ses += curve[k].axial_strain * curve[k].stress_pa;
+  }
+  const double slope = (n * ses - se * ss) / (n * see - se * se);
+  std::map<std::string, double> macro;
+  macro["sigma_u_MPa"] = sigma_u / 1e6;
+  macro["E_GPa"] = slope / 1e9;
+  macro["E50_GPa"] = curve[half].stress_pa / curve[half].axial_strain / 1e9;
+  macro["nu"] = curve[half].lateral_strain / curve[half].axial_strain;
+  macro["peak_strain"] = curve[peak].axial_strain;
+  return macro;
+}
+
+TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const LoadingSpec& loading = scene.loading();
+  SpecimenSpec spec = scene.specimen(parameters, options.seed);
+  Specimen specimen = cached_specimen(spec, options.cache_dir);
+
+  WorldSettings settings;
+  settings.thickness_m = specimen.thickness_m;
+  World world(settings);
+  const std::string where = scene.origin() + ": contacts.";
+  const auto& contacts = scene.contacts();
+  auto create = [&](const char* pair) {
+    const ContactSpec& c = contacts.at(pair);
+    return world.add_model(ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where + pair),
+                                                                   where + pair));
+  };
+  world.assign(kDiskGroup, kDiskGroup, create("disk-disk"));
+  world.assign(kDiskGroup, kPlatenGroup, create("disk-platen"));
+  world.bodies.reserve(specimen.size());
+  for (std::size_t i = 0; i < specimen.size(); ++i)
+    world.bodies.add_disk(specimen.x[i], specimen.y[i], specimen.radius[i], specimen.density_kg_m3, specimen.thickness_m,
+                          kDiskGroup);
+  const double W = specimen.width_m, H0 = specimen.height_m;
+  Wall bottom, top;
+  bottom.x0 = top.x0 = -W;
+  bottom.x1 = top.x1 = 2 * W;
+  bottom.y0 = bottom.y1 = 0;
+  top.y0 = top.y1 = H0;
+  bottom.group = top.group = kPlatenGroup;
+  bottom.vy = loading.platen_velocity_m_s;
+  top.vy = -loading.platen_velocity_m_s;
+  world.walls = {bottom, top};
+
+  Rng bond_rng(options.seed, 0x626f6e64 /* "bond" */);
+  double r_min = *std::min_element(specimen.radius.begin(), specimen.radius.end());
+  double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
+  world.install_bonds(tolerance, bond_rng);
+
+  // Lateral strain from the outermost disks of the middle third of the height.
+  double r_max = *std::max_element(specimen.radius.begin(), specimen.radius.end());
+  std::vector<std::size_t> left, right;
+  for (std::size_t i = 0; i < specimen.size(); ++i) {
+    if (specimen.y[i] < H0 / 3 || specimen.y[i] > 2 * H0 / 3) continue;
+    if (specimen.x[i] - specimen.radius[i] < 2 * r_max) left.push_back(i);
+    if (specimen.x[i] + specimen.radius[i] > W - 2 * r_max) right.push_back(i);
+  }
+  if (left.empty() || right.empty()) throw Error("specimen too small to measure lateral strain");
+  const double width0 = mean_x(world.bodies, right) - mean_x(world.bodies, left);
+
+  TestResult result;
+  const auto loading_start = std::chrono::steady_clock::now();
+  result.particles = specimen.size();
+  result.porosity = specimen.porosity;
+  double peak = 0, next_record = 0;
+  const double speed_limit = 1000 * loading.platen_velocity_m_s;
+  std::unique_ptr<Progress> progress;
+  if (options.progress) progress = std::make_unique<Progress>("ucs axial strain (% of limit)", 100);
+  int shown = 0;
+  std::size_t peak_index = 0;
+  for (;;) {
+    world.step();
+    const double height = world.walls[1].y0 - world.walls[0].y0;
+    const double strain = (H0 - height) / H0;
+    if (strain < next_record) continue;
+    next_record = strain + loading.record_strain;
+    CurvePoint point;
+    point.axial_strain = strain;
+    point.stress_pa = 0.5 * (world.walls[1].fy - world.walls[0].fy) / (W * specimen.thickness_m);
+    point.lateral_strain = (mean_x(world.bodies, right) - mean_x(world.bodies, left) - width0) / width0;
+    point.cracks = world.breaks().size();
+    result.curve.push_back(point);
+    if (point.stress_pa > peak) {
+      peak = point.stress_pa;
+      peak_index = result.curve.size() - 1;
+    }
+
+    double fastest = 0;
+    bool finite = std::isfinite(point.stress_pa) && std::isfinite(point.lateral_strain);
+    for (std::size_t i = 0; i < world.bodies.size(); ++i)
+      fastest = std::max(fastest, std::abs(world.bodies.vx[i]) + std::abs(world.bodies.vy[i]));
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!finite || !std::isfinite(fastest)) {
+      result.reason = "unstable: non-finite forces or positions at axial strain " + std::to_string(strain);
+      break;
+    }
+    if (fastest > speed_limit) {
+      result.reason = "unstable: a disk moves faster than 1000 x the platen speed at axial strain " + std::to_string(strain);
+      break;
+    }
+    if (elapsed > loading.max_wall_s) {
+      result.reason = "timeout after " + std::to_string(elapsed) + " s (loading.max_wall_s)";
+      break;
+    }
+    if (progress) {
+      int percent = std::min(100, static_cast<int>(100 * strain / loading.strain_limit));
+      if (percent > shown) {
+        progress->advance(static_cast<std::uint64_t>(percent - shown));
+        shown = percent;
+      }
+    }
+    // Past the peak: bonds have broken and the stress has fallen well below
+    // the peak a few points later (a dip of an elastic oscillation does not count).
+    const bool past_peak = !world.breaks().empty() && result.curve.size() >= 10 &&
+                           result.curve.size() > peak_index + 2 &&
+                           point.stress_pa < loading.stop_fraction_of_peak * peak;
+    if (past_peak || strain >= loading.strain_limit) {
+      result.ok = true;
+      break;
+    }
+  }
+  result.steps = world.steps_done();
+  result.dt_s = world.dt_s();
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.test_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loading_start).count();
+  if (result.ok) {
+    try {
+      result.macro = ucs_macro_values(result.curve);
+    } catch (const Error& e) {
+      result.ok = false;
+      result.reason = e.what();
+    }
+    if (result.ok && result.curve.back().stress_pa >= loading.stop_fraction_of_peak * peak)
+      result.macro["reached_strain_limit"] = 1;
+  }
+  std::size_t tension = 0;
+  for (const BreakEvent& b : world.breaks()) tension += b.mode == BreakMode::Tension;
+  result.macro["cracks_tension"] = static_cast<double>(tension);
+  result.macro["cracks_shear"] = static_cast<double>(world.breaks().size() - tension);
+  return result;
+}
+
+}  // namespace demcal::dem

@@ -1,0 +1,68 @@
+// demcal-dem run as users call it: a result file, and one-line errors.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+struct Result {
+  int code;
+  std::string err;
+};
+
+std::string temp(const std::string& name) {
+  return ::testing::TempDir() + "demcal_dem_cli_" + std::to_string(::getpid()) + "_" + name;
+}
+
+Result run(const std::string& arguments) {
+  std::string err = temp("stderr");
+  std::string command = std::string(DEMCAL_BIN_DIR) + "/demcal-dem " + arguments + " --quiet --cache " + temp("cache") +
+                        " >/dev/null 2>" + err;
+  int status = std::system(command.c_str());
+  std::ifstream in(err);
+  std::stringstream s;
+  s << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
+}
+
+const std::string kScene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+
+}  // namespace
+
+TEST(DemcalDem, RunWritesTheResultFile) {
+  std::string out = temp("result.json"), curve = temp("curve.csv");
+  Result r = run("run --scene " + kScene + " --set pb_sigma_c_MPa=12 --seed 2 --out " + out + " --curve " + curve);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json result;
+  std::ifstream(out) >> result;
+  EXPECT_EQ(result.at("status"), "ok");
+  EXPECT_EQ(result.at("seed"), 2);
+  EXPECT_EQ(result.at("parameters").at("pb_sigma_c_MPa"), 12.0);
+  for (const char* key : {"sigma_u_MPa", "E_GPa", "nu", "E50_GPa", "peak_strain", "cracks_tension", "cracks_shear"})
+    EXPECT_TRUE(result.at("macro").contains(key)) << key;
+  EXPECT_GT(result.at("particles").get<int>(), 200);
+  EXPECT_GT(result.at("particle_steps_per_s").get<double>(), 0.0);
+  std::ifstream curve_file(curve);
+  std::string header;
+  std::getline(curve_file, header);
+  EXPECT_EQ(header, "run,axial_strain,stress_MPa,lateral_strain,cracks");
+}
+
+TEST(DemcalDem, BadInputIsOneLineAndNonZero) {
+  std::string out = " --out " + temp("bad.json");
+  for (auto [args, fragment] : std::vector<std::pair<std::string, std::string>>{
+           {"run --scene " + kScene + " --set Ec=3", "unknown parameter \"Ec\""},
+           {"run --scene " + kScene + " --set Ec_GPa=0", "Ec_GPa = 0 lies outside [0.1, 500]"},
+           {"run --scene " + kScene + " --set Ec_GPa=nan", "not a finite number"},
+           {"run --scene " + kScene + " --set Ec_GPa", "expected NAME=VALUE"},
+           {"run --scene /nonexistent.json", "cannot open scene file"}}) {
+    Result r = run(args + out);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+  }
+}

@@ -1,0 +1,70 @@
+// The uniaxial compression scene end to end on a small specimen, and the
+// evaluation of a curve against hand-computed macro values.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include "demcal/core/error.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/dem/ucs_test.hpp"
+
+using namespace demcal::dem;
+
+namespace {
+
+std::string scene_path() { return std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json"; }
+
+}  // namespace
+
+TEST(UcsMacroValues, MatchAHandWorkedCurve) {
+  // Linear to 20 MPa at 0.1 % strain (E = 20 GPa), nu = 0.25, then softening.
+  std::vector<CurvePoint> curve;
+  for (int k = 0; k <= 10; ++k) curve.push_back({1e-4 * k, 2e6 * k, 0.25e-4 * k, 0});
+  curve.push_back({1.1e-3, 15e6, 5e-4, 10});
+  curve.push_back({1.2e-3, 10e6, 9e-4, 20});
+  auto m = ucs_macro_values(curve);
+  EXPECT_DOUBLE_EQ(m.at("sigma_u_MPa"), 20.0);
+  EXPECT_NEAR(m.at("E_GPa"), 20.0, 1e-9);
+  EXPECT_NEAR(m.at("E50_GPa"), 20.0, 1e-9);
+  EXPECT_NEAR(m.at("nu"), 0.25, 1e-12);
+  EXPECT_DOUBLE_EQ(m.at("peak_strain"), 1e-3);
+  EXPECT_THROW(ucs_macro_values({curve[0], curve[1]}), demcal::Error);
+}
+
+TEST(UcsScene, SmallBondedSpecimenGivesPlausibleMacroValues) {
+  Scene scene = Scene::load(scene_path());
+  RunOptions options;
+  options.seed = 1;
+  TestResult r = run_ucs(scene, scene.resolve({}), options);
+  ASSERT_TRUE(r.ok) << r.reason;
+  EXPECT_GT(r.macro.at("sigma_u_MPa"), 1.0);
+  EXPECT_LT(r.macro.at("sigma_u_MPa"), 100.0);
+  EXPECT_GT(r.macro.at("E_GPa"), 1.0);
+  EXPECT_LT(r.macro.at("E_GPa"), 100.0);
+  EXPECT_GT(r.macro.at("nu"), 0.0);
+  EXPECT_LT(r.macro.at("nu"), 0.5);
+  EXPECT_GT(r.macro.at("cracks_tension") + r.macro.at("cracks_shear"), 0.0);
+  EXPECT_LT(r.wall_s, 60.0);
+  // Stronger bonds make a stronger specimen (same packing, same seed).
+  TestResult strong = run_ucs(scene, scene.resolve({{"pb_sigma_c_MPa", 20}, {"pb_tau_c_MPa", 60}}), options);
+  ASSERT_TRUE(strong.ok) << strong.reason;
+  EXPECT_GT(strong.macro.at("sigma_u_MPa"), 1.3 * r.macro.at("sigma_u_MPa"));
+  // Same inputs and seed: the same numbers, bit for bit.
+  TestResult again = run_ucs(scene, scene.resolve({}), options);
+  EXPECT_EQ(again.macro.at("sigma_u_MPa"), r.macro.at("sigma_u_MPa"));
+  EXPECT_EQ(again.macro.at("E_GPa"), r.macro.at("E_GPa"));
+}
+
+TEST(UcsScene, BadParametersAreErrorsThatNameThem) {
+  Scene scene = Scene::load(scene_path());
+  EXPECT_THROW(scene.resolve({{"Ec", 10}}), demcal::Error);
+  EXPECT_THROW(scene.resolve({{"Ec_GPa", std::nan("")}}), demcal::Error);
+  EXPECT_THROW(scene.resolve({{"Ec_GPa", 1000}}), demcal::Error);  // above the scene's high
+  try {
+    scene.resolve({{"kn_ks", -1}});
+    FAIL();
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("kn_ks = -1 lies outside [0.1, 20]"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Scene::load("/nonexistent/scene.json"), demcal::Error);
+}
