@@ -11,6 +11,8 @@
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/table.hpp"
+#include "demcal/core/progress.hpp"
+#include "demcal/dem/batch.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/ucs_test.hpp"
 
@@ -70,7 +72,7 @@ void write_curve(const dem::TestResult& r, const std::string& path) {
 
 int main(int argc, char** argv) {
   log::set_program("demcal-dem");
-  CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (uniaxial compression).", "demcal-dem"};
+  CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (uniaxial compression): one run, or a resumable batch over a design.", "demcal-dem"};
   app.require_subcommand(1);
   std::string scene_path, out, curve, cache_dir = "build/cache";
   std::vector<std::string> sets;
@@ -84,6 +86,17 @@ int main(int argc, char** argv) {
   run->add_option("--curve", curve, "stress-strain curve, .csv or .h5");
   run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
   run->add_flag("--quiet", quiet, "no progress on stderr");
+  dem::BatchOptions batch_options;
+  CLI::App* batch = app.add_subcommand("batch", "run every point of a design (x seeds), resumable");
+  batch->add_option("--scene", batch_options.scene_path, "scene JSON")->required();
+  batch->add_option("--design", batch_options.design_path, "design .csv or .h5 (columns named after scene parameters)")
+      ->required();
+  batch->add_option("--out", batch_options.out_path, "responses .h5 (point results also under OUT.points/)")->required();
+  batch->add_option("--seeds", batch_options.seeds, "seeds per design point (1..K)")->capture_default_str();
+  batch->add_option("--jobs", batch_options.jobs, "points run at once")->capture_default_str();
+  batch->add_option("--csv", batch_options.csv_path, "flat CSV export: design columns, seed, status, macro values");
+  batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
+  batch->add_flag("--quiet", quiet, "no progress on stderr");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -94,6 +107,16 @@ int main(int argc, char** argv) {
   }
   if (quiet) log::set_level(log::Level::Quiet);
   try {
+    if (batch->parsed()) {
+      batch_options.cache_dir = cache_dir;
+      batch_options.progress = !quiet;
+      if (!is_hdf5_path(batch_options.out_path)) throw Error("--out must be an .h5 file (the responses)");
+      dem::BatchSummary s = dem::run_batch(batch_options);
+      log::info(std::to_string(s.points) + " points: " + std::to_string(s.ok) + " ok, " + std::to_string(s.failed) +
+                " failed, " + std::to_string(s.skipped) + " done before; " + format_duration(s.wall_s) + "; wrote " +
+                batch_options.out_path);
+      return s.failed > 0 ? 4 : 0;
+    }
     dem::Scene scene = dem::Scene::load(scene_path);
     std::map<std::string, double> parameters = scene.resolve(parse_sets(sets));
     dem::RunOptions options;

@@ -1,0 +1,116 @@
+// demcal-dem batch: every point of a design, several seeds, results as soon as
+// they are done; killed with SIGKILL and rerun, it loses and repeats nothing
+// that had finished.
+#include <gtest/gtest.h>
+
+#include <dirent.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "demcal/core/hdf5_file.hpp"
+
+namespace {
+
+std::string temp(const std::string& name) {
+  return ::testing::TempDir() + "demcal_batch_" + std::to_string(::getpid()) + "_" + name;
+}
+
+std::map<std::string, std::string> point_files(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  if (DIR* d = ::opendir(dir.c_str())) {
+    while (dirent* e = ::readdir(d)) {
+      std::string name = e->d_name;
+      if (name.size() > 5 && name.substr(name.size() - 5) == ".json") {
+        std::ifstream in(dir + "/" + name);
+        std::stringstream s;
+        s << in.rdbuf();
+        files[name] = s.str();
+      }
+    }
+    ::closedir(d);
+  }
+  return files;
+}
+
+const std::string kBin = std::string(DEMCAL_BIN_DIR) + "/demcal-dem";
+const std::string kScene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+
+std::string write_design(int runs) {
+  std::string path = temp("design.csv");
+  std::ofstream out(path);
+  out << "run,pb_sigma_c_MPa,pb_tau_c_MPa,pb_sigma_c_MPa_coded\n";
+  for (int r = 1; r <= runs; ++r) out << r << "," << 8 + r << "," << 20 + 2 * r << ",0\n";
+  return path;
+}
+
+}  // namespace
+
+TEST(DemcalDemBatch, KilledAndRerunItRepeatsNoFinishedPoint) {
+  const std::string design = write_design(5), out = temp("responses.h5"), csv = temp("responses.csv");
+  const std::string cache = temp("cache");
+  std::vector<std::string> args = {kBin, "batch", "--scene", kScene, "--design", design, "--out", out,
+                                   "--seeds", "2", "--jobs", "1", "--csv", csv, "--cache", cache, "--quiet"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  // Kill it once a few points are done, while others are still to come.
+  const auto start = std::chrono::steady_clock::now();
+  while (point_files(out + ".points").size() < 3 && std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // workers die with the batch
+  auto before = point_files(out + ".points");
+  ASSERT_GE(before.size(), 3u);
+  ASSERT_LT(before.size(), 10u) << "the batch finished before it could be killed";
+
+  std::string command;
+  for (std::size_t i = 0; i + 1 < args.size(); ++i) command += args[i] + " ";
+  ASSERT_EQ(std::system((command + "--quiet 2>/dev/null").c_str()), 0);
+  auto after = point_files(out + ".points");
+  ASSERT_EQ(after.size(), 10u);
+  for (const auto& [name, content] : before) EXPECT_EQ(after.at(name), content) << name << " was run again";
+
+  // The responses file and the CSV export hold every point.
+  demcal::h5::File file(out, demcal::h5::Mode::ReadOnly);
+  EXPECT_EQ(file.group("/points", false).children().size(), 10u);
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("run,pb_sigma_c_MPa,pb_tau_c_MPa,seed,status,", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    EXPECT_NE(line.find(",ok,"), std::string::npos) << line;
+  }
+  EXPECT_EQ(rows, 10);
+}
+
+TEST(DemcalDemBatch, ABadDesignPointIsRecordedAsFailedAndTheBatchGoesOn) {
+  std::string design = temp("bad_design.csv"), out = temp("bad.h5"), csv = temp("bad.csv");
+  std::ofstream(design) << "run,pb_sigma_c_MPa,Ec_GPa\n1,10,16\n2,10,-5\n3,12,16\n";
+  std::string command = kBin + " batch --scene " + kScene + " --design " + design + " --out " + out + " --csv " + csv +
+                        " --cache " + temp("cache") + " --quiet 2>/dev/null";
+  int status = std::system(command.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 4);  // some points failed
+  std::ifstream in(csv);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("2,10,-5,1,failed: parameter Ec_GPa = -5 lies outside [0.1; 500]"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 4);
+  EXPECT_NE(text.find("\n3,12,16,1,ok,"), std::string::npos) << text;
+}
