@@ -97,7 +97,7 @@ void run_point(const Scene& scene, const Point& p, const std::string& cache_dir)
     RunOptions options;
     options.seed = p.seed;
     options.cache_dir = cache_dir;
-    out = point_json(p, parameters, run_ucs(scene, parameters, options));
+    out = point_json(p, parameters, run_test(scene, parameters, options));
   } catch (const std::exception& e) {
     out = failed_point(p, e.what());
   }

@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
     options.seed = seed;
     options.cache_dir = cache_dir;
     options.progress = !quiet;
-    dem::TestResult result = dem::run_ucs(scene, parameters, options);
+    dem::TestResult result = dem::run_test(scene, parameters, options);
     json summary = result_json(result, parameters, seed);
     write_file_atomically(out, summary.dump(2) + "\n");
     if (!curve.empty()) write_curve(result, curve);

@@ -52,12 +52,13 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   scene.origin_ = origin;
   scene.name_ = root.value("name", std::string("scene"));
   scene.test_ = root.value("test", std::string(""));
-  if (scene.test_ != "ucs") throw Error(origin + ": \"test\" must be \"ucs\" (got \"" + scene.test_ + "\")");
+  if (scene.test_ != "ucs" && scene.test_ != "brazilian")
+    throw Error(origin + ": \"test\" must be \"ucs\" or \"brazilian\" (got \"" + scene.test_ + "\")");
 
   if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
   scene.specimen_ = root.at("specimen");
-  only_keys(scene.specimen_, {"width_m", "height_m", "thickness_m", "porosity", "radius_min_m", "radius_max_m",
-                              "density_kg_m3", "isotropic_stress_pa"},
+  only_keys(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
+                              "radius_max_m", "density_kg_m3", "isotropic_stress_pa"},
             origin + ": specimen");
 
   if (root.contains("parameters")) {
@@ -170,6 +171,10 @@ SpecimenSpec Scene::specimen(const std::map<std::string, double>& parameters, st
   };
   field("width_m", spec.width_m);
   field("height_m", spec.height_m);
+  if (specimen_.contains("diameter_m")) {  // a Brazilian disc is cut from a square packing
+    field("diameter_m", spec.width_m);
+    spec.height_m = spec.width_m;
+  }
   field("thickness_m", spec.thickness_m);
   field("porosity", spec.porosity);
   field("radius_min_m", spec.radius_min_m);

@@ -7,13 +7,10 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/progress.hpp"
-#include "demcal/core/rng.hpp"
-#include "demcal/dem/world.hpp"
+#include "demcal/dem/platen_test.hpp"
 
 namespace demcal::dem {
 namespace {
-
-constexpr std::uint8_t kDiskGroup = 0, kPlatenGroup = 1;
 
 double mean_x(const Bodies& b, const std::vector<std::size_t>& ids) {
   double sum = 0;
@@ -58,43 +55,15 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   SpecimenSpec spec = scene.specimen(parameters, options.seed);
   Specimen specimen = cached_specimen(spec, options.cache_dir);
 
-  WorldSettings settings;
-  settings.thickness_m = specimen.thickness_m;
-  World world(settings);
-  const std::string where = scene.origin() + ": contacts.";
-  const auto& contacts = scene.contacts();
-  auto create = [&](const char* pair) {
-    const ContactSpec& c = contacts.at(pair);
-    return world.add_model(ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where + pair),
-                                                                   where + pair));
-  };
-  world.assign(kDiskGroup, kDiskGroup, create("disk-disk"));
-  world.assign(kDiskGroup, kPlatenGroup, create("disk-platen"));
-  world.bodies.reserve(specimen.size());
-  for (std::size_t i = 0; i < specimen.size(); ++i)
-    world.bodies.add_disk(specimen.x[i], specimen.y[i], specimen.radius[i], specimen.density_kg_m3, specimen.thickness_m,
-                          kDiskGroup);
-  const double W = specimen.width_m, H0 = specimen.height_m;
-  Wall bottom, top;
-  bottom.x0 = top.x0 = -W;
-  bottom.x1 = top.x1 = 2 * W;
-  bottom.y0 = bottom.y1 = 0;
-  top.y0 = top.y1 = H0;
-  bottom.group = top.group = kPlatenGroup;
-  bottom.vy = loading.platen_velocity_m_s;
-  top.vy = -loading.platen_velocity_m_s;
-  world.walls = {bottom, top};
-
-  Rng bond_rng(options.seed, 0x626f6e64 /* "bond" */);
-  double r_min = *std::min_element(specimen.radius.begin(), specimen.radius.end());
-  double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
-  world.install_bonds(tolerance, bond_rng);
+  World world = make_platen_world(scene, parameters, specimen, options.seed);
+  const double W = specimen.width_m, H0 = world.walls[1].y0 - world.walls[0].y0;
 
   // Lateral strain from the outermost disks of the middle third of the height.
   double r_max = *std::max_element(specimen.radius.begin(), specimen.radius.end());
   std::vector<std::size_t> left, right;
   for (std::size_t i = 0; i < specimen.size(); ++i) {
-    if (specimen.y[i] < H0 / 3 || specimen.y[i] > 2 * H0 / 3) continue;
+    const double y = specimen.y[i] - world.walls[0].y0;
+    if (y < H0 / 3 || y > 2 * H0 / 3) continue;
     if (specimen.x[i] - specimen.radius[i] < 2 * r_max) left.push_back(i);
     if (specimen.x[i] + specimen.radius[i] > W - 2 * r_max) right.push_back(i);
   }
@@ -106,7 +75,6 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   result.particles = specimen.size();
   result.porosity = specimen.porosity;
   double peak = 0, next_record = 0;
-  const double speed_limit = 1000 * loading.platen_velocity_m_s;
   std::unique_ptr<Progress> progress;
   if (options.progress) progress = std::make_unique<Progress>("ucs axial strain (% of limit)", 100);
   int shown = 0;
@@ -119,7 +87,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
     next_record = strain + loading.record_strain;
     CurvePoint point;
     point.axial_strain = strain;
-    point.stress_pa = 0.5 * (world.walls[1].fy - world.walls[0].fy) / (W * specimen.thickness_m);
+    point.stress_pa = platen_force(world) / (W * specimen.thickness_m);
     point.lateral_strain = (mean_x(world.bodies, right) - mean_x(world.bodies, left) - width0) / width0;
     point.cracks = world.breaks().size();
     result.curve.push_back(point);
@@ -128,17 +96,10 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
       peak_index = result.curve.size() - 1;
     }
 
-    double fastest = 0;
-    bool finite = std::isfinite(point.stress_pa) && std::isfinite(point.lateral_strain);
-    for (std::size_t i = 0; i < world.bodies.size(); ++i)
-      fastest = std::max(fastest, std::abs(world.bodies.vx[i]) + std::abs(world.bodies.vy[i]));
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!finite || !std::isfinite(fastest)) {
-      result.reason = "unstable: non-finite forces or positions at axial strain " + std::to_string(strain);
-      break;
-    }
-    if (fastest > speed_limit) {
-      result.reason = "unstable: a disk moves faster than 1000 x the platen speed at axial strain " + std::to_string(strain);
+    result.reason = instability(world, loading.platen_velocity_m_s);
+    if (!result.reason.empty()) {
+      result.reason += " at axial strain " + std::to_string(strain);
       break;
     }
     if (elapsed > loading.max_wall_s) {

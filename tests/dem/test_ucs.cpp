@@ -68,3 +68,21 @@ TEST(UcsScene, BadParametersAreErrorsThatNameThem) {
   }
   EXPECT_THROW(Scene::load("/nonexistent/scene.json"), demcal::Error);
 }
+
+TEST(BrazilianScene, SmallDiscSplitsAtAPlausibleTensileStrength) {
+  Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/brazilian_small.json");
+  RunOptions options;
+  TestResult r = run_test(scene, scene.resolve({}), options);
+  ASSERT_TRUE(r.ok) << r.reason;
+  // Tensile strength: below the UCS of the same material, of the order of the bond strength.
+  Scene ucs = Scene::load(scene_path());
+  TestResult compression = run_test(ucs, ucs.resolve({}), options);
+  ASSERT_TRUE(compression.ok);
+  EXPECT_GT(r.macro.at("sigma_t_MPa"), 0.3);
+  EXPECT_LT(r.macro.at("sigma_t_MPa"), 0.5 * compression.macro.at("sigma_u_MPa"));
+  EXPECT_GT(r.macro.at("cracks_tension"), 0.0);
+  // sigma_t scales with the bond strengths.
+  TestResult strong = run_test(scene, scene.resolve({{"pb_sigma_c_MPa", 20}, {"pb_tau_c_MPa", 60}}), options);
+  ASSERT_TRUE(strong.ok);
+  EXPECT_GT(strong.macro.at("sigma_t_MPa"), 1.3 * r.macro.at("sigma_t_MPa"));
+}

@@ -40,6 +40,13 @@ struct RunOptions {
 // throws; a run that goes unstable or times out returns ok = false with the reason.
 TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
 
+// Brazilian disc: a disc of the specimen's width, cut from its packing, split
+// between platens; macro sigma_t_MPa = 2 F_max / (pi D t).
+TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
+
+// The runner of the scene's test ("ucs" or "brazilian").
+TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
+
 // sigma_u, E (tangent where the stress first reaches half the peak), E50
 // (secant there), nu (lateral over axial strain there) and the peak strain.
 std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve);

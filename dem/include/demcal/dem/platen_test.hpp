@@ -1,0 +1,31 @@
+#pragma once
+// What the platen tests (uniaxial compression, Brazilian disc) share: the
+// world of a specimen between two platens that approach each other, bonds
+// installed, and the checks that tell a run has gone unstable.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "demcal/dem/genesis.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+
+constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
+
+// Disks of `specimen` (only those with keep[i] when `keep` is given), the
+// scene's contact models, a bottom and a top platen touching the lowest and
+// highest disk and moving towards each other at the loading velocity, and
+// bonds on every pair closer than the scene's tolerance. Walls: [0] bottom, [1] top.
+World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
+                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr);
+
+// Empty when the state is sane; otherwise why the run must stop as failed
+// (non-finite values, a disk faster than 1000 x the platen speed).
+std::string instability(const World& world, double platen_velocity_m_s);
+
+// Mean force the disks exert on the two platens, compression positive, N.
+double platen_force(const World& world);
+
+}  // namespace demcal::dem

@@ -1,0 +1,63 @@
+#include "demcal/dem/platen_test.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/rng.hpp"
+
+namespace demcal::dem {
+
+World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
+                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep) {
+  WorldSettings settings;
+  settings.thickness_m = specimen.thickness_m;
+  World world(settings);
+  const std::string where = scene.origin() + ": contacts.";
+  auto create = [&](const char* pair) {
+    const ContactSpec& c = scene.contacts().at(pair);
+    return world.add_model(
+        ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where + pair), where + pair));
+  };
+  world.assign(kSpecimenGroup, kSpecimenGroup, create("disk-disk"));
+  world.assign(kSpecimenGroup, kPlatenGroup, create("disk-platen"));
+  world.bodies.reserve(specimen.size());
+  double bottom_y = INFINITY, top_y = -INFINITY, r_min = INFINITY;
+  for (std::size_t i = 0; i < specimen.size(); ++i) {
+    if (keep && !(*keep)[i]) continue;
+    world.bodies.add_disk(specimen.x[i], specimen.y[i], specimen.radius[i], specimen.density_kg_m3,
+                          specimen.thickness_m, kSpecimenGroup);
+    bottom_y = std::min(bottom_y, specimen.y[i] - specimen.radius[i]);
+    top_y = std::max(top_y, specimen.y[i] + specimen.radius[i]);
+    r_min = std::min(r_min, specimen.radius[i]);
+  }
+  if (world.bodies.size() < 10) throw Error("the specimen holds fewer than 10 disks");
+  const double W = specimen.width_m, v = scene.loading().platen_velocity_m_s;
+  Wall bottom, top;
+  bottom.x0 = top.x0 = -W;
+  bottom.x1 = top.x1 = 2 * W;
+  bottom.y0 = bottom.y1 = bottom_y;
+  top.y0 = top.y1 = top_y;
+  bottom.group = top.group = kPlatenGroup;
+  bottom.vy = v;
+  top.vy = -v;
+  world.walls = {bottom, top};
+
+  Rng bond_rng(seed, 0x626f6e64 /* "bond" */);
+  const double tolerance = scene.loading().bond_gap_tolerance_m > 0 ? scene.loading().bond_gap_tolerance_m : 0.01 * r_min;
+  world.install_bonds(tolerance, bond_rng);
+  return world;
+}
+
+std::string instability(const World& world, double platen_velocity_m_s) {
+  const Bodies& b = world.bodies;
+  double fastest = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) fastest = std::max(fastest, std::abs(b.vx[i]) + std::abs(b.vy[i]));
+  if (!std::isfinite(fastest) || !std::isfinite(platen_force(world))) return "unstable: non-finite forces or velocities";
+  if (fastest > 1000 * platen_velocity_m_s) return "unstable: a disk moves faster than 1000 x the platen speed";
+  return "";
+}
+
+double platen_force(const World& world) { return 0.5 * (world.walls[1].fy - world.walls[0].fy); }
+
+}  // namespace demcal::dem

@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""Model no more than the test needs: macro values of the default parallel-bond
+UCS scene over 5 seeds against particle count and platen velocity, with the wall
+time of each run. Writes docs/resolution_study.md and .csv.
+
+    /usr/bin/python3 scripts/resolution_study.py [--build build] [--jobs 2]
+"""
+import argparse, json, math, os, statistics, subprocess, sys, time
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--build", default="build")
+parser.add_argument("--jobs", default="2")
+parser.add_argument("--seeds", type=int, default=5)
+parser.add_argument("--out", default="docs/resolution_study")
+args = parser.parse_args()
+
+base = json.load(open("data/scenes/ucs_rock_pb.json"))
+work = os.path.join(args.build, "resolution_study")
+os.makedirs(work, exist_ok=True)
+r_mean = 0.5 * (base["specimen"]["radius_min_m"] + base["specimen"]["radius_max_m"])
+porosity = base["specimen"]["porosity"]
+
+def scene_for(disks, velocity):
+    # H = 2 W and N = W H (1 - n) / (pi R^2)  ->  W = sqrt(N pi R^2 / (2 (1 - n)))
+    width = math.sqrt(disks * math.pi * r_mean ** 2 / (2 * (1 - porosity)))
+    scene = json.loads(json.dumps(base))
+    scene["name"] = "study_%d_%g" % (disks, velocity)
+    scene["specimen"]["width_m"] = round(width, 5)
+    scene["specimen"]["height_m"] = round(2 * width, 5)
+    scene["loading"]["platen_velocity_m_s"] = velocity
+    path = os.path.join(work, scene["name"] + ".json")
+    json.dump(scene, open(path, "w"), indent=1)
+    return path
+
+design = os.path.join(work, "design.csv")
+with open(design, "w") as f:
+    f.write("run,Ec_GPa\n1,%g\n" % base["parameters"]["Ec_GPa"]["value"])
+
+cases = [(n, 0.02) for n in (1000, 2000, 5000, 10000, 20000)] + [(5000, v) for v in (0.01, 0.05, 0.1)]
+rows = []
+for disks, velocity in cases:
+    scene = scene_for(disks, velocity)
+    out = os.path.join(work, "study_%d_%g.h5" % (disks, velocity))
+    start = time.time()
+    subprocess.run([os.path.join(args.build, "bin", "demcal-dem"), "batch", "--scene", scene, "--design", design,
+                    "--out", out, "--seeds", str(args.seeds), "--jobs", args.jobs, "--cache",
+                    os.path.join(args.build, "cache"), "--quiet"], check=False)
+    points = [json.load(open(os.path.join(out + ".points", "run1_seed%d.json" % s))) for s in range(1, args.seeds + 1)]
+    ok = [p for p in points if p["status"] == "ok"]
+    row = {"disks_planned": disks, "platen_velocity_m_s": velocity, "runs_ok": len(ok),
+           "disks": statistics.mean(p["particles"] for p in ok) if ok else float("nan"),
+           "wall_s_per_run": statistics.mean(p["wall_s"] for p in ok) if ok else float("nan"),
+           "mps_per_s": statistics.mean(p["particle_steps_per_s"] for p in ok) / 1e6 if ok else float("nan")}
+    for key in ("sigma_u_MPa", "E_GPa", "nu"):
+        values = [p["macro"][key] for p in ok]
+        mean = statistics.mean(values) if values else float("nan")
+        row[key + "_mean"] = mean
+        row[key + "_cv_pct"] = 100 * statistics.stdev(values) / abs(mean) if len(values) > 1 else float("nan")
+    rows.append(row)
+    print("%6d disks  v %.3f m/s  sigma_u %.2f (CV %.1f %%)  E %.2f (CV %.1f %%)  nu %.3f (CV %.1f %%)  %.1f s/run" % (
+        row["disks"], velocity, row["sigma_u_MPa_mean"], row["sigma_u_MPa_cv_pct"], row["E_GPa_mean"],
+        row["E_GPa_cv_pct"], row["nu_mean"], row["nu_cv_pct"], row["wall_s_per_run"]), flush=True)
+
+keys = list(rows[0].keys())
+with open(args.out + ".csv", "w") as f:
+    f.write(",".join(keys) + "\n")
+    for row in rows:
+        f.write(",".join(("%.6g" % row[k]) if isinstance(row[k], float) else str(row[k]) for k in keys) + "\n")
+with open(args.out + ".md", "w") as f:
+    f.write("# Resolution and loading-rate study (measured)\n\n")
+    f.write("Scene `data/scenes/ucs_rock_pb.json` at its default parameters, specimen H = 2 W scaled to the disk count, "
+            "%d seeds per case, `scripts/resolution_study.py`. Wall time per run includes packing (cached per seed).\n\n" % args.seeds)
+    f.write("| disks | platen velocity (m/s) | sigma_u (MPa) | CV % | E (GPa) | CV % | nu | CV % | wall s/run | M particle-steps/s |\n")
+    f.write("|---|---|---|---|---|---|---|---|---|---|\n")
+    for r in rows:
+        f.write("| %.0f | %g | %.2f | %.1f | %.2f | %.1f | %.3f | %.1f | %.1f | %.1f |\n" % (
+            r["disks"], r["platen_velocity_m_s"], r["sigma_u_MPa_mean"], r["sigma_u_MPa_cv_pct"], r["E_GPa_mean"],
+            r["E_GPa_cv_pct"], r["nu_mean"], r["nu_cv_pct"], r["wall_s_per_run"], r["mps_per_s"]))
+print("wrote", args.out + ".md", file=sys.stderr)
