@@ -171,6 +171,36 @@ void write_outputs(const std::vector<Point>& points, const std::vector<std::stri
   write_file_atomically(options.csv_path, csv.str());
 }
 
+// Runs work(i) for i in [0, n) in child processes, at most `jobs` at a time;
+// done(i, status) runs in this process as each child ends. Children die with
+// this process (a killed batch leaves no orphan writing results).
+template <typename Work, typename Done>
+void for_each_in_workers(std::size_t n, int jobs, Work work, Done done) {
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  while (next < n || !running.empty()) {
+    while (next < n && static_cast<int>(running.size()) < jobs) {
+      std::fflush(nullptr);
+      pid_t pid = ::fork();
+      if (pid < 0) throw Error("cannot start a worker process");
+      if (pid == 0) {
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        log::set_level(log::Level::Quiet);
+        work(next);
+        ::_exit(0);
+      }
+      running[pid] = next++;
+    }
+    int status = 0;
+    pid_t pid = ::waitpid(-1, &status, 0);
+    auto it = running.find(pid);
+    if (it == running.end()) continue;
+    std::size_t index = it->second;
+    running.erase(it);
+    done(index, status);
+  }
+}
+
 }  // namespace
 
 BatchSummary run_batch(const BatchOptions& options) {
@@ -223,56 +253,50 @@ BatchSummary run_batch(const BatchOptions& options) {
     log::info("resuming: " + std::to_string(summary.skipped) + " of " + std::to_string(points.size()) +
               " points already done");
 
-  // Pack each distinct specimen once, before the points share it.
-  std::set<std::string> packed;
+  // Pack each distinct specimen once (in parallel), before the points share it.
+  std::vector<SpecimenSpec> to_pack;
+  std::set<std::string> keys;
   for (const Point* p : pending) {
     try {
       SpecimenSpec spec = scene.specimen(scene.resolve(p->design), p->seed);
-      if (packed.insert(spec.cache_key()).second) cached_specimen(spec, options.cache_dir);
+      if (keys.insert(spec.cache_key()).second) to_pack.push_back(spec);
     } catch (const Error&) {
       // The point itself will record why it cannot run.
     }
   }
+  if (!to_pack.empty() && options.progress)
+    log::info("packing " + std::to_string(to_pack.size()) + " specimen(s) (cached in " + options.cache_dir + ")");
+  for_each_in_workers(
+      to_pack.size(), options.jobs,
+      [&](std::size_t i) {
+        try {
+          cached_specimen(to_pack[i], options.cache_dir);
+        } catch (const std::exception&) {
+          // Reported by the points that need this specimen.
+        }
+      },
+      [](std::size_t, int) {});
 
   std::unique_ptr<Progress> progress;
   if (options.progress) {
     progress = std::make_unique<Progress>("points", pending.size(), 10.0);
     progress->set_units_name("particle-steps");
   }
-  std::map<pid_t, const Point*> running;
-  std::size_t next = 0;
-  auto finish = [&](pid_t pid, int status) {
-    const Point* p = running.at(pid);
-    running.erase(pid);
-    json result;
-    if (!read_json(p->file, result)) {
-      std::string reason = WIFSIGNALED(status) ? "crashed (signal " + std::to_string(WTERMSIG(status)) + ")"
-                                               : "exited without a result (status " + std::to_string(WEXITSTATUS(status)) + ")";
-      result = failed_point(*p, reason);
-      write_file_atomically(p->file, result.dump() + "\n");
-    }
-    write_outputs(points, design_columns, options);
-    double units = result.value("particles", 0.0) * result.value("steps", 0.0);
-    if (progress) progress->advance(1, units);
-  };
-  while (next < pending.size() || !running.empty()) {
-    while (next < pending.size() && static_cast<int>(running.size()) < options.jobs) {
-      const Point* p = pending[next++];
-      std::fflush(nullptr);
-      pid_t pid = ::fork();
-      if (pid < 0) throw Error("cannot start a worker process");
-      if (pid == 0) {
-        ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // die with the batch: a rerun redoes the point
-        log::set_level(log::Level::Quiet);
-        run_point(scene, *p, options.cache_dir);
-        ::_exit(0);
-      }
-      running[pid] = p;
-    }
-    int status = 0;
-    pid_t pid = ::waitpid(-1, &status, 0);
-    if (pid > 0 && running.count(pid)) finish(pid, status);
-  }
+  for_each_in_workers(
+      pending.size(), options.jobs, [&](std::size_t i) { run_point(scene, *pending[i], options.cache_dir); },
+      [&](std::size_t i, int status) {
+        const Point* p = pending[i];
+        json result;
+        if (!read_json(p->file, result)) {
+          std::string reason = WIFSIGNALED(status) ? "crashed (signal " + std::to_string(WTERMSIG(status)) + ")"
+                                                   : "exited without a result (status " +
+                                                         std::to_string(WEXITSTATUS(status)) + ")";
+          result = failed_point(*p, reason);
+          write_file_atomically(p->file, result.dump() + "\n");
+        }
+        write_outputs(points, design_columns, options);
+        if (progress) progress->advance(1, result.value("particles", 0.0) * result.value("steps", 0.0));
+      });
   write_outputs(points, design_columns, options);
   for (const Point& p : points) {
     json r;
