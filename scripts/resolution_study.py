@@ -69,7 +69,8 @@ with open(args.out + ".csv", "w") as f:
 with open(args.out + ".md", "w") as f:
     f.write("# Resolution and loading-rate study (measured)\n\n")
     f.write("Scene `data/scenes/ucs_rock_pb.json` at its default parameters, specimen H = 2 W scaled to the disk count, "
-            "%d seeds per case, `scripts/resolution_study.py`. Wall time per run includes packing (cached per seed).\n\n" % args.seeds)
+            "%d seeds per case, `scripts/resolution_study.py`. Wall time per run: one run with its packed specimen "
+            "loaded from the cache; packing, once per seed, comes on top.\n\n" % args.seeds)
     f.write("| disks | platen velocity (m/s) | sigma_u (MPa) | CV % | E (GPa) | CV % | nu | CV % | wall s/run | M particle-steps/s |\n")
     f.write("|---|---|---|---|---|---|---|---|---|---|\n")
     for r in rows:
