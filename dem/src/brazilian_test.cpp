@@ -63,18 +63,11 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
       break;
     }
   }
-  result.steps = world.steps_done();
-  result.dt_s = world.dt_s();
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.test_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loading_start).count();
+  record_run_end(world, start, loading_start, result);
   if (result.ok) {
     result.macro["sigma_t_MPa"] = peak / 1e6;
     result.macro["peak_approach_over_D"] = result.curve[peak_index].axial_strain;
   }
-  std::size_t tension = 0;
-  for (const BreakEvent& b : world.breaks()) tension += b.mode == BreakMode::Tension;
-  result.macro["cracks_tension"] = static_cast<double>(tension);
-  result.macro["cracks_shear"] = static_cast<double>(world.breaks().size() - tension);
   return result;
 }
 

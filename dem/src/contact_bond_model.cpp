@@ -13,18 +13,17 @@
 
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/builtin_models.hpp"
+#include "demcal/dem/linear_base.hpp"
 #include "demcal/dem/linear_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
 namespace {
 
-class ContactBondModel : public ContactModel {
+class ContactBondModel : public LinearBase {
  public:
   ContactBondModel(const nlohmann::json& p, const std::string& where)
-      : modulus_pa_(positive(p, "modulus_pa", where)),
-        kn_ks_(positive(p, "kn_ks", where)),
-        friction_(non_negative(p, "friction", where)),
+      : LinearBase(p, where),
         sigma_c_(non_negative(p, "tensile_strength_pa", where)),
         sigma_c_std_(non_negative_or(p, "tensile_strength_std_pa", 0.0, where)),
         tau_c_(non_negative(p, "shear_strength_pa", where)),
@@ -34,12 +33,6 @@ class ContactBondModel : public ContactModel {
                  where);
   }
   std::string name() const override { return "contact_bond"; }
-
-  void initialise(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m) const override {
-    c.kn[k] = deformability_kn(modulus_pa_, pair.radius_i, pair.radius_j, pair.wall, thickness_m);
-    c.ks[k] = c.kn[k] / kn_ks_;
-    c.mu[k] = friction_;
-  }
 
   bool install_bond(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
     if (pair.wall) return false;
@@ -75,18 +68,7 @@ class ContactBondModel : public ContactModel {
         [&](std::size_t k, double gap) { return gap >= 0 && !(c.flags[k] & kBonded) ? (release(c, k), true) : false; });
   }
 
-  void wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
-                   const StepContext& step) const override {
-    for_wall_pairs(c, begin, end, b, walls, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
-                   [&](std::size_t k, double gap) { return gap >= 0 ? (release(c, k), true) : false; });
-  }
-
-  double normal_stiffness_estimate(double radius_m, double thickness_m) const override {
-    return deformability_kn(modulus_pa_, radius_m, radius_m, false, thickness_m);
-  }
-
  private:
-  double modulus_pa_, kn_ks_, friction_;
   double sigma_c_, sigma_c_std_, tau_c_, tau_c_std_;
 };
 

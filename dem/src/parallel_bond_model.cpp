@@ -12,18 +12,17 @@
 
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/builtin_models.hpp"
+#include "demcal/dem/linear_base.hpp"
 #include "demcal/dem/linear_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
 namespace {
 
-class ParallelBondModel : public ContactModel {
+class ParallelBondModel : public LinearBase {
  public:
   ParallelBondModel(const nlohmann::json& p, const std::string& where)
-      : modulus_pa_(positive(p, "modulus_pa", where)),
-        kn_ks_(positive(p, "kn_ks", where)),
-        friction_(non_negative(p, "friction", where)),
+      : LinearBase(p, where),
         bond_modulus_pa_(positive(p, "bond_modulus_pa", where)),
         bond_kn_ks_(positive(p, "bond_kn_ks", where)),
         lambda_(p.contains("radius_multiplier") ? positive(p, "radius_multiplier", where) : 1.0),
@@ -36,12 +35,6 @@ class ParallelBondModel : public ContactModel {
                  where);
   }
   std::string name() const override { return "parallel_bond"; }
-
-  void initialise(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m) const override {
-    c.kn[k] = deformability_kn(modulus_pa_, pair.radius_i, pair.radius_j, pair.wall, thickness_m);
-    c.ks[k] = c.kn[k] / kn_ks_;
-    c.mu[k] = friction_;
-  }
 
   bool install_bond(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
     if (pair.wall) return false;
@@ -89,20 +82,13 @@ class ParallelBondModel : public ContactModel {
         [&](std::size_t k, double gap) { return gap >= 0 && !(c.flags[k] & kBonded) ? (release(c, k), true) : false; });
   }
 
-  void wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
-                   const StepContext& step) const override {
-    for_wall_pairs(c, begin, end, b, walls, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
-                   [&](std::size_t k, double gap) { return gap >= 0 ? (release(c, k), true) : false; });
-  }
-
   double normal_stiffness_estimate(double radius_m, double thickness_m) const override {
     const double rb = lambda_ * radius_m;
-    return deformability_kn(modulus_pa_, radius_m, radius_m, false, thickness_m) +
+    return LinearBase::normal_stiffness_estimate(radius_m, thickness_m) +
            bond_modulus_pa_ / (2.0 * radius_m) * 2.0 * rb * thickness_m;
   }
 
  private:
-  double modulus_pa_, kn_ks_, friction_;
   double bond_modulus_pa_, bond_kn_ks_, lambda_;
   double sigma_c_, sigma_c_std_, tau_c_, tau_c_std_;
 };

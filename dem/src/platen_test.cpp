@@ -60,4 +60,17 @@ std::string instability(const World& world, double platen_velocity_m_s) {
 
 double platen_force(const World& world) { return 0.5 * (world.walls[1].fy - world.walls[0].fy); }
 
+void record_run_end(const World& world, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point loading_start, TestResult& result) {
+  const auto now = std::chrono::steady_clock::now();
+  result.steps = world.steps_done();
+  result.dt_s = world.dt_s();
+  result.wall_s = std::chrono::duration<double>(now - start).count();
+  result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
+  std::size_t tension = 0;
+  for (const BreakEvent& b : world.breaks()) tension += b.mode == BreakMode::Tension;
+  result.macro["cracks_tension"] = static_cast<double>(tension);
+  result.macro["cracks_shear"] = static_cast<double>(world.breaks().size() - tension);
+}
+
 }  // namespace demcal::dem

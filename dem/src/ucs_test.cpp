@@ -123,13 +123,10 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
       break;
     }
   }
-  result.steps = world.steps_done();
-  result.dt_s = world.dt_s();
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.test_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loading_start).count();
+  record_run_end(world, start, loading_start, result);
   if (result.ok) {
     try {
-      result.macro = ucs_macro_values(result.curve);
+      for (const auto& [name, value] : ucs_macro_values(result.curve)) result.macro[name] = value;
     } catch (const Error& e) {
       result.ok = false;
       result.reason = e.what();
@@ -137,10 +134,6 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
     if (result.ok && result.curve.back().stress_pa >= loading.stop_fraction_of_peak * peak)
       result.macro["reached_strain_limit"] = 1;
   }
-  std::size_t tension = 0;
-  for (const BreakEvent& b : world.breaks()) tension += b.mode == BreakMode::Tension;
-  result.macro["cracks_tension"] = static_cast<double>(tension);
-  result.macro["cracks_shear"] = static_cast<double>(world.breaks().size() - tension);
   return result;
 }
 

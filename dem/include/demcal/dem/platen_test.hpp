@@ -2,12 +2,14 @@
 // What the platen tests (uniaxial compression, Brazilian disc) share: the
 // world of a specimen between two platens that approach each other, bonds
 // installed, and the checks that tell a run has gone unstable.
+#include <chrono>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/scene.hpp"
+#include "demcal/dem/ucs_test.hpp"
 #include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
@@ -27,5 +29,10 @@ std::string instability(const World& world, double platen_velocity_m_s);
 
 // Mean force the disks exert on the two platens, compression positive, N.
 double platen_force(const World& world);
+
+// Fills in what every run reports at its end: steps, time step, wall times
+// (whole run since `start`, loading since `loading_start`) and cracks by mode.
+void record_run_end(const World& world, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point loading_start, TestResult& result);
 
 }  // namespace demcal::dem
