@@ -42,6 +42,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
     point.stress_pa = 2.0 * platen_force(world) / (M_PI * D * t);
     point.cracks = world.breaks().size();
     result.curve.push_back(point);
+    snapshot(world, options, result.curve.size(), false);
     if (point.stress_pa > peak) {
       peak = point.stress_pa;
       peak_index = result.curve.size() - 1;
@@ -63,7 +64,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
       break;
     }
   }
-  record_run_end(world, start, loading_start, result);
+  record_run_end(world, options, start, loading_start, result);
   if (result.ok) {
     result.macro["sigma_t_MPa"] = peak / 1e6;
     result.macro["peak_approach_over_D"] = result.curve[peak_index].axial_strain;

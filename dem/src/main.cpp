@@ -85,6 +85,8 @@ int main(int argc, char** argv) {
   run->add_option("--out", out, "result JSON")->required();
   run->add_option("--curve", curve, "stress-strain curve, .csv or .h5");
   run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
+  std::string vtk_dir;
+  run->add_option("--vtk", vtk_dir, "folder for VTK snapshots (disks and bonds, bond breaks) for ParaView");
   run->add_flag("--quiet", quiet, "no progress on stderr");
   dem::BatchOptions batch_options;
   CLI::App* batch = app.add_subcommand("batch", "run every point of a design (x seeds), resumable");
@@ -123,6 +125,7 @@ int main(int argc, char** argv) {
     options.seed = seed;
     options.cache_dir = cache_dir;
     options.progress = !quiet;
+    options.vtk_dir = vtk_dir;
     dem::TestResult result = dem::run_test(scene, parameters, options);
     json summary = result_json(result, parameters, seed);
     write_file_atomically(out, summary.dump(2) + "\n");

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/rng.hpp"
+#include "demcal/dem/vtk_writer.hpp"
+
+#include <sys/stat.h>
 
 namespace demcal::dem {
 
@@ -60,11 +64,24 @@ std::string instability(const World& world, double platen_velocity_m_s) {
 
 double platen_force(const World& world) { return 0.5 * (world.walls[1].fy - world.walls[0].fy); }
 
-void record_run_end(const World& world, std::chrono::steady_clock::time_point start,
+void snapshot(const World& world, const RunOptions& options, std::size_t points, bool final) {
+  if (options.vtk_dir.empty()) return;
+  const bool due = final || points == 1 || (options.vtk_every > 0 && points % static_cast<std::size_t>(options.vtk_every) == 0);
+  if (!due) return;
+  ::mkdir(options.vtk_dir.c_str(), 0755);
+  char name[64];
+  std::snprintf(name, sizeof(name), "%s_%06zu.vtk", final ? "final" : "disks", points);
+  write_vtk_disks(world, options.vtk_dir + "/" + name);
+  std::snprintf(name, sizeof(name), "%s_%06zu.vtk", final ? "final_breaks" : "breaks", points);
+  write_vtk_breaks(world, options.vtk_dir + "/" + name);
+}
+
+void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point loading_start, TestResult& result) {
   const auto now = std::chrono::steady_clock::now();
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
+  snapshot(world, options, result.curve.size(), true);
   result.wall_s = std::chrono::duration<double>(now - start).count();
   result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
   std::size_t tension = 0;

@@ -91,6 +91,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
     point.lateral_strain = (mean_x(world.bodies, right) - mean_x(world.bodies, left) - width0) / width0;
     point.cracks = world.breaks().size();
     result.curve.push_back(point);
+    snapshot(world, options, result.curve.size(), false);
     if (point.stress_pa > peak) {
       peak = point.stress_pa;
       peak_index = result.curve.size() - 1;
@@ -123,7 +124,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
       break;
     }
   }
-  record_run_end(world, start, loading_start, result);
+  record_run_end(world, options, start, loading_start, result);
   if (result.ok) {
     try {
       for (const auto& [name, value] : ucs_macro_values(result.curve)) result.macro[name] = value;

@@ -52,6 +52,35 @@ TEST(DemcalDem, RunWritesTheResultFile) {
   EXPECT_EQ(header, "run,axial_strain,stress_MPa,lateral_strain,cracks");
 }
 
+TEST(DemcalDem, VtkSnapshotsHoldTheDisksBondsAndBreaks) {
+  std::string dir = temp("vtk");
+  Result r = run("run --scene " + kScene + " --out " + temp("vtk.json") + " --vtk " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json result;
+  std::ifstream(temp("vtk.json")) >> result;
+  std::ifstream first(dir + "/disks_000001.vtk");
+  ASSERT_TRUE(first.good());
+  std::string text((std::istreambuf_iterator<char>(first)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("# vtk DataFile Version 3.0", 0), 0u);
+  EXPECT_NE(text.find("POINTS " + std::to_string(result.at("particles").get<int>()) + " double"), std::string::npos);
+  EXPECT_NE(text.find("SCALARS radius double 1"), std::string::npos);
+  EXPECT_NE(text.find("VECTORS velocity double"), std::string::npos);
+  // The final breaks file (named by the number of curve points) lists every bond break of the run.
+  const int breaks = static_cast<int>(result.at("macro").at("cracks_tension").get<double>() +
+                                      result.at("macro").at("cracks_shear").get<double>());
+  bool found = false;
+  for (int points = 1; points < 100000 && !found; ++points) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "/final_breaks_%06d.vtk", points);
+    std::ifstream f(dir + name);
+    if (!f.good()) continue;
+    found = true;
+    std::string content((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_NE(content.find("POINTS " + std::to_string(breaks) + " double"), std::string::npos) << content.substr(0, 200);
+  }
+  EXPECT_TRUE(found);
+}
+
 TEST(DemcalDem, BadInputIsOneLineAndNonZero) {
   std::string out = " --out " + temp("bad.json");
   for (auto [args, fragment] : std::vector<std::pair<std::string, std::string>>{

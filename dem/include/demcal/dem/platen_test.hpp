@@ -30,9 +30,14 @@ std::string instability(const World& world, double platen_velocity_m_s);
 // Mean force the disks exert on the two platens, compression positive, N.
 double platen_force(const World& world);
 
+// Writes VTK snapshots into options.vtk_dir at the first curve point, every
+// options.vtk_every points and at the end (`final`); nothing when unset.
+void snapshot(const World& world, const RunOptions& options, std::size_t points, bool final);
+
 // Fills in what every run reports at its end: steps, time step, wall times
-// (whole run since `start`, loading since `loading_start`) and cracks by mode.
-void record_run_end(const World& world, std::chrono::steady_clock::time_point start,
+// (whole run since `start`, loading since `loading_start`) and cracks by mode,
+// and writes the final VTK snapshot when asked for.
+void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point loading_start, TestResult& result);
 
 }  // namespace demcal::dem

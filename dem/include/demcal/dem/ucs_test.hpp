@@ -34,6 +34,8 @@ struct RunOptions {
   std::uint64_t seed = 1;
   std::string cache_dir;  // packed specimens; empty: pack every time
   bool progress = false;  // a progress line on stderr
+  std::string vtk_dir;    // VTK snapshots (disks + bonds, breaks) when set
+  int vtk_every = 25;     // a snapshot every this many curve points, plus the first and last
 };
 
 // Packs (or loads) the specimen, bonds it, and loads it to failure. Bad input
