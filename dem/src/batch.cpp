@@ -74,6 +74,7 @@ json point_json(const Point& p, const std::map<std::string, double>& parameters,
   out["particles"] = r.particles;
   out["porosity"] = r.porosity;
   out["steps"] = r.steps;
+  if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;
   out["wall_s"] = r.wall_s;
   out["particle_steps_per_s"] =
       r.test_wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.test_wall_s : 0.0;

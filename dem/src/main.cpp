@@ -45,6 +45,7 @@ json result_json(const dem::TestResult& r, const std::map<std::string, double>& 
   out["porosity"] = r.porosity;
   out["steps"] = r.steps;
   out["dt_s"] = r.dt_s;
+  if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;
   out["wall_s"] = r.wall_s;
   out["test_wall_s"] = r.test_wall_s;
   out["particle_steps_per_s"] =

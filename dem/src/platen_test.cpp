@@ -16,6 +16,7 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep) {
   WorldSettings settings;
   settings.thickness_m = specimen.thickness_m;
+  settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
   World world(settings);
   const std::string where = scene.origin() + ": contacts.";
   auto create = [&](const char* pair) {
@@ -81,6 +82,7 @@ void record_run_end(const World& world, const RunOptions& options, std::chrono::
   const auto now = std::chrono::steady_clock::now();
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
+  result.density_scaling_dt_s = world.settings().density_scaling_dt_s;
   snapshot(world, options, result.curve.size(), true);
   result.wall_s = std::chrono::duration<double>(now - start).count();
   result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();

@@ -95,7 +95,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
     only_keys(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
-                  "bond_gap_tolerance_m"},
+                  "bond_gap_tolerance_m", "density_scaling_dt_s"},
               where);
     LoadingSpec& s = scene.loading_;
     s.platen_velocity_m_s = number_field(l, "platen_velocity_m_s", s.platen_velocity_m_s, where);
@@ -104,6 +104,8 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     s.record_strain = number_field(l, "record_strain", s.record_strain, where);
     s.max_wall_s = number_field(l, "max_wall_s", s.max_wall_s, where);
     s.bond_gap_tolerance_m = number_field(l, "bond_gap_tolerance_m", s.bond_gap_tolerance_m, where);
+    s.density_scaling_dt_s = number_field(l, "density_scaling_dt_s", s.density_scaling_dt_s, where);
+    if (s.density_scaling_dt_s < 0) throw Error(where + ": density_scaling_dt_s must be >= 0");
     if (!(s.platen_velocity_m_s > 0)) throw Error(where + ": platen_velocity_m_s must be positive");
     if (!(s.stop_fraction_of_peak > 0 && s.stop_fraction_of_peak < 1))
       throw Error(where + ": stop_fraction_of_peak must lie in (0, 1)");

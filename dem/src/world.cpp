@@ -70,12 +70,18 @@ void World::update_time_step() {
   add(pairs_, false);
   add(wall_pairs_, true);
   double dt = std::numeric_limits<double>::infinity();
+  // Critical step each disk must reach under density scaling.
+  const double scaled_step = settings_.density_scaling_dt_s / settings_.safety_factor;
   for (std::size_t i = 0; i < n; ++i) {
     if (bodies.fixed[i]) continue;
     if (kt[i] <= 0) {
       // No neighbour yet: bound the step by one contact of the stiffest model.
       for (const auto& m : models_) kt[i] = std::max(kt[i], m->normal_stiffness_estimate(bodies.radius[i], settings_.thickness_m));
       kr[i] = kt[i] * bodies.radius[i] * bodies.radius[i];
+    }
+    if (scaled_step > 0) {
+      bodies.mass[i] = std::max(bodies.mass[i], kt[i] * scaled_step * scaled_step);
+      bodies.inertia[i] = std::max(bodies.inertia[i], kr[i] * scaled_step * scaled_step);
     }
     if (kt[i] > 0) dt = std::min(dt, std::sqrt(bodies.mass[i] / kt[i]));
     if (kr[i] > 0) dt = std::min(dt, std::sqrt(bodies.inertia[i] / kr[i]));

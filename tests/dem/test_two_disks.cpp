@@ -103,3 +103,22 @@ TEST(TwoDisks, DiskBouncesOffAWallWithTheDeformabilityStiffness) {
   EXPECT_NEAR(peak_push, 0.1 * std::sqrt(kn * m), 0.01 * 0.1 * std::sqrt(kn * m));
   EXPECT_EQ(peak_pull, 0.0);  // an unbonded contact never pulls
 }
+
+TEST(TwoDisks, DensityScalingRaisesMassesToReachTheRequestedStep) {
+  World plain = two_disk_world(0.1, 0.8);
+  plain.step();
+  const double natural_dt = plain.dt_s();
+  World scaled = two_disk_world(0.1, 0.8);
+  scaled.settings().density_scaling_dt_s = 10 * natural_dt;
+  const double mass_before = scaled.bodies.mass[0];
+  scaled.step();
+  EXPECT_NEAR(scaled.dt_s(), 10 * natural_dt, 1e-12 * natural_dt);
+  // The step grows with sqrt(m): the mass grows 100-fold.
+  EXPECT_NEAR(scaled.bodies.mass[0], 100 * mass_before, 1e-9 * 100 * mass_before);
+  // A step smaller than the natural one leaves the masses alone.
+  World small = two_disk_world(0.1, 0.8);
+  small.settings().density_scaling_dt_s = 0.5 * natural_dt;
+  small.step();
+  EXPECT_EQ(small.bodies.mass[0], mass_before);
+  EXPECT_NEAR(small.dt_s(), natural_dt, 1e-12 * natural_dt);
+}

@@ -38,6 +38,7 @@ struct LoadingSpec {
   double record_strain = 2e-5;         // curve resolution (axial strain between points)
   double max_wall_s = 3600;            // a run longer than this is recorded as failed (timeout)
   double bond_gap_tolerance_m = 0;     // 0: 1 % of the smallest radius
+  double density_scaling_dt_s = 0;     // > 0: density scaling to this time step (stated in the result)
 };
 
 class Scene {

@@ -28,6 +28,7 @@ struct TestResult {
   double test_wall_s = 0;      // the loading alone (for particle-steps per second)
   double porosity = 0;
   double dt_s = 0;
+  double density_scaling_dt_s = 0;  // > 0 when masses were scaled (quasi-static run)
 };
 
 struct RunOptions {

@@ -25,6 +25,10 @@ struct WorldSettings {
   double skin_m = 0.0;           // neighbour-list skin; 0: 0.25 x the mean radius
   double gravity_x_m_s2 = 0.0, gravity_y_m_s2 = 0.0;
   double fixed_dt_s = 0.0;       // > 0 replaces the computed time step
+  // Density scaling for quasi-static tests: > 0 raises each disk's mass and
+  // inertia (never lowers them) until the time step is this value. Changes
+  // the dynamics, so results must be checked against an unscaled run.
+  double density_scaling_dt_s = 0.0;
 };
 
 class World {
