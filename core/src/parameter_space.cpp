@@ -8,23 +8,13 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 
 namespace demcal {
 namespace {
 
 using json = nlohmann::json;
-
-void require_known_keys(const json& object, const std::set<std::string>& allowed,
-                        const std::string& where) {
-  for (auto it = object.begin(); it != object.end(); ++it) {
-    if (allowed.count(it.key()) == 0) {
-      std::string list;
-      for (const auto& key : allowed) list += (list.empty() ? "" : ", ") + key;
-      throw Error(where + ": unknown field \"" + it.key() + "\" (allowed: " + list + ")");
-    }
-  }
-}
 
 double read_number(const json& object, const std::string& key, const std::string& where) {
   if (!object.contains(key)) throw Error(where + ": missing field \"" + key + "\"");
@@ -78,7 +68,7 @@ double Parameter::to_symmetric(double natural) const {
 
 ParameterSpace ParameterSpace::from_json(const json& root, const std::string& origin) {
   if (!root.is_object()) throw Error(origin + ": a parameter space must be a JSON object");
-  require_known_keys(root, {"parameters", "fixed", "tied", "description", "source"}, origin);
+  require_known_fields(root, {"description", "fixed", "parameters", "source", "tied"}, origin);
   if (!root.contains("parameters") || !root.at("parameters").is_array())
     throw Error(origin + ": missing array \"parameters\"");
 
@@ -88,8 +78,7 @@ ParameterSpace ParameterSpace::from_json(const json& root, const std::string& or
     const json& item = list[i];
     std::string where = origin + ": parameters[" + std::to_string(i) + "]";
     if (!item.is_object()) throw Error(where + ": must be an object");
-    require_known_keys(item, {"name", "unit", "low", "high", "levels", "reference", "log_scale", "note"},
-                       where);
+    require_known_fields(item, {"high", "levels", "log_scale", "low", "name", "note", "reference", "unit"}, where);
     Parameter p;
     p.name = read_string(item, "name", where, true);
     where += " (\"" + p.name + "\")";
@@ -129,7 +118,7 @@ ParameterSpace ParameterSpace::from_json(const json& root, const std::string& or
       std::string where = origin + ": tied[" + std::to_string(i) + "]";
       const json& item = tied[i];
       if (!item.is_object()) throw Error(where + ": must be an object");
-      require_known_keys(item, {"name", "source", "factor", "offset", "note"}, where);
+      require_known_fields(item, {"factor", "name", "note", "offset", "source"}, where);
       TiedParameter t;
       t.name = read_string(item, "name", where, true);
       t.source = read_string(item, "source", where, true);

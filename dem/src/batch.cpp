@@ -21,6 +21,7 @@
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/progress.hpp"
 #include "demcal/core/table.hpp"
+#include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/ucs_test.hpp"
 
@@ -64,29 +65,9 @@ json failed_point(const Point& p, const std::string& reason) {
 }
 
 json point_json(const Point& p, const std::map<std::string, double>& parameters, const TestResult& r) {
-  json out;
-  out["status"] = r.ok ? "ok" : "failed";
-  out["reason"] = r.reason;
+  json out = result_json(r, parameters, p.seed);
   out["run"] = p.run;
-  out["seed"] = p.seed;
-  out["parameters"] = parameters;
-  out["macro"] = r.macro;
-  out["particles"] = r.particles;
-  out["porosity"] = r.porosity;
-  out["steps"] = r.steps;
-  if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;
-  out["wall_s"] = r.wall_s;
-  out["particle_steps_per_s"] =
-      r.test_wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.test_wall_s : 0.0;
-  json curve = {{"axial_strain", json::array()}, {"stress_MPa", json::array()}, {"lateral_strain", json::array()},
-                {"cracks", json::array()}};
-  for (const CurvePoint& c : r.curve) {
-    curve["axial_strain"].push_back(c.axial_strain);
-    curve["stress_MPa"].push_back(c.stress_pa / 1e6);
-    curve["lateral_strain"].push_back(c.lateral_strain);
-    curve["cracks"].push_back(c.cracks);
-  }
-  out["curve"] = curve;
+  out["curve"] = curve_json(r);
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "demcal/core/table.hpp"
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/batch.hpp"
+#include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/ucs_test.hpp"
 
@@ -31,26 +32,6 @@ std::map<std::string, double> parse_sets(const std::vector<std::string>& sets) {
     values[item.substr(0, eq)] = value;
   }
   return values;
-}
-
-json result_json(const dem::TestResult& r, const std::map<std::string, double>& parameters, std::uint64_t seed) {
-  json out;
-  out["status"] = r.ok ? "ok" : "failed";
-  out["reason"] = r.reason;
-  out["macro"] = json::object();
-  for (const auto& [name, value] : r.macro) out["macro"][name] = value;
-  out["parameters"] = parameters;
-  out["seed"] = seed;
-  out["particles"] = r.particles;
-  out["porosity"] = r.porosity;
-  out["steps"] = r.steps;
-  out["dt_s"] = r.dt_s;
-  if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;
-  out["wall_s"] = r.wall_s;
-  out["test_wall_s"] = r.test_wall_s;
-  out["particle_steps_per_s"] =
-      r.test_wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.test_wall_s : 0.0;
-  return out;
 }
 
 void write_curve(const dem::TestResult& r, const std::string& path) {
@@ -128,7 +109,7 @@ int main(int argc, char** argv) {
     options.progress = !quiet;
     options.vtk_dir = vtk_dir;
     dem::TestResult result = dem::run_test(scene, parameters, options);
-    json summary = result_json(result, parameters, seed);
+    json summary = dem::result_json(result, parameters, seed);
     write_file_atomically(out, summary.dump(2) + "\n");
     if (!curve.empty()) write_curve(result, curve);
     if (!quiet) std::cout << summary.dump(2) << "\n";

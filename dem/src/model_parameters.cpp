@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 
 namespace demcal::dem {
@@ -37,16 +38,7 @@ double non_negative_or(const nlohmann::json& p, const std::string& key, double f
 }
 
 void require_only(const nlohmann::json& p, std::initializer_list<const char*> keys, const std::string& where) {
-  if (!p.is_object()) throw Error(where + ": contact model parameters must be a JSON object");
-  for (auto it = p.begin(); it != p.end(); ++it) {
-    bool known = false;
-    std::string list;
-    for (const char* key : keys) {
-      known = known || it.key() == key;
-      list += (list.empty() ? "" : ", ") + std::string(key);
-    }
-    if (!known) throw Error(where + ": unknown parameter \"" + it.key() + "\" (expected " + list + ")");
-  }
+  require_known_fields(p, keys, where, "parameter");
 }
 
 }  // namespace demcal::dem

@@ -5,25 +5,13 @@
 #include <sstream>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 
 namespace demcal::dem {
 namespace {
 
 using json = nlohmann::json;
-
-void only_keys(const json& object, std::initializer_list<const char*> keys, const std::string& where) {
-  if (!object.is_object()) throw Error(where + ": must be a JSON object");
-  for (auto it = object.begin(); it != object.end(); ++it) {
-    bool known = false;
-    std::string list;
-    for (const char* key : keys) {
-      known = known || it.key() == key;
-      list += (list.empty() ? "" : ", ") + std::string(key);
-    }
-    if (!known) throw Error(where + ": unknown field \"" + it.key() + "\" (allowed: " + list + ")");
-  }
-}
 
 double number_field(const json& object, const char* key, double fallback, const std::string& where) {
   if (!object.contains(key)) return fallback;
@@ -47,7 +35,7 @@ Scene Scene::load(const std::string& path) {
 }
 
 Scene Scene::from_json(const json& root, const std::string& origin) {
-  only_keys(root, {"name", "test", "description", "specimen", "parameters", "contacts", "loading"}, origin);
+  require_known_fields(root, {"name", "test", "description", "specimen", "parameters", "contacts", "loading"}, origin);
   Scene scene;
   scene.origin_ = origin;
   scene.name_ = root.value("name", std::string("scene"));
@@ -57,7 +45,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
 
   if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
   scene.specimen_ = root.at("specimen");
-  only_keys(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
+  require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
                               "radius_max_m", "density_kg_m3", "isotropic_stress_pa"},
             origin + ": specimen");
 
@@ -66,7 +54,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     if (!params.is_object()) throw Error(origin + ": \"parameters\" must be an object of name: {value, low, high}");
     for (auto it = params.begin(); it != params.end(); ++it) {
       const std::string where = origin + ": parameters." + it.key();
-      only_keys(it.value(), {"value", "low", "high", "unit", "note"}, where);
+      require_known_fields(it.value(), {"value", "low", "high", "unit", "note"}, where);
       SceneParameter p;
       if (!it.value().contains("value")) throw Error(where + ": missing \"value\" (the default)");
       p.value = number_field(it.value(), "value", 0, where);
@@ -79,12 +67,12 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   }
 
   if (!root.contains("contacts")) throw Error(origin + ": missing \"contacts\"");
-  only_keys(root.at("contacts"), {"disk-disk", "disk-platen"}, origin + ": contacts");
+  require_known_fields(root.at("contacts"), {"disk-disk", "disk-platen"}, origin + ": contacts");
   for (const char* pair : {"disk-disk", "disk-platen"}) {
     const std::string where = origin + ": contacts." + pair;
     if (!root.at("contacts").contains(pair)) throw Error(where + ": missing");
     const json& c = root.at("contacts").at(pair);
-    only_keys(c, {"model", "parameters"}, where);
+    require_known_fields(c, {"model", "parameters"}, where);
     ContactSpec spec;
     spec.model = c.value("model", std::string(""));
     spec.parameters = c.value("parameters", json::object());
@@ -94,7 +82,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   if (root.contains("loading")) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
-    only_keys(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
+    require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
                   "bond_gap_tolerance_m", "density_scaling_dt_s"},
               where);
     LoadingSpec& s = scene.loading_;

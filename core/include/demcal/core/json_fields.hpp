@@ -1,0 +1,17 @@
+#pragma once
+// Rejects unknown fields of a JSON object, so a typo in a space, scene or
+// model file is an error that names it instead of a silently ignored value.
+#include <initializer_list>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace demcal {
+
+// Throws "<where>: unknown <noun> "<key>" (allowed: a, b, c)" for the first
+// key of `object` not in `allowed`, and "<where>: must be a JSON object" when
+// it is not an object.
+void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+                          const std::string& where, const char* noun = "field");
+
+}  // namespace demcal

@@ -1,0 +1,37 @@
+#include "demcal/dem/result_json.hpp"
+
+namespace demcal::dem {
+
+nlohmann::json result_json(const TestResult& r, const std::map<std::string, double>& parameters, std::uint64_t seed) {
+  nlohmann::json out;
+  out["status"] = r.ok ? "ok" : "failed";
+  out["reason"] = r.reason;
+  out["macro"] = nlohmann::json::object();
+  for (const auto& [name, value] : r.macro) out["macro"][name] = value;
+  out["parameters"] = parameters;
+  out["seed"] = seed;
+  out["particles"] = r.particles;
+  out["porosity"] = r.porosity;
+  out["steps"] = r.steps;
+  out["dt_s"] = r.dt_s;
+  if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;
+  out["wall_s"] = r.wall_s;
+  out["test_wall_s"] = r.test_wall_s;
+  out["particle_steps_per_s"] =
+      r.test_wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.test_wall_s : 0.0;
+  return out;
+}
+
+nlohmann::json curve_json(const TestResult& r) {
+  nlohmann::json curve = {{"axial_strain", nlohmann::json::array()}, {"stress_MPa", nlohmann::json::array()},
+                          {"lateral_strain", nlohmann::json::array()}, {"cracks", nlohmann::json::array()}};
+  for (const CurvePoint& c : r.curve) {
+    curve["axial_strain"].push_back(c.axial_strain);
+    curve["stress_MPa"].push_back(c.stress_pa / 1e6);
+    curve["lateral_strain"].push_back(c.lateral_strain);
+    curve["cracks"].push_back(c.cracks);
+  }
+  return curve;
+}
+
+}  // namespace demcal::dem
