@@ -1,5 +1,7 @@
 #include "demcal/core/json_fields.hpp"
 
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
@@ -16,6 +18,16 @@ void require_known_fields(const nlohmann::json& object, std::initializer_list<co
     std::string list;
     for (const char* key : allowed) list += (list.empty() ? "" : ", ") + std::string(key);
     throw Error(where + ": unknown " + noun + " \"" + it.key() + "\" (allowed: " + list + ")");
+  }
+}
+
+nlohmann::json read_json_file(const std::string& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open " + what);
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
   }
 }
 

@@ -174,15 +174,7 @@ void ParameterSpace::validate(const std::string& origin) const {
 }
 
 ParameterSpace ParameterSpace::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open parameter space file");
-  json root;
-  try {
-    in >> root;
-  } catch (const json::parse_error& e) {
-    throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
-  return from_json(root, path);
+  return from_json(read_json_file(path, "parameter space file"), path);
 }
 
 json ParameterSpace::to_json() const {

@@ -22,17 +22,7 @@ double number_field(const json& object, const char* key, double fallback, const 
 
 }  // namespace
 
-Scene Scene::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open scene file");
-  json root;
-  try {
-    in >> root;
-  } catch (const json::parse_error& e) {
-    throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
-  return from_json(root, path);
-}
+Scene Scene::load(const std::string& path) { return from_json(read_json_file(path, "scene file"), path); }
 
 Scene Scene::from_json(const json& root, const std::string& origin) {
   require_known_fields(root, {"name", "test", "description", "specimen", "parameters", "contacts", "loading"}, origin);

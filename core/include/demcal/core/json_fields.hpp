@@ -4,7 +4,7 @@
 #include <initializer_list>
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 
 namespace demcal {
 
@@ -13,5 +13,9 @@ namespace demcal {
 // it is not an object.
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed,
                           const std::string& where, const char* noun = "field");
+
+// Reads a whole JSON file; errors say "<path>: cannot open <what>" or
+// "<path>: not valid JSON (...)".
+nlohmann::json read_json_file(const std::string& path, const std::string& what);
 
 }  // namespace demcal
