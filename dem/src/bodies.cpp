@@ -21,6 +21,7 @@ std::size_t Bodies::add_disk(double x_m, double y_m, double radius_m, double den
   inertia.push_back(0.5 * m * radius_m * radius_m);  // solid disk
   group.push_back(material_group);
   fixed.push_back(0);
+  clump.push_back(-1);
   return x.size() - 1;
 }
 
@@ -34,6 +35,7 @@ void Bodies::reserve(std::size_t n) {
   for (auto* v : {&x, &y, &vx, &vy, &w, &fx, &fy, &moment, &radius, &mass, &inertia}) v->reserve(n);
   group.reserve(n);
   fixed.reserve(n);
+  clump.reserve(n);
 }
 
 }  // namespace demcal::dem

@@ -72,6 +72,7 @@ void World::build_disk_pairs(ContactSet& fresh) {
           std::uint32_t b0 = (d == c) ? a + 1 : start[static_cast<std::size_t>(d)];
           for (std::uint32_t b = b0; b < start[static_cast<std::size_t>(d) + 1]; ++b) {
             const std::uint32_t j = order[b];
+            if (bodies.clump[i] >= 0 && bodies.clump[i] == bodies.clump[j]) continue;  // inside one rigid clump
             const double dx = bodies.x[j] - bodies.x[i], dy = bodies.y[j] - bodies.y[i];
             const double reach = bodies.radius[i] + bodies.radius[j] + skin_m_;
             if (dx * dx + dy * dy >= reach * reach) continue;
@@ -82,8 +83,11 @@ void World::build_disk_pairs(ContactSet& fresh) {
       }
     }
   // A bond holds its pair in the list however far the disks have moved apart.
-  for (std::size_t k = 0; k < pairs_.size(); ++k)
-    if (pairs_.flags[k] & kBonded) keys.push_back(key_of(pairs_, k));
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::int32_t ci = bodies.clump[static_cast<std::size_t>(pairs_.i[k])];
+    const bool inside_clump = ci >= 0 && ci == bodies.clump[static_cast<std::size_t>(pairs_.j[k])];
+    if ((pairs_.flags[k] & kBonded) && !inside_clump) keys.push_back(key_of(pairs_, k));
+  }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   fresh.reserve(keys.size());

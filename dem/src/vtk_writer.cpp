@@ -24,7 +24,7 @@ void write_vtk_disks(const World& world, const std::string& path) {
   out << "POINT_DATA " << b.size() << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
   for (double r : b.radius) out << r << '\n';
   out << "SCALARS clump_id int 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < b.size(); ++i) out << "-1\n";  // no clumps yet
+  for (std::int32_t id : b.clump) out << id << '\n';
   out << "VECTORS velocity double\n";
   for (std::size_t i = 0; i < b.size(); ++i) out << b.vx[i] << ' ' << b.vy[i] << " 0\n";
   out << "CELL_DATA " << b.size() + bonds << "\nSCALARS bond_intact int 1\nLOOKUP_TABLE default\n";

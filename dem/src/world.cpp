@@ -31,6 +31,30 @@ void World::assign(std::uint8_t group_a, std::uint8_t group_b, std::uint8_t mode
 
 void World::refresh() { rebuild(); }
 
+std::size_t World::add_clump(const std::vector<std::size_t>& members, double mass_kg, double inertia_kg_m2, double x_m,
+                             double y_m) {
+  if (members.empty()) throw Error("a clump needs at least one disk");
+  if (!(mass_kg > 0) || !(inertia_kg_m2 > 0)) throw Error("a clump needs a positive mass and inertia");
+  Clump clump;
+  clump.x = x_m;
+  clump.y = y_m;
+  clump.mass = mass_kg;
+  clump.inertia = inertia_kg_m2;
+  const std::int32_t id = static_cast<std::int32_t>(clumps_.size());
+  for (std::size_t i : members) {
+    if (i >= bodies.size()) throw Error("clump member " + std::to_string(i) + " is not a disk");
+    if (bodies.clump[i] >= 0) throw Error("disk " + std::to_string(i) + " already belongs to a clump");
+    bodies.clump[i] = id;
+    bodies.vx[i] = bodies.vy[i] = bodies.w[i] = 0;
+    clump.members.push_back(i);
+    clump.offset_x.push_back(bodies.x[i] - x_m);
+    clump.offset_y.push_back(bodies.y[i] - y_m);
+  }
+  clumps_.push_back(std::move(clump));
+  built_ = false;
+  return clumps_.size() - 1;
+}
+
 std::size_t World::install_bonds(double tolerance_m, Rng& rng) {
   rebuild();
   std::size_t installed = 0;
@@ -83,8 +107,21 @@ void World::update_time_step() {
       bodies.mass[i] = std::max(bodies.mass[i], kt[i] * scaled_step * scaled_step);
       bodies.inertia[i] = std::max(bodies.inertia[i], kr[i] * scaled_step * scaled_step);
     }
+    if (bodies.clump[i] >= 0) continue;  // bounded through its clump below
     if (kt[i] > 0) dt = std::min(dt, std::sqrt(bodies.mass[i] / kt[i]));
     if (kr[i] > 0) dt = std::min(dt, std::sqrt(bodies.inertia[i] / kr[i]));
+  }
+  // A clump: the stiffness of all its disks' contacts, rotational stiffness
+  // about its centre of mass.
+  for (const Clump& c : clumps_) {
+    double ct = 0, cr = 0;
+    for (std::size_t k = 0; k < c.members.size(); ++k) {
+      const std::size_t i = c.members[k];
+      ct += kt[i];
+      cr += kr[i] + kt[i] * (c.offset_x[k] * c.offset_x[k] + c.offset_y[k] * c.offset_y[k]);
+    }
+    if (ct > 0) dt = std::min(dt, std::sqrt(c.mass / ct));
+    if (cr > 0) dt = std::min(dt, std::sqrt(c.inertia / cr));
   }
   if (!std::isfinite(dt) || dt <= 0) throw Error("cannot find a stable time step (no stiffness or no mass)");
   dt_s_ = settings_.safety_factor * dt;
@@ -116,6 +153,7 @@ void World::integrate() {
       vx[i] = vy[i] = w[i] = 0;
       continue;
     }
+    if (bodies.clump[i] >= 0) continue;  // moved with its clump
     const double m = bodies.mass[i];
     // Local non-viscous damping opposes the velocity with a fraction of the force.
     const double fx = bodies.fx[i] + m * gx;
@@ -132,7 +170,44 @@ void World::integrate() {
     const double ddx = x[i] - x_built_[i], ddy = y[i] - y_built_[i];
     max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
   }
+  integrate_clumps(max_move2);
   max_disk_move2_ = max_move2;
+}
+
+void World::integrate_clumps(double& max_move2) {
+  const double dt = dt_s_, alpha = settings_.damping;
+  auto sign = [](double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); };
+  for (Clump& c : clumps_) {
+    // Resultant force and moment about the centre of mass.
+    double fx = c.mass * settings_.gravity_x_m_s2, fy = c.mass * settings_.gravity_y_m_s2, mz = 0;
+    for (std::size_t k = 0; k < c.members.size(); ++k) {
+      const std::size_t i = c.members[k];
+      fx += bodies.fx[i];
+      fy += bodies.fy[i];
+      mz += bodies.moment[i] + c.offset_x[k] * bodies.fy[i] - c.offset_y[k] * bodies.fx[i];
+    }
+    c.vx += (fx - alpha * std::abs(fx) * sign(c.vx)) / c.mass * dt;
+    c.vy += (fy - alpha * std::abs(fy) * sign(c.vy)) / c.mass * dt;
+    c.w += (mz - alpha * std::abs(mz) * sign(c.w)) / c.inertia * dt;
+    c.x += c.vx * dt;
+    c.y += c.vy * dt;
+    // Rotate the member offsets exactly, so the clump keeps its shape.
+    const double cs = std::cos(c.w * dt), sn = std::sin(c.w * dt);
+    for (std::size_t k = 0; k < c.members.size(); ++k) {
+      const double ox = cs * c.offset_x[k] - sn * c.offset_y[k];
+      const double oy = sn * c.offset_x[k] + cs * c.offset_y[k];
+      c.offset_x[k] = ox;
+      c.offset_y[k] = oy;
+      const std::size_t i = c.members[k];
+      bodies.x[i] = c.x + ox;
+      bodies.y[i] = c.y + oy;
+      bodies.vx[i] = c.vx - c.w * oy;
+      bodies.vy[i] = c.vy + c.w * ox;
+      bodies.w[i] = c.w;
+      const double ddx = bodies.x[i] - x_built_[i], ddy = bodies.y[i] - y_built_[i];
+      max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
+    }
+  }
 }
 
 void World::move_walls() {
@@ -172,8 +247,11 @@ void World::run(std::uint64_t steps) {
 
 double World::kinetic_energy() const {
   double energy = 0;
+  for (const Clump& c : clumps_)
+    energy += 0.5 * c.mass * (c.vx * c.vx + c.vy * c.vy) + 0.5 * c.inertia * c.w * c.w;
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    energy += 0.5 * bodies.mass[i] * (bodies.vx[i] * bodies.vx[i] + bodies.vy[i] * bodies.vy[i]) +
+    if (bodies.clump[i] < 0)
+      energy += 0.5 * bodies.mass[i] * (bodies.vx[i] * bodies.vx[i] + bodies.vy[i] * bodies.vy[i]) +
               0.5 * bodies.inertia[i] * bodies.w[i] * bodies.w[i];
   return energy;
 }

@@ -20,6 +20,7 @@ struct Bodies {
   std::vector<double> inertia;   // kg m^2
   std::vector<std::uint8_t> group;  // material group, picks the contact model per pair
   std::vector<std::uint8_t> fixed;  // 1: the disk does not move
+  std::vector<std::int32_t> clump;  // rigid clump the disk belongs to, -1 for a free disk
 
   std::size_t size() const { return x.size(); }
   // Adds a disk of density `density_kg_m3` and thickness `thickness_m` at rest.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "demcal/dem/bodies.hpp"
+#include "demcal/dem/clump.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/contacts.hpp"
 #include "demcal/dem/walls.hpp"
@@ -39,6 +40,14 @@ class World {
 
   Bodies bodies;
   std::vector<Wall> walls;
+
+  // Makes the disks `members` one rigid clump with the given mass, inertia
+  // about its centre of mass and centre (x, y); returns its index. Their own
+  // masses stop mattering; pairs inside the clump are dropped.
+  std::size_t add_clump(const std::vector<std::size_t>& members, double mass_kg, double inertia_kg_m2, double x_m,
+                        double y_m);
+  const std::vector<Clump>& clumps() const { return clumps_; }
+  std::vector<Clump>& clumps() { return clumps_; }
 
   // Takes a model and returns its index; assign() binds it to a pair of
   // material groups (order does not matter; walls have groups too).
@@ -82,6 +91,7 @@ class World {
   void compute_forces();
   void integrate();
   void move_walls();
+  void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
 
   WorldSettings settings_;
@@ -91,6 +101,7 @@ class World {
   std::vector<std::pair<std::size_t, std::size_t>> pair_runs_, wall_runs_;  // [begin, end) per model
   std::vector<std::uint8_t> run_models_, wall_run_models_;
   std::vector<BreakEvent> breaks_;
+  std::vector<Clump> clumps_;
   // Positions at the last rebuild, for the skin criterion.
   std::vector<double> x_built_, y_built_;
   std::vector<std::array<double, 2>> wall_built_;
