@@ -60,6 +60,14 @@ std::string instability(const World& world, double platen_velocity_m_s) {
   for (std::size_t i = 0; i < b.size(); ++i) fastest = std::max(fastest, std::abs(b.vx[i]) + std::abs(b.vy[i]));
   if (!std::isfinite(fastest) || !std::isfinite(platen_force(world))) return "unstable: non-finite forces or velocities";
   if (fastest > 1000 * platen_velocity_m_s) return "unstable: a disk moves faster than 1000 x the platen speed";
+  // The platens span the domain: a disk beyond their ends, or through one, has left it.
+  const Wall& bottom = world.walls[0];
+  const Wall& top = world.walls[1];
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b.x[i] < bottom.x0 || b.x[i] > bottom.x1) return "unstable: a disk left the domain sideways";
+    if (b.y[i] < bottom.y0 - b.radius[i] || b.y[i] > top.y0 + b.radius[i])
+      return "unstable: a disk passed through a platen";
+  }
   return "";
 }
 

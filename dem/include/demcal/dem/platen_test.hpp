@@ -24,7 +24,8 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr);
 
 // Empty when the state is sane; otherwise why the run must stop as failed
-// (non-finite values, a disk faster than 1000 x the platen speed).
+// (non-finite values, a disk faster than 1000 x the platen speed, a disk
+// beyond the platens' ends or through a platen).
 std::string instability(const World& world, double platen_velocity_m_s);
 
 // Mean force the disks exert on the two platens, compression positive, N.
