@@ -7,7 +7,8 @@
 //                "shear_strength_pa", "shear_strength_std_pa" (default 0)}
 // Strengths are stresses; each bond gets force strengths stress x 2 R_mean t
 // with R_mean = (R_i + R_j) / 2, drawn per bond from a normal distribution
-// truncated at zero.
+// truncated at zero. A bond installed across a small gap (or overlap) is
+// force-free there: while bonded, F_n = kn (overlap - overlap at installation).
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -39,6 +40,7 @@ class ContactBondModel : public LinearBase {
     const double width = (pair.radius_i + pair.radius_j) * thickness_m;  // 2 R_mean t
     c.strength_n[k] = draw_strength(sigma_c_, sigma_c_std_, rng) * width;
     c.strength_s[k] = draw_strength(tau_c_, tau_c_std_, rng) * width;
+    c.bond_overlap[k] = pair.overlap;  // glued as it lies: no force at installation
     c.flags[k] |= kBonded;
     return true;
   }
@@ -51,7 +53,7 @@ class ContactBondModel : public LinearBase {
         [&](std::size_t k, const Geometry& g) {
           if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
           PairForce f;
-          f.fn = c.kn[k] * g.overlap;  // negative in tension
+          f.fn = c.kn[k] * (g.overlap - c.bond_overlap[k]);  // negative in tension
           c.fs[k] -= c.ks[k] * g.vs * dt;
           f.fs = c.fs[k];
           const bool tension = -f.fn >= c.strength_n[k];

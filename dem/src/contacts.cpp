@@ -9,7 +9,7 @@ constexpr Column kStateColumns[] = {
     &ContactSet::kn,          &ContactSet::ks,          &ContactSet::mu,          &ContactSet::fs,
     &ContactSet::bond_kn,     &ContactSet::bond_ks,     &ContactSet::bond_area,   &ContactSet::bond_inertia,
     &ContactSet::bond_radius, &ContactSet::bond_fn,     &ContactSet::bond_fs,     &ContactSet::bond_m,
-    &ContactSet::strength_n,  &ContactSet::strength_s,
+    &ContactSet::strength_n,  &ContactSet::strength_s,  &ContactSet::bond_overlap,
 };
 
 }  // namespace

@@ -62,7 +62,7 @@ std::size_t World::install_bonds(double tolerance_m, Rng& rng) {
     const std::size_t i = static_cast<std::size_t>(pairs_.i[k]), j = static_cast<std::size_t>(pairs_.j[k]);
     const double gap = std::hypot(bodies.x[j] - bodies.x[i], bodies.y[j] - bodies.y[i]) - bodies.radius[i] - bodies.radius[j];
     if (gap > tolerance_m) continue;
-    PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false};
+    PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false, -gap};
     installed += models_[pairs_.model[k]]->install_bond(pairs_, k, info, settings_.thickness_m, rng) ? 1 : 0;
   }
   update_time_step();  // bonds stiffen the disks

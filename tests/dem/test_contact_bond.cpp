@@ -78,3 +78,26 @@ TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
   imposed_step(world, 0, v, 0);
   EXPECT_NEAR(std::abs(world.pairs().fs[0]), 0.3 * kKn * 1e-6, 1e-3 * 0.3 * kKn * 1e-6);
 }
+
+TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {
+  WorldSettings settings;
+  settings.fixed_dt_s = kDt;
+  World world(settings);
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                        "contact_bond",
+                        {{"modulus_pa", kModulus}, {"kn_ks", kKnKs}, {"friction", 0.3},
+                         {"tensile_strength_pa", 1e6}, {"shear_strength_pa", 1e6}},
+                        "test")));
+  world.bodies.add_disk(0, 0, kR1, 2650, 1, 0);
+  world.bodies.add_disk(kR1 + kR2 + 1e-6, 0, kR2, 2650, 1, 0);  // a 1 um gap
+  world.bodies.fixed[0] = world.bodies.fixed[1] = 1;
+  demcal::Rng rng(3);
+  ASSERT_EQ(world.install_bonds(2e-6, rng), 1u);
+  imposed_step(world, 0, 0, 0);
+  EXPECT_EQ(world.bodies.fx[0], 0.0);
+  EXPECT_TRUE(world.breaks().empty());
+  // Pulled 1 um further, it carries kn x 1 um of tension.
+  for (int s = 0; s < 100; ++s) imposed_step(world, 1e-6 / (100 * kDt), 0, 0);
+  imposed_step(world, 0, 0, 0);
+  EXPECT_NEAR(world.bodies.fx[0], kKn * 1e-6, 1e-6 * kKn * 1e-6);
+}

@@ -35,6 +35,7 @@ struct PairInfo {
   double radius_i = 0, radius_j = 0;  // radius_j = 0 for a wall
   std::uint8_t group_i = 0, group_j = 0;
   bool wall = false;
+  double overlap = 0;  // current overlap (negative: a gap), set when a bond is installed
 };
 
 class ContactModel {

@@ -37,6 +37,7 @@ struct ContactSet {
   std::vector<double> bond_area, bond_inertia, bond_radius;  // m^2, m^4, m
   std::vector<double> bond_fn, bond_fs, bond_m;  // bond force (compression > 0), shear force, moment
   std::vector<double> strength_n, strength_s;    // tensile and shear strength (N or Pa, per model)
+  std::vector<double> bond_overlap;              // overlap when the bond was installed (force-free there), m
 
   std::size_t size() const { return i.size(); }
   void clear();
