@@ -36,8 +36,8 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
   result.particles = kept;
   result.porosity = square.porosity;
   const auto loading_start = std::chrono::steady_clock::now();
-  double peak = 0, next_record = 0;
-  std::size_t peak_index = 0;
+  double next_record = 0;
+  LoadingMonitor monitor(loading, options, start);
   for (;;) {
     world.step();
     const double approach = (gap0 - (world.walls[1].y0 - world.walls[0].y0)) / D;
@@ -47,32 +47,14 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
     point.axial_strain = approach;
     point.stress_pa = 2.0 * platen_force(world) / (M_PI * D * t);
     point.cracks = world.breaks().size();
-    result.curve.push_back(point);
-    snapshot(world, options, result.curve.size(), false);
-    if (point.stress_pa > peak) {
-      peak = point.stress_pa;
-      peak_index = result.curve.size() - 1;
-    }
-    result.reason = instability(world, loading.platen_velocity_m_s);
-    if (!result.reason.empty()) {
-      result.reason += " at platen approach " + std::to_string(approach) + " D";
-      break;
-    }
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (elapsed > loading.max_wall_s) {
-      result.reason = "timeout after " + std::to_string(elapsed) + " s (loading.max_wall_s)";
-      break;
-    }
-    const bool past_peak = !world.breaks().empty() && result.curve.size() >= 10 &&
-                           result.curve.size() > peak_index + 2 && point.stress_pa < loading.stop_fraction_of_peak * peak;
-    if (past_peak || approach >= loading.strain_limit) {
-      result.ok = true;
-      break;
-    }
+    if (!monitor.record(world, point, result, "platen approach " + std::to_string(approach) + " D")) break;
   }
   record_run_end(world, options, start, loading_start, result);
   if (result.ok) {
-    result.macro["sigma_t_MPa"] = peak / 1e6;
+    std::size_t peak_index = 0;
+    for (std::size_t k = 1; k < result.curve.size(); ++k)
+      if (result.curve[k].stress_pa > result.curve[peak_index].stress_pa) peak_index = k;
+    result.macro["sigma_t_MPa"] = monitor.peak() / 1e6;
     result.macro["peak_approach_over_D"] = result.curve[peak_index].axial_strain;
   }
   return result;

@@ -85,6 +85,48 @@ void snapshot(const World& world, const RunOptions& options, std::size_t points,
   write_vtk_breaks(world, options.vtk_dir + "/" + name);
 }
 
+LoadingMonitor::LoadingMonitor(const LoadingSpec& loading, const RunOptions& options,
+                               std::chrono::steady_clock::time_point start)
+    : loading_(loading), options_(options), start_(start) {
+  if (options.progress) progress_ = std::make_unique<Progress>("loading (% of the strain limit)", 100);
+}
+
+LoadingMonitor::~LoadingMonitor() = default;
+
+bool LoadingMonitor::record(const World& world, const CurvePoint& point, TestResult& result, const std::string& where) {
+  result.curve.push_back(point);
+  snapshot(world, options_, result.curve.size(), false);
+  if (point.stress_pa > peak_) {
+    peak_ = point.stress_pa;
+    peak_index_ = result.curve.size() - 1;
+  }
+  result.reason = instability(world, loading_.platen_velocity_m_s);
+  if (!result.reason.empty()) {
+    result.reason += " at " + where;
+    return false;
+  }
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (elapsed > loading_.max_wall_s) {
+    result.reason = "timeout after " + std::to_string(elapsed) + " s (loading.max_wall_s)";
+    return false;
+  }
+  if (progress_) {
+    const int percent = std::min(100, static_cast<int>(100 * point.axial_strain / loading_.strain_limit));
+    if (percent > shown_) {
+      progress_->advance(static_cast<std::uint64_t>(percent - shown_));
+      shown_ = percent;
+    }
+  }
+  const bool past_peak = !world.breaks().empty() && result.curve.size() >= 10 &&
+                         result.curve.size() > peak_index_ + 2 &&
+                         point.stress_pa < loading_.stop_fraction_of_peak * peak_;
+  if (past_peak || point.axial_strain >= loading_.strain_limit) {
+    result.ok = true;
+    return false;
+  }
+  return true;
+}
+
 void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point loading_start, TestResult& result) {
   const auto now = std::chrono::steady_clock::now();

@@ -74,11 +74,8 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   const auto loading_start = std::chrono::steady_clock::now();
   result.particles = specimen.size();
   result.porosity = specimen.porosity;
-  double peak = 0, next_record = 0;
-  std::unique_ptr<Progress> progress;
-  if (options.progress) progress = std::make_unique<Progress>("ucs axial strain (% of limit)", 100);
-  int shown = 0;
-  std::size_t peak_index = 0;
+  double next_record = 0;
+  LoadingMonitor monitor(loading, options, start);
   for (;;) {
     world.step();
     const double height = world.walls[1].y0 - world.walls[0].y0;
@@ -90,39 +87,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
     point.stress_pa = platen_force(world) / (W * specimen.thickness_m);
     point.lateral_strain = (mean_x(world.bodies, right) - mean_x(world.bodies, left) - width0) / width0;
     point.cracks = world.breaks().size();
-    result.curve.push_back(point);
-    snapshot(world, options, result.curve.size(), false);
-    if (point.stress_pa > peak) {
-      peak = point.stress_pa;
-      peak_index = result.curve.size() - 1;
-    }
-
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.reason = instability(world, loading.platen_velocity_m_s);
-    if (!result.reason.empty()) {
-      result.reason += " at axial strain " + std::to_string(strain);
-      break;
-    }
-    if (elapsed > loading.max_wall_s) {
-      result.reason = "timeout after " + std::to_string(elapsed) + " s (loading.max_wall_s)";
-      break;
-    }
-    if (progress) {
-      int percent = std::min(100, static_cast<int>(100 * strain / loading.strain_limit));
-      if (percent > shown) {
-        progress->advance(static_cast<std::uint64_t>(percent - shown));
-        shown = percent;
-      }
-    }
-    // Past the peak: bonds have broken and the stress has fallen well below
-    // the peak a few points later (a dip of an elastic oscillation does not count).
-    const bool past_peak = !world.breaks().empty() && result.curve.size() >= 10 &&
-                           result.curve.size() > peak_index + 2 &&
-                           point.stress_pa < loading.stop_fraction_of_peak * peak;
-    if (past_peak || strain >= loading.strain_limit) {
-      result.ok = true;
-      break;
-    }
+    if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
   }
   record_run_end(world, options, start, loading_start, result);
   if (result.ok) {
@@ -132,7 +97,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
       result.ok = false;
       result.reason = e.what();
     }
-    if (result.ok && result.curve.back().stress_pa >= loading.stop_fraction_of_peak * peak)
+    if (result.ok && result.curve.back().stress_pa >= loading.stop_fraction_of_peak * monitor.peak())
       result.macro["reached_strain_limit"] = 1;
   }
   return result;

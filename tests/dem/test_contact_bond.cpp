@@ -21,7 +21,8 @@ constexpr double kR1 = 1e-3, kR2 = 1.5e-3, kDt = 1e-8, kModulus = 1e9, kKnKs = 2
 constexpr double kKn = 2 * kR1 * kModulus / (kR1 + kR2);
 constexpr double kWidth = kR1 + kR2;
 
-World bonded_pair(double sigma_c, double tau_c) {
+// Two fixed disks `gap` apart, glued by a contact bond.
+World bonded_pair(double sigma_c, double tau_c, double gap = 0.0) {
   WorldSettings settings;
   settings.fixed_dt_s = kDt;
   World world(settings);
@@ -31,10 +32,10 @@ World bonded_pair(double sigma_c, double tau_c) {
                          {"tensile_strength_pa", sigma_c}, {"shear_strength_pa", tau_c}},
                         "test")));
   world.bodies.add_disk(0, 0, kR1, 2650, 1, 0);
-  world.bodies.add_disk(kR1 + kR2, 0, kR2, 2650, 1, 0);
+  world.bodies.add_disk(kR1 + kR2 + gap, 0, kR2, 2650, 1, 0);
   world.bodies.fixed[0] = world.bodies.fixed[1] = 1;
   demcal::Rng rng(3);
-  EXPECT_EQ(world.install_bonds(1e-9, rng), 1u);
+  EXPECT_EQ(world.install_bonds(gap + 1e-9, rng), 1u);
   return world;
 }
 
@@ -80,19 +81,7 @@ TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
 }
 
 TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {
-  WorldSettings settings;
-  settings.fixed_dt_s = kDt;
-  World world(settings);
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "contact_bond",
-                        {{"modulus_pa", kModulus}, {"kn_ks", kKnKs}, {"friction", 0.3},
-                         {"tensile_strength_pa", 1e6}, {"shear_strength_pa", 1e6}},
-                        "test")));
-  world.bodies.add_disk(0, 0, kR1, 2650, 1, 0);
-  world.bodies.add_disk(kR1 + kR2 + 1e-6, 0, kR2, 2650, 1, 0);  // a 1 um gap
-  world.bodies.fixed[0] = world.bodies.fixed[1] = 1;
-  demcal::Rng rng(3);
-  ASSERT_EQ(world.install_bonds(2e-6, rng), 1u);
+  World world = bonded_pair(1e6, 1e6, 1e-6);  // a 1 um gap
   imposed_step(world, 0, 0, 0);
   EXPECT_EQ(world.bodies.fx[0], 0.0);
   EXPECT_TRUE(world.breaks().empty());

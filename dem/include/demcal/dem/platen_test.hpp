@@ -4,9 +4,11 @@
 // installed, and the checks that tell a run has gone unstable.
 #include <chrono>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "demcal/core/progress.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/ucs_test.hpp"
@@ -34,6 +36,29 @@ double platen_force(const World& world);
 // Writes VTK snapshots into options.vtk_dir at the first curve point, every
 // options.vtk_every points and at the end (`final`); nothing when unset.
 void snapshot(const World& world, const RunOptions& options, std::size_t points, bool final);
+
+// Records the curve of a platen test and decides when loading ends: past the
+// peak (bonds have broken and the stress has fallen below the stop fraction
+// of the peak a few points later, so an elastic dip does not count), at the
+// strain limit, on instability or on timeout. Draws the progress line.
+class LoadingMonitor {
+ public:
+  LoadingMonitor(const LoadingSpec& loading, const RunOptions& options, std::chrono::steady_clock::time_point start);
+  ~LoadingMonitor();
+  // Adds `point`; false when the run ends (result.ok set when it ended as
+  // planned, result.reason when it failed; `where` says where, for the reason).
+  bool record(const World& world, const CurvePoint& point, TestResult& result, const std::string& where);
+  double peak() const { return peak_; }
+
+ private:
+  const LoadingSpec& loading_;
+  const RunOptions& options_;
+  std::chrono::steady_clock::time_point start_;
+  std::unique_ptr<Progress> progress_;
+  int shown_ = 0;
+  double peak_ = 0;
+  std::size_t peak_index_ = 0;
+};
 
 // Fills in what every run reports at its end: steps, time step, wall times
 // (whole run since `start`, loading since `loading_start`) and cracks by mode,
