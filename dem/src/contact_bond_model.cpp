@@ -15,7 +15,7 @@
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/linear_base.hpp"
-#include "demcal/dem/linear_law.hpp"
+#include "demcal/dem/bond_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
@@ -58,16 +58,13 @@ class ContactBondModel : public LinearBase {
           f.fs = c.fs[k];
           const bool tension = -f.fn >= c.strength_n[k];
           if (tension || std::abs(f.fs) >= c.strength_s[k]) {
-            if (step.breaks)
-              step.breaks->push_back({step.time_s, g.cx, g.cy, tension ? BreakMode::Tension : BreakMode::Shear,
-                                      b.group[static_cast<std::size_t>(c.i[k])], b.group[static_cast<std::size_t>(c.j[k])]});
-            c.flags[k] &= static_cast<std::uint8_t>(~kBonded);
+            break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
             return linear_force(c, k, g, dt);
           }
           c.flags[k] = static_cast<std::uint8_t>(g.overlap > 0 ? (c.flags[k] | kTouching) : (c.flags[k] & ~kTouching));
           return f;
         },
-        [&](std::size_t k, double gap) { return gap >= 0 && !(c.flags[k] & kBonded) ? (release(c, k), true) : false; });
+        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
   }
 
  private:

@@ -21,7 +21,7 @@ void LinearBase::initialise(ContactSet& c, std::size_t k, const PairInfo& pair, 
 void LinearBase::wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
                              const StepContext& step) const {
   for_wall_pairs(c, begin, end, b, walls, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
-                 [&](std::size_t k, double gap) { return gap >= 0 ? (release(c, k), true) : false; });
+                 [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
 }
 
 double LinearBase::normal_stiffness_estimate(double radius_m, double thickness_m) const {

@@ -20,7 +20,7 @@ class LinearModel : public LinearBase {
   void disk_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b,
                    const StepContext& step) const override {
     for_disk_pairs(c, begin, end, b, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
-                   [&](std::size_t k, double gap) { return gap >= 0 ? (release(c, k), true) : false; });
+                   [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
   }
 };
 

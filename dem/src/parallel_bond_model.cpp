@@ -13,7 +13,7 @@
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/linear_base.hpp"
-#include "demcal/dem/linear_law.hpp"
+#include "demcal/dem/bond_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
@@ -66,12 +66,7 @@ class ParallelBondModel : public LinearBase {
           const double sigma = -c.bond_fn[k] / area + std::abs(c.bond_m[k]) * c.bond_radius[k] / inertia;
           const double tau = std::abs(c.bond_fs[k]) / area;
           if (sigma >= c.strength_n[k] || tau >= c.strength_s[k]) {
-            const BreakMode mode = sigma >= c.strength_n[k] ? BreakMode::Tension : BreakMode::Shear;
-            if (step.breaks)
-              step.breaks->push_back({step.time_s, g.cx, g.cy, mode, b.group[static_cast<std::size_t>(c.i[k])],
-                                      b.group[static_cast<std::size_t>(c.j[k])]});
-            c.flags[k] &= static_cast<std::uint8_t>(~kBonded);
-            c.bond_fn[k] = c.bond_fs[k] = c.bond_m[k] = 0.0;
+            break_bond(c, k, g, b, step, sigma >= c.strength_n[k] ? BreakMode::Tension : BreakMode::Shear);
             return f;
           }
           f.fn += c.bond_fn[k];
@@ -79,7 +74,7 @@ class ParallelBondModel : public LinearBase {
           f.moment = c.bond_m[k];
           return f;
         },
-        [&](std::size_t k, double gap) { return gap >= 0 && !(c.flags[k] & kBonded) ? (release(c, k), true) : false; });
+        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
   }
 
   double normal_stiffness_estimate(double radius_m, double thickness_m) const override {

@@ -20,6 +20,13 @@ inline void release(ContactSet& c, std::size_t k) {
   c.flags[k] &= static_cast<std::uint8_t>(~kTouching);
 }
 
+// Skip rule of unbonded contacts: a pair apart carries nothing this step.
+inline bool skip_apart(ContactSet& c, std::size_t k, double gap) {
+  if (gap < 0) return false;
+  release(c, k);
+  return true;
+}
+
 // Normal force kn * overlap, shear force updated incrementally and capped at
 // mu * fn. Pairs that do not overlap carry no force and forget their shear.
 inline PairForce linear_force(ContactSet& c, std::size_t k, const Geometry& g, double dt) {
