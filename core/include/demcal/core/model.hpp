@@ -1,0 +1,34 @@
+#pragma once
+// What every model of macro values looks like from outside: named inputs in
+// natural units, named outputs, the domain it is valid on, and a prediction.
+// Response surfaces, networks and (later) a DEM-backed model implement it, so
+// sensitivity analysis and inversion never need to know how a model was made.
+#include <string>
+#include <vector>
+
+namespace demcal {
+
+struct InputRange {
+  std::string name;
+  double low = 0.0;
+  double high = 0.0;
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  virtual const std::vector<std::string>& inputs() const = 0;
+  virtual const std::vector<std::string>& outputs() const = 0;
+  // The box the model was fitted on, one range per input, in inputs() order.
+  virtual const std::vector<InputRange>& domain() const = 0;
+  // x: inputs() values in natural units; y: receives outputs() values.
+  virtual void predict(const double* x, double* y) const = 0;
+
+  std::vector<double> predict(const std::vector<double>& x) const;
+  // Names of the inputs of `x` outside domain() (relative slack `tolerance`
+  // of each range's width, so values on a bound count as inside).
+  std::vector<std::string> outside_domain(const std::vector<double>& x, double tolerance = 1e-9) const;
+};
+
+}  // namespace demcal

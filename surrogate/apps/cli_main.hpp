@@ -1,0 +1,46 @@
+#pragma once
+// The shared shape of the analysis-stage executables: parse with CLI11,
+// run, and turn every demcal::Error into one "program: error: ..." line and
+// exit code 2 (usage and input errors).
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/log.hpp"
+#include "demcal/core/table.hpp"
+
+namespace demcal::cli {
+
+inline int run_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << log::program() << ": error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  try {
+    return body();
+  } catch (const Error& e) {
+    log::error(e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    log::error(std::string("unexpected failure: ") + e.what());
+    return 1;
+  }
+}
+
+// Reads a data table, naming the option in the error when the file is missing.
+inline Table read_data(const std::string& path) {
+  if (path.empty()) throw Error("--data FILE is required");
+  std::ifstream probe(path);
+  if (!probe) throw Error(path + ": cannot open data file");
+  return Table::read(path);
+}
+
+}  // namespace demcal::cli

@@ -1,0 +1,48 @@
+#pragma once
+// A saved set of response surfaces (one per output, all on the same inputs)
+// as a Model, and its JSON form:
+//   {"kind": "quadratic"|"linear", "format": ..., "inputs": [{"name","low","high"}],
+//    "outputs": [...], "responses": [{"name", "terms": [{"name","inputs"}],
+//    "coefficients": {term: natural coefficient}, "coded_coefficients", "coding",
+//    statistics, "anova"}],
+//    and, for a single output, "coefficients", "r2", "r2_adj", "r2_pred" at the top.}
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "demcal/core/model.hpp"
+#include "demcal/surrogate/response_surface.hpp"
+
+namespace demcal::surrogate {
+
+class ResponseSurfaceModel : public Model {
+ public:
+  struct Surface {
+    std::string output;
+    std::vector<SurfaceTerm> terms;   // factor indices refer to inputs()
+    std::vector<double> coefficients; // natural units, one per term
+  };
+
+  ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces);
+  static std::unique_ptr<ResponseSurfaceModel> from_json(const nlohmann::json& file, const std::string& origin);
+
+  const std::vector<std::string>& inputs() const override { return inputs_; }
+  const std::vector<std::string>& outputs() const override { return outputs_; }
+  const std::vector<InputRange>& domain() const override { return domain_; }
+  void predict(const double* x, double* y) const override;
+
+ private:
+  std::vector<InputRange> domain_;
+  std::vector<Surface> surfaces_;
+  std::vector<std::string> inputs_;
+  std::vector<std::string> outputs_;
+};
+
+// The model file of fits made on the same factors (one fit per output).
+nlohmann::json surface_model_json(const std::vector<SurfaceFit>& fits, const std::string& data_path);
+
+void register_response_surface_kinds();
+
+}  // namespace demcal::surrogate

@@ -1,0 +1,148 @@
+#include "demcal/surrogate/response_surface_model.hpp"
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/surrogate/json_numbers.hpp"
+#include "demcal/surrogate/model_file.hpp"
+
+namespace demcal::surrogate {
+
+using nlohmann::json;
+
+ResponseSurfaceModel::ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces)
+    : domain_(std::move(domain)), surfaces_(std::move(surfaces)) {
+  for (const InputRange& r : domain_) inputs_.push_back(r.name);
+  for (const Surface& s : surfaces_) outputs_.push_back(s.output);
+}
+
+void ResponseSurfaceModel::predict(const double* x, double* y) const {
+  for (std::size_t o = 0; o < surfaces_.size(); ++o) {
+    const Surface& s = surfaces_[o];
+    double v = 0.0;
+    for (std::size_t t = 0; t < s.terms.size(); ++t) v += s.coefficients[t] * term_value(s.terms[t], x);
+    y[o] = v;
+  }
+}
+
+std::unique_ptr<ResponseSurfaceModel> ResponseSurfaceModel::from_json(const json& file, const std::string& origin) {
+  std::vector<InputRange> domain;
+  for (const json& input : file.at("inputs"))
+    domain.push_back({input.at("name").get<std::string>(), input.at("low").get<double>(), input.at("high").get<double>()});
+  if (domain.empty()) throw Error(origin + ": model has no inputs");
+  auto input_index = [&](const std::string& name) {
+    auto it = std::find_if(domain.begin(), domain.end(), [&](const InputRange& r) { return r.name == name; });
+    if (it == domain.end()) throw Error(origin + ": a term names \"" + name + "\", which is not an input");
+    return static_cast<int>(it - domain.begin());
+  };
+  std::vector<Surface> surfaces;
+  for (const json& response : file.at("responses")) {
+    Surface s;
+    s.output = response.at("name").get<std::string>();
+    const json& coefficients = response.at("coefficients");
+    for (const json& term_json : response.at("terms")) {
+      SurfaceTerm term;
+      term.name = term_json.at("name").get<std::string>();
+      for (const json& input : term_json.at("inputs")) term.factors.push_back(input_index(input.get<std::string>()));
+      if (term.factors.size() > 2) throw Error(origin + ": term " + term.name + " has more than two factors");
+      if (!coefficients.contains(term.name))
+        throw Error(origin + ": response " + s.output + " has no coefficient for term " + term.name);
+      s.coefficients.push_back(coefficients.at(term.name).get<double>());
+      s.terms.push_back(term);
+    }
+    surfaces.push_back(s);
+  }
+  if (surfaces.empty()) throw Error(origin + ": model has no responses");
+  return std::make_unique<ResponseSurfaceModel>(domain, surfaces);
+}
+
+namespace {
+
+json coefficient_map(const std::vector<CoefficientRow>& rows) {
+  json map = json::object();
+  for (const CoefficientRow& row : rows) map[row.term] = row.coef;
+  return map;
+}
+
+json coefficient_table_json(const std::vector<CoefficientRow>& rows) {
+  json table = json::array();
+  for (const CoefficientRow& row : rows)
+    table.push_back({{"term", row.term}, {"coef", json_number(row.coef)}, {"se", json_number(row.se)},
+                     {"t", json_number(row.t)}, {"p", json_number(row.p)}});
+  return table;
+}
+
+json anova_json(const std::vector<AnovaRow>& rows) {
+  json table = json::array();
+  for (const AnovaRow& r : rows)
+    table.push_back({{"source", r.source}, {"level", r.indent}, {"df", r.df}, {"ss", json_number(r.ss)},
+                     {"ms", json_number(r.ms)}, {"F", json_number(r.f)}, {"p", json_number(r.p)}});
+  return table;
+}
+
+json response_json(const SurfaceFit& fit) {
+  json terms = json::array();
+  for (const SurfaceTerm& t : fit.terms) {
+    json names = json::array();
+    for (int f : t.factors) names.push_back(fit.factors[static_cast<std::size_t>(f)]);
+    terms.push_back({{"name", t.name}, {"inputs", names}});
+  }
+  json coding = json::object();
+  for (std::size_t j = 0; j < fit.factors.size(); ++j)
+    coding[fit.factors[j]] = {{"center", fit.coding[j].center}, {"half_range", fit.coding[j].half_range}};
+  return {{"name", fit.response},
+          {"terms", terms},
+          {"coefficients", coefficient_map(fit.natural)},
+          {"natural_table", coefficient_table_json(fit.natural)},
+          {"coded_coefficients", coefficient_table_json(fit.coded)},
+          {"coding", coding},
+          {"eliminated_terms", fit.eliminated},
+          {"runs", fit.runs},
+          {"distinct_points", fit.distinct_points},
+          {"s", json_number(fit.s)},
+          {"r2", json_number(fit.r2)},
+          {"r2_adj", json_number(fit.r2_adj)},
+          {"r2_pred", json_number(fit.r2_pred)},
+          {"press", json_number(fit.press)},
+          {"validation", {{"method", "leave-one-out (PRESS)"},
+                          {"r2", json_number(fit.r2_pred)},
+                          {"rmse", json_number(std::sqrt(fit.press / fit.runs))}}},
+          {"anova", anova_json(fit.anova)}};
+}
+
+}  // namespace
+
+json surface_model_json(const std::vector<SurfaceFit>& fits, const std::string& data_path) {
+  if (fits.empty()) throw Error("no fits to save");
+  json inputs = json::array();
+  for (const InputRange& r : fits.front().domain) inputs.push_back({{"name", r.name}, {"low", r.low}, {"high", r.high}});
+  json outputs = json::array(), responses = json::array();
+  for (const SurfaceFit& fit : fits) {
+    outputs.push_back(fit.response);
+    responses.push_back(response_json(fit));
+  }
+  json file = {{"format", kModelFormat},
+               {"kind", to_string(fits.front().kind)},
+               {"data", data_path},
+               {"inputs", inputs},
+               {"outputs", outputs},
+               {"responses", responses}};
+  if (fits.size() == 1) {
+    // Single-output shorthand: the natural coefficients and fit statistics at the top.
+    const json& only = responses.front();
+    for (const char* key : {"coefficients", "r2", "r2_adj", "r2_pred"}) file[key] = only.at(key);
+  }
+  return file;
+}
+
+void register_response_surface_kinds() {
+  auto loader = [](const json& file, const std::string& origin) -> std::unique_ptr<Model> {
+    return ResponseSurfaceModel::from_json(file, origin);
+  };
+  register_model_kind("quadratic", loader);
+  register_model_kind("linear", loader);
+}
+
+}  // namespace demcal::surrogate
