@@ -1,0 +1,49 @@
+#pragma once
+// Runs a demcal executable as a user would and captures its exit code,
+// stdout and stderr, for the command-line tests.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace demcal::test {
+
+struct CommandResult {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "demcal_" + std::to_string(::getpid()) + "_" + name;
+}
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline CommandResult run_program(const std::string& program, const std::string& arguments) {
+  std::string out = temp_path(program + ".stdout"), err = temp_path(program + ".stderr");
+  std::string command = std::string(DEMCAL_BIN_DIR) + "/" + program + " " + arguments + " >" + out + " 2>" + err;
+  int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+// A failed call prints exactly one line, "<program>: error: ...", containing `fragment`.
+inline void expect_one_line_error(const CommandResult& r, const std::string& program, const std::string& fragment) {
+  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind(program + ": error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+}
+
+}  // namespace demcal::test
