@@ -55,4 +55,6 @@ for r in rows:
 PY
 echo
 echo "Also in $out/: ucs_default.json, ucs_default_curve.csv, ccd_sigma_u_responses.h5 (+ .points/), ccd_sigma_u_responses.csv"
-echo "Analysis, surrogates, inversion and verification join this demo as those stages land."
+
+scripts/demo_analysis.sh "$build"
+echo "Inversion and verification join this demo as those stages land."

@@ -122,7 +122,10 @@ def parse_range(response, table):
         raise InputError(f"{where}: missing \"grand_mean\"")
     runs = table.get("runs")
     factors = []
-    for name, f in table["factors"].items():
+    # JSON objects lose their order; "factor_order" keeps the design's column order.
+    order = table.get("factor_order") or list(table["factors"])
+    for name in order:
+        f = table["factors"].get(name)
         fw = f"{where}, factor {name!r}"
         if not isinstance(f, dict) or not isinstance(f.get("levels"), list) or not isinstance(f.get("k"), list):
             raise InputError(f"{fw}: expected \"levels\" and \"k\" lists")

@@ -21,6 +21,30 @@ void Table::add_column(const std::string& name, std::vector<double> values) {
   columns_.push_back(std::move(values));
 }
 
+void Table::set_statuses(std::vector<std::string> statuses) {
+  if (!statuses.empty() && statuses.size() != run_ids_.size())
+    throw Error("table: " + std::to_string(statuses.size()) + " statuses for " + std::to_string(run_ids_.size()) + " rows");
+  statuses_ = std::move(statuses);
+}
+
+Table Table::select_rows(const std::vector<std::size_t>& indices) const {
+  std::vector<int> runs;
+  for (std::size_t i : indices) runs.push_back(run_ids_.at(i));
+  Table out(runs);
+  for (std::size_t c = 0; c < names_.size(); ++c) {
+    std::vector<double> values;
+    for (std::size_t i : indices) values.push_back(columns_[c][i]);
+    out.add_column(names_[c], std::move(values));
+  }
+  if (!statuses_.empty()) {
+    std::vector<std::string> statuses;
+    for (std::size_t i : indices) statuses.push_back(statuses_[i]);
+    out.set_statuses(std::move(statuses));
+  }
+  out.attributes_ = attributes_;
+  return out;
+}
+
 bool Table::has_column(const std::string& name) const {
   for (const auto& n : names_)
     if (n == name) return true;

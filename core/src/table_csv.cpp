@@ -57,6 +57,11 @@ Table Table::read_csv(const std::string& path) {
 
   std::vector<int> runs;
   std::vector<std::vector<double>> columns(header.size() - first);
+  std::vector<std::string> statuses;
+  const std::size_t none = header.size();
+  std::size_t status_column = none;
+  for (std::size_t i = first; i < header.size(); ++i)
+    if (header[i] == "status") status_column = i;
   while (std::getline(in, line)) {
     ++line_number;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -73,6 +78,10 @@ Table Table::read_csv(const std::string& path) {
       runs.push_back(static_cast<int>(runs.size()) + 1);
     }
     for (std::size_t i = first; i < fields.size(); ++i) {
+      if (i == status_column) {
+        statuses.push_back(fields[i]);
+        continue;
+      }
       double value = 0;
       if (!parse_double(fields[i], value))
         throw Error(path + ":" + std::to_string(line_number) + ": column \"" + header[i] + "\": \"" + fields[i] +
@@ -81,17 +90,21 @@ Table Table::read_csv(const std::string& path) {
     }
   }
   Table table(runs);
-  for (std::size_t i = first; i < header.size(); ++i) table.add_column(header[i], std::move(columns[i - first]));
+  for (std::size_t i = first; i < header.size(); ++i)
+    if (i != status_column) table.add_column(header[i], std::move(columns[i - first]));
+  if (status_column != none) table.set_statuses(std::move(statuses));
   return table;
 }
 
 void Table::write_csv(const std::string& path) const {
   std::ostringstream out;
   out << "run";
+  if (!statuses_.empty()) out << ",status";
   for (const auto& name : names_) out << ',' << name;
   out << '\n';
   for (std::size_t r = 0; r < rows(); ++r) {
     out << run_ids_[r];
+    if (!statuses_.empty()) out << ',' << statuses_[r];
     for (const auto& column : columns_) out << ',' << format_double(column[r]);
     out << '\n';
   }

@@ -35,12 +35,26 @@ inline int run_main(CLI::App& app, int argc, char** argv, const std::function<in
   }
 }
 
-// Reads a data table, naming the option in the error when the file is missing.
+// Reads a data table. Rows of DEM batch responses whose status is not "ok"
+// are left out, each with a warning naming the run and the reason, so a
+// failed point never enters a fit as a number and never vanishes unseen.
 inline Table read_data(const std::string& path) {
   if (path.empty()) throw Error("--data FILE is required");
   std::ifstream probe(path);
   if (!probe) throw Error(path + ": cannot open data file");
-  return Table::read(path);
+  Table table = Table::read(path);
+  if (table.statuses().empty()) return table;
+  std::vector<std::size_t> ok;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    if (table.statuses()[i] == "ok") {
+      ok.push_back(i);
+      continue;
+    }
+    std::string seed = table.has_column("seed") ? " seed " + std::to_string(static_cast<long long>(table.column("seed")[i])) : "";
+    log::warn(path + ": run " + std::to_string(table.run_ids()[i]) + seed + " left out (" + table.statuses()[i] + ")");
+  }
+  if (ok.empty()) throw Error(path + ": no row has status ok; nothing to analyse");
+  return table.select_rows(ok);
 }
 
 }  // namespace demcal::cli

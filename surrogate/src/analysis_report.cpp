@@ -68,8 +68,9 @@ std::string range_markdown(const std::vector<RangeAnalysis>& analyses) {
 json range_json(const std::vector<RangeAnalysis>& analyses) {
   json out = json::object();
   for (const RangeAnalysis& a : analyses) {
-    json factors = json::object();
+    json factors = json::object(), order = json::array();
     for (const FactorRange& f : a.factors) {
+      order.push_back(f.factor);
       json levels = json::array(), counts = json::array(), sums = json::array(), means = json::array();
       for (const LevelSummary& l : f.levels) {
         levels.push_back(l.level);
@@ -80,7 +81,7 @@ json range_json(const std::vector<RangeAnalysis>& analyses) {
       factors[f.factor] = {{"levels", levels}, {"count", counts}, {"K", sums}, {"k", means},
                            {"R", f.range}, {"rank", f.rank}, {"best_level", f.best_level}};
     }
-    out[a.response] = {{"grand_mean", a.grand_mean}, {"runs", a.runs}, {"factors", factors}};
+    out[a.response] = {{"grand_mean", a.grand_mean}, {"runs", a.runs}, {"factor_order", order}, {"factors", factors}};
   }
   return out;
 }
@@ -135,7 +136,9 @@ json anova_json(const std::vector<DesignAnova>& tables) {
     for (const AnovaRow& r : t.terms) {
       json row = {{"ss", r.ss}, {"df", r.df}, {"ms", json_number(r.ms)}, {"F", json_number(r.f)},
                   {"p", json_number(r.p)}, {"significance", r.pooled ? "" : significance_mark(r.p)},
-                  {"contribution_pct", 100.0 * r.ss / t.total.ss}};
+                  {"contribution_pct", 100.0 * r.ss / t.total.ss},
+                  {"F_crit_0.05", json_number(f_critical(0.05, r.df, t.error.df))},
+                  {"F_crit_0.01", json_number(f_critical(0.01, r.df, t.error.df))}};
       if (r.pooled) row["pooled"] = true;
       table[r.source] = row;
     }

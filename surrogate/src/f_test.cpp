@@ -15,6 +15,11 @@ double f_upper_tail(double f, double df1, double df2) {
   return boost::math::cdf(boost::math::complement(boost::math::fisher_f(df1, df2), f));
 }
 
+double f_critical(double alpha, double df1, double df2) {
+  if (!(df1 > 0) || !(df2 > 0) || !(alpha > 0 && alpha < 1)) return std::numeric_limits<double>::quiet_NaN();
+  return boost::math::quantile(boost::math::complement(boost::math::fisher_f(df1, df2), alpha));
+}
+
 double t_two_sided(double t, double df) {
   if (!(df > 0) || std::isnan(t)) return std::numeric_limits<double>::quiet_NaN();
   if (std::isinf(t)) return 0.0;

@@ -36,6 +36,7 @@ std::string surface_markdown(const SurfaceFit& fit) {
     md << "| " << indent << r.source << " | " << r.df << " | " << format_number(r.ss) << " | " << format_number(r.ms)
        << " | " << format_number(r.f, 5) << " | " << format_p(r.p) << " |\n";
   }
+  if (!fit.note.empty()) md << "\nNote: " << fit.note << ".\n";
   md << "\n### Regression equation in natural units\n\n" << fit.response << " =";
   bool first = true;
   for (const CoefficientRow& r : fit.natural) {

@@ -216,14 +216,21 @@ SurfaceFit fit_surface(const std::vector<std::string>& factors, const Eigen::Mat
       mean /= static_cast<double>(entry.second.size());
       for (Eigen::Index i : entry.second) pure_ss += (y(i) - mean) * (y(i) - mean);
     }
-    AnovaRow pure{"Pure Error", pure_ss, pure_df};
-    pure.ms = pure_ss / pure_df;
-    pure.indent = 1;
-    AnovaRow lof{"Lack-of-Fit", std::max(0.0, fit.sse - pure_ss), lof_df};
-    lof.indent = 1;
-    complete_row(lof, pure);
-    rows.push_back(lof);
-    rows.push_back(pure);
+    if (pure_ss <= 1e-12 * sst) {
+      // Deterministic runs (same seed at a replicated point) repeat exactly:
+      // there is no pure error to test the lack of fit against.
+      result.note = "replicated points have identical responses (deterministic runs with the same seed): "
+                    "no pure error, lack of fit not tested; run several seeds per point for a replicate error";
+    } else {
+      AnovaRow pure{"Pure Error", pure_ss, pure_df};
+      pure.ms = pure_ss / pure_df;
+      pure.indent = 1;
+      AnovaRow lof{"Lack-of-Fit", std::max(0.0, fit.sse - pure_ss), lof_df};
+      lof.indent = 1;
+      complete_row(lof, pure);
+      rows.push_back(lof);
+      rows.push_back(pure);
+    }
   }
   rows.push_back(AnovaRow{"Total", sst, static_cast<int>(n) - 1});
   result.anova = rows;

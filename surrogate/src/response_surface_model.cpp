@@ -109,7 +109,8 @@ json response_json(const SurfaceFit& fit) {
           {"validation", {{"method", "leave-one-out (PRESS)"},
                           {"r2", json_number(fit.r2_pred)},
                           {"rmse", json_number(std::sqrt(fit.press / fit.runs))}}},
-          {"anova", anova_json(fit.anova)}};
+          {"anova", anova_json(fit.anova)},
+          {"note", fit.note}};
 }
 
 }  // namespace

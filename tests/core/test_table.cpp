@@ -113,3 +113,20 @@ TEST(Table, MissingColumnListsTheColumns) {
   EXPECT_THROW(table.add_column("short", {1.0}), Error);
   EXPECT_THROW(table.add_column("tiny", {1, 2, 3, 4}), Error);
 }
+
+TEST(Table, StatusColumnOfBatchResponsesIsReadAsText) {
+  std::string path = temp_path("responses.csv");
+  write_text(path, "run,Ec_GPa,seed,status,sigma_u_MPa\n1,10,1,ok,30.5\n2,20,1,failed: unstable time step,nan\n3,30,1,ok,41\n");
+  Table t = Table::read_csv(path);
+  EXPECT_EQ(t.names(), (std::vector<std::string>{"Ec_GPa", "seed", "sigma_u_MPa"}));
+  EXPECT_EQ(t.statuses(), (std::vector<std::string>{"ok", "failed: unstable time step", "ok"}));
+  Table ok = t.select_rows({0, 2});
+  EXPECT_EQ(ok.run_ids(), (std::vector<int>{1, 3}));
+  EXPECT_EQ(ok.column("sigma_u_MPa"), (std::vector<double>{30.5, 41}));
+  EXPECT_EQ(ok.statuses(), (std::vector<std::string>{"ok", "ok"}));
+  std::string again = temp_path("responses_again.csv");
+  t.write_csv(again);
+  Table back = Table::read_csv(again);
+  EXPECT_EQ(back.statuses(), t.statuses());
+  EXPECT_EQ(back.column("Ec_GPa"), t.column("Ec_GPa"));
+}

@@ -56,6 +56,10 @@ TEST(ResponseSurface, RecoversAnExactQuadraticOnABoxBehnkenDesign) {
   EXPECT_NEAR(coefficient(fit.natural, "A*B"), 0.75, 1e-12);
   EXPECT_NEAR(coefficient(fit.natural, "B*C"), -0.125, 1e-12);
   EXPECT_NEAR(fit.r2, 1.0, 1e-12);
+  // The three centre points repeat exactly, as deterministic DEM runs with one seed do:
+  // no pure error, so no lack-of-fit test, and the fit says why.
+  EXPECT_NE(fit.note.find("no pure error"), std::string::npos);
+  for (const AnovaRow& r : fit.anova) EXPECT_NE(r.source, "Lack-of-Fit");
   double x[3] = {21.0, -2.0, 3.0};
   EXPECT_NEAR(predict_surface(fit, x), 3.0 - 42.0 - 1.0 + 12.0 + 0.25 * 441 - 6.0 - 31.5 + 0.75, 1e-9);
 }

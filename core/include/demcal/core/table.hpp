@@ -28,12 +28,21 @@ class Table {
   const std::vector<double>& column(std::size_t index) const { return columns_[index]; }
   double at(std::size_t row, const std::string& name) const { return column(name)[row]; }
 
+  // Status of each row when the table has one: the DEM batch's responses say
+  // "ok" or "failed: reason" per point. Empty when the table has no status.
+  const std::vector<std::string>& statuses() const { return statuses_; }
+  void set_statuses(std::vector<std::string> statuses);
+
+  // The rows at `indices` (in that order), with their run ids and statuses.
+  Table select_rows(const std::vector<std::size_t>& indices) const;
+
   // Free-form text metadata (design kind, seed, settings); CSV does not keep it.
   std::map<std::string, std::string>& attributes() { return attributes_; }
   const std::map<std::string, std::string>& attributes() const { return attributes_; }
 
   // CSV with a header. A first column named "run" holds the run ids; without
-  // it the runs are numbered 1..n.
+  // it the runs are numbered 1..n. A column named "status" is read as text
+  // (statuses()); every other column must hold numbers.
   static Table read_csv(const std::string& path);
   void write_csv(const std::string& path) const;
 
@@ -53,6 +62,7 @@ class Table {
   std::vector<std::string> names_;
   std::vector<std::vector<double>> columns_;
   std::map<std::string, std::string> attributes_;
+  std::vector<std::string> statuses_;
 };
 
 // True when `path` ends in .h5 or .hdf5.

@@ -8,6 +8,9 @@ namespace demcal::surrogate {
 // (df <= 0 or f not finite and positive).
 double f_upper_tail(double f, double df1, double df2);
 
+// Critical value F_alpha(df1, df2): P(F > value) = alpha.
+double f_critical(double alpha, double df1, double df2);
+
 // Two-sided p of a t statistic with `df` degrees of freedom.
 double t_two_sided(double t, double df);
 

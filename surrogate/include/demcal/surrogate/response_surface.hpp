@@ -70,6 +70,7 @@ struct SurfaceFit {
   double r2_pred = 0.0;  // 1 - PRESS/SST (may be negative; Minitab prints 0 then)
   double press = 0.0;
   std::vector<AnovaRow> anova;  // Model, groups and terms, Error, Lack-of-Fit, Pure Error, Total
+  std::string note;             // why a usual part of the table is missing, if one is
   Eigen::VectorXd observed, fitted, press_residuals;
 };
 
