@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_main.hpp"
+#include "demcal/core/cli_main.hpp"
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/surrogate/data_columns.hpp"
 #include "demcal/surrogate/design_anova.hpp"

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_main.hpp"
+#include "demcal/core/cli_main.hpp"
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/parameter_space.hpp"

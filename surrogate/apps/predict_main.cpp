@@ -1,7 +1,7 @@
 // demcal-predict: evaluates a saved model on the rows of a data file.
 #include <CLI/CLI.hpp>
 
-#include "cli_main.hpp"
+#include "demcal/core/cli_main.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/surrogate/data_columns.hpp"
 #include "demcal/surrogate/model_file.hpp"

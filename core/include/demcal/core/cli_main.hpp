@@ -1,5 +1,5 @@
 #pragma once
-// The shared shape of the analysis-stage executables: parse with CLI11,
+// The shared shape of the stage executables (header-only; needs CLI11): parse with CLI11,
 // run, and turn every demcal::Error into one "program: error: ..." line and
 // exit code 2 (usage and input errors).
 #include <CLI/CLI.hpp>

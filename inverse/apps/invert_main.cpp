@@ -1,0 +1,134 @@
+// demcal-invert: finds micro-parameters whose predicted macro values match
+// targets, on saved models (response surfaces, GA-BP networks).
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/atomic_file.hpp"
+#include "demcal/core/cli_main.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/inverse/inversion.hpp"
+#include "demcal/surrogate/model_file.hpp"
+
+namespace {
+
+using namespace demcal;
+using namespace demcal::inverse;
+
+// Exit code of a target no point in the domain can reach.
+constexpr int kUnreachable = 3;
+
+std::pair<std::string, double> name_value(const std::string& text, const std::string& option) {
+  auto eq = text.find('=');
+  double value = 0;
+  if (eq == std::string::npos || eq == 0 || !parse_double(text.substr(eq + 1), value))
+    throw Error(option + " \"" + text + "\": expected NAME=VALUE with a number");
+  return {text.substr(0, eq), value};
+}
+
+struct Arguments {
+  std::vector<std::string> models, targets, sets;
+  std::string space, algorithm = "ga", objective = "sum-rel", out, history;
+  bool polish = false, quiet = false;
+  int restarts = 1, samples = 5000, attainable_samples = 2000;
+  std::uint64_t seed = 1;
+  long budget = 100000;
+  double stop_below = -1.0, tolerance = 0.05, reach_tolerance = 0.01;
+};
+
+int run(const Arguments& a, const CLI::App& app) {
+  if (a.algorithm != "search" && (app.count("--samples") || app.count("--tolerance")))
+    throw Error("--samples and --tolerance apply to --algo search");
+  std::vector<std::unique_ptr<Model>> owned;
+  std::vector<const Model*> models;
+  for (const std::string& path : a.models) {
+    owned.push_back(surrogate::load_model(path));
+    models.push_back(owned.back().get());
+  }
+  std::vector<Target> targets;
+  for (const std::string& t : a.targets) {
+    auto [name, value] = name_value(t, "--target");
+    targets.push_back({name, value});
+  }
+  std::unique_ptr<ParameterSpace> space;
+  if (!a.space.empty()) space = std::make_unique<ParameterSpace>(ParameterSpace::load(a.space));
+  InversionProblem problem(models, space.get(), targets, parse_objective(a.objective));
+  for (const std::string& w : problem.warnings()) log::warn(w);
+
+  InversionSettings settings;
+  settings.algorithm = a.algorithm;
+  for (const std::string& s : a.sets) settings.optimizer_settings.insert(name_value(s, "--set"));
+  settings.restarts = a.restarts;
+  settings.seed = a.seed;
+  settings.polish = a.polish;
+  if (a.budget < 1) throw Error("--budget must be at least 1 evaluation");
+  settings.budget.max_evaluations = a.budget;
+  // Wang & Cao stop the annealing below 10 % error; the others run to convergence.
+  double stop = a.stop_below >= 0 ? a.stop_below : (a.algorithm == "sa" || a.algorithm == "sa-vfsr" ? 0.10 : -1.0);
+  if (stop >= 0) settings.budget.target_value = stop;
+  settings.search.samples = a.samples;
+  settings.search.tolerance = a.tolerance;
+  settings.reach_tolerance = a.reach_tolerance;
+  settings.attainable_samples = a.attainable_samples;
+
+  InversionResult result = invert(problem, settings);
+  nlohmann::json solution = solution_json(problem, settings, result);
+  write_file_atomically(a.out, solution.dump(2) + "\n");
+  if (!a.history.empty()) write_file_atomically(a.history, history_csv(settings, result));
+
+  std::string x;
+  for (std::size_t j = 0; j < problem.parameter_names().size(); ++j)
+    x += (x.empty() ? "" : ", ") + problem.parameter_names()[j] + " = " + format_double(result.x[j]);
+  log::info(a.algorithm + ": " + result.status + ", " + to_string(problem.objective_kind()) + " " +
+            format_double(result.objective) + " (max relative error " + format_double(result.max_relative_error) +
+            ") after " + std::to_string(result.evaluations) + " evaluations in " + format_double(result.wall_s) + " s: " + x);
+  for (const auto& name : solution["unidentified"])
+    log::info("not identified by these targets: " + name.get<std::string>());
+  if (result.status == "unreachable") {
+    log::error("targets unreachable within the domain: " + solution["reason"].get<std::string>() +
+               "; nearest attainable written to " + a.out);
+    return kUnreachable;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  log::set_program("demcal-invert");
+  Arguments a;
+  CLI::App app{
+      "demcal-invert: micro-parameters whose predicted macro values match targets.\n"
+      "  demcal-invert --model M1.json [--model M2.json ...] --target NAME=VALUE [--target ...] [--space S.json]\n"
+      "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel] [--polish]\n"
+      "                [--restarts R] [--seed S] --out SOLUTION.json\n"
+      "Exit codes: 0 solved, 2 bad input, 3 targets unreachable in the domain.",
+      "demcal-invert"};
+  app.add_option("--model", a.models, "saved model (demcal-fit); repeat for several")->required();
+  app.add_option("--target", a.targets, "NAME=VALUE of a model output; repeat for several")->required();
+  app.add_option("--space", a.space, "parameter space JSON: bounds, fixed and tied values (default: the models' domains)");
+  app.add_option("--algo", a.algorithm, "ga, sa, sa-vfsr, wca, lhs-wca or search")->capture_default_str();
+  app.add_option("--objective", a.objective, "sum-rel, max-rel or sse-rel")->capture_default_str();
+  app.add_flag("--polish", a.polish, "polish the best point by bounded least squares (Ceres)");
+  app.add_option("--restarts", a.restarts, "independent runs with seeds S, S+1, ...")->capture_default_str();
+  app.add_option("--seed", a.seed, "seed of the first run")->capture_default_str();
+  app.add_option("--out", a.out, "SOLUTION.json")->required();
+  app.add_option("--history", a.history, "convergence record CSV (best objective against evaluations)");
+  app.add_option("--set", a.sets, "optimiser setting NAME=VALUE, e.g. population=300 (ga, wca), T0=100 (sa)");
+  app.add_option("--budget", a.budget, "evaluations per run")->capture_default_str();
+  app.add_option("--stop-below", a.stop_below, "stop a run once the objective is below this (sa default 0.10)");
+  app.add_option("--samples", a.samples, "search: Latin-hypercube points per run")->capture_default_str();
+  app.add_option("--tolerance", a.tolerance, "search: keep points within this relative error of every target")
+      ->capture_default_str();
+  app.add_option("--reach-tolerance", a.reach_tolerance, "reached when every target is within this relative error")
+      ->capture_default_str();
+  app.add_option("--attainable-samples", a.attainable_samples, "points sampled for the attainable output ranges")
+      ->capture_default_str();
+  app.add_flag("--quiet", a.quiet, "no summary on stderr");
+  return cli::run_main(app, argc, argv, [&]() {
+    if (a.quiet) log::set_level(log::Level::Quiet);
+    return run(a, app);
+  });
+}

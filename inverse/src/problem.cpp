@@ -1,0 +1,207 @@
+#include "demcal/inverse/problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "demcal/core/error.hpp"
+
+namespace demcal::inverse {
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+std::string number(double v) {
+  std::string s = std::to_string(v);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+InversionProblem::InversionProblem(std::vector<const Model*> models, const ParameterSpace* space,
+                                   std::vector<Target> targets, ObjectiveKind objective)
+    : models_(std::move(models)), targets_(std::move(targets)), objective_(objective) {
+  if (models_.empty()) throw Error("invert: no model given (--model MODEL.json)");
+  if (targets_.empty()) throw Error("invert: no target given (--target NAME=VALUE)");
+
+  // Which model predicts each target.
+  std::vector<std::string> all_outputs;
+  for (const Model* m : models_)
+    for (const std::string& o : m->outputs()) all_outputs.push_back(o);
+  std::set<std::string> seen_targets;
+  for (const Target& t : targets_) {
+    if (!seen_targets.insert(t.output).second) throw Error("--target " + t.output + " is given twice");
+    if (!std::isfinite(t.value) || t.value == 0.0)
+      throw Error("--target " + t.output + "=" + number(t.value) + ": a target must be finite and non-zero (errors are relative to it)");
+    int found = 0;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const auto& outs = models_[m]->outputs();
+      auto it = std::find(outs.begin(), outs.end(), t.output);
+      if (it == outs.end()) continue;
+      if (found++ == 0) target_slots_.push_back({m, static_cast<std::size_t>(it - outs.begin())});
+    }
+    if (found == 0) throw Error("--target " + t.output + ": no model predicts it (outputs: " + joined(all_outputs) + ")");
+    if (found > 1) throw Error("--target " + t.output + ": more than one model predicts it; give one model per output");
+  }
+
+  // Every input any model needs, in order of first appearance.
+  std::vector<std::string> inputs;
+  for (const Model* m : models_)
+    for (const std::string& in : m->inputs())
+      if (std::find(inputs.begin(), inputs.end(), in) == inputs.end()) inputs.push_back(in);
+
+  auto domain_of = [&](const std::string& name, double& low, double& high) {
+    low = -std::numeric_limits<double>::infinity();
+    high = std::numeric_limits<double>::infinity();
+    for (const Model* m : models_)
+      for (const InputRange& r : m->domain())
+        if (r.name == name) {
+          low = std::max(low, r.low);
+          high = std::min(high, r.high);
+        }
+  };
+
+  if (!space) {
+    for (const std::string& in : inputs) {
+      double low, high;
+      domain_of(in, low, high);
+      if (!(low <= high))
+        throw Error("invert: the models' fitted domains of " + in + " do not overlap; give --space with bounds");
+      names_.push_back(in);
+      bounds_.low.push_back(low);
+      bounds_.high.push_back(high);
+    }
+  } else {
+    // Varied parameters used by a model (directly or as a tie's source), in the space's order.
+    std::set<std::string> needed;
+    for (const std::string& in : inputs) {
+      if (space->contains(in)) {
+        needed.insert(in);
+        continue;
+      }
+      if (space->fixed().count(in)) continue;
+      auto tie = std::find_if(space->tied().begin(), space->tied().end(), [&](const TiedParameter& t) { return t.name == in; });
+      if (tie == space->tied().end())
+        throw Error("invert: model input " + in + " is neither varied, fixed nor tied in the space");
+      if (space->contains(tie->source)) needed.insert(tie->source);
+    }
+    for (const Parameter& p : space->parameters()) {
+      if (needed.count(p.name)) {
+        names_.push_back(p.name);
+        bounds_.low.push_back(p.low);
+        bounds_.high.push_back(p.high);
+        double low, high;
+        domain_of(p.name, low, high);
+        if (p.low < low || p.high > high)
+          warnings_.push_back("the space's range of " + p.name + " [" + number(p.low) + ", " + number(p.high) +
+                              "] goes beyond a model's fitted domain [" + number(low) + ", " + number(high) +
+                              "]: predictions there are extrapolations");
+      } else {
+        free_.push_back({p.name, p.low, p.high});
+      }
+    }
+  }
+
+  auto parameter_index = [&](const std::string& name) {
+    auto it = std::find(names_.begin(), names_.end(), name);
+    return it == names_.end() ? -1 : static_cast<int>(it - names_.begin());
+  };
+  for (const Model* m : models_) {
+    std::vector<InputSource> sources;
+    for (const std::string& in : m->inputs()) {
+      InputSource s;
+      s.parameter = parameter_index(in);
+      if (s.parameter < 0 && space) {
+        if (space->fixed().count(in)) {
+          s.value = space->fixed().at(in);
+        } else {
+          const TiedParameter& tie = *std::find_if(space->tied().begin(), space->tied().end(),
+                                                   [&](const TiedParameter& t) { return t.name == in; });
+          s.tied = true;
+          s.factor = tie.factor;
+          s.offset = tie.offset;
+          s.parameter = parameter_index(tie.source);
+          if (s.parameter < 0) {
+            if (!space->fixed().count(tie.source))
+              throw Error("invert: " + in + " is tied to " + tie.source + ", which is neither varied nor fixed");
+            s.tied = false;
+            s.value = tie.factor * space->fixed().at(tie.source) + tie.offset;
+          }
+        }
+      }
+      sources.push_back(s);
+    }
+    sources_.push_back(sources);
+  }
+  for (std::size_t j = 0; j < names_.size(); ++j)
+    if (!(bounds_.low[j] < bounds_.high[j]))
+      throw Error("invert: parameter " + names_[j] + " has an empty range [" + number(bounds_.low[j]) + ", " +
+                  number(bounds_.high[j]) + "]");
+}
+
+std::vector<double> InversionProblem::target_values() const {
+  std::vector<double> values;
+  for (const Target& t : targets_) values.push_back(t.value);
+  return values;
+}
+
+void InversionProblem::model_inputs(std::size_t m, const Point& x, std::vector<double>& inputs) const {
+  const std::vector<InputSource>& sources = sources_[m];
+  inputs.resize(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const InputSource& s = sources[i];
+    if (s.tied)
+      inputs[i] = s.factor * x[static_cast<std::size_t>(s.parameter)] + s.offset;
+    else if (s.parameter >= 0)
+      inputs[i] = x[static_cast<std::size_t>(s.parameter)];
+    else
+      inputs[i] = s.value;
+  }
+}
+
+std::vector<double> InversionProblem::predict_targets(const Point& x) const {
+  std::vector<std::vector<double>> outputs(models_.size());
+  std::vector<double> inputs;
+  std::vector<double> predicted;
+  for (auto [m, o] : target_slots_) {
+    if (outputs[m].empty()) {
+      model_inputs(m, x, inputs);
+      outputs[m].resize(models_[m]->outputs().size());
+      models_[m]->predict(inputs.data(), outputs[m].data());
+    }
+    predicted.push_back(outputs[m][o]);
+  }
+  return predicted;
+}
+
+std::map<std::string, double> InversionProblem::predict_all(const Point& x) const {
+  std::map<std::string, double> all;
+  std::vector<double> inputs;
+  for (std::size_t m = 0; m < models_.size(); ++m) {
+    model_inputs(m, x, inputs);
+    std::vector<double> y(models_[m]->outputs().size());
+    models_[m]->predict(inputs.data(), y.data());
+    for (std::size_t o = 0; o < y.size(); ++o) all.emplace(models_[m]->outputs()[o], y[o]);
+  }
+  return all;
+}
+
+double InversionProblem::objective(const Point& x) const {
+  return relative_objective(objective_, predict_targets(x), target_values());
+}
+
+BatchObjective InversionProblem::batch_objective() const {
+  return [this](const std::vector<Point>& points, std::vector<double>& values) {
+    values.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) values[i] = objective(points[i]);
+  };
+}
+
+}  // namespace demcal::inverse

@@ -1,0 +1,94 @@
+// demcal-invert as users call it, on response surfaces fitted to the published
+// runs of Su et al. (2021): a C30-like target met to sum-rel < 1e-4, the
+// SOLUTION.json shape, exit code 3 for an unreachable target, one-line errors.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "../common/command.hpp"
+
+namespace {
+
+using demcal::test::expect_one_line_error;
+using demcal::test::run_program;
+using demcal::test::temp_path;
+
+std::string literature(const std::string& file) { return std::string(DEMCAL_SOURCE_DIR) + "/data/literature/" + file; }
+
+// The three published surfaces, fitted once for the suite.
+class DemcalInvert : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    models_ = " --model " + fit("sigma_u", "su2021_CCD2_sigma_u.csv", "pb_sigma_c_MPa,pb_tau_c_MPa", "sigma_u_MPa") +
+              " --model " + fit("E", "su2021_BBD5_E.csv", "Ec_GPa,kn_ks,mu,Ec_j_GPa,kn_ks_j", "E_GPa") +
+              " --model " + fit("nu", "su2021_BBD4_nu.csv", "Ec_GPa,kn_ks,mu,kn_ks_j", "nu");
+  }
+  static std::string fit(const std::string& name, const std::string& data, const std::string& x, const std::string& y) {
+    std::string out = temp_path("invert_" + name + ".json");
+    auto r = run_program("demcal-fit", "quadratic --quiet --data " + literature(data) + " --x " + x + " --y " + y + " --out " + out);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return out;
+  }
+  static std::string models_;
+};
+std::string DemcalInvert::models_;
+
+nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(demcal::test::slurp(path)); }
+
+TEST_F(DemcalInvert, MeetsNewTargetsInsideTheFittedRanges) {
+  std::string out = temp_path("solution.json"), history = temp_path("history.csv");
+  auto r = run_program("demcal-invert", models_ + " --target sigma_u_MPa=30 --target E_GPa=30 --target nu=0.2" +
+                                            " --algo ga --objective sum-rel --seed 3 --restarts 4 --out " + out +
+                                            " --history " + history);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json s = read_json(out);
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_LT(s["objective"].get<double>(), 1e-4);
+  EXPECT_LT(s["wall_s"].get<double>(), 2.0);  // measured 0.05 s on the 2-core CI machine
+  for (const char* key : {"x", "predicted", "objective", "evaluations", "restarts", "candidates"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_EQ(s["x"].size(), 7u);
+  EXPECT_NEAR(s["predicted"]["E_GPa"].get<double>(), 30.0, 30.0 * 1e-4);
+  EXPECT_EQ(s["restarts"].size(), 4u);
+  // Strength depends on two bond strengths only: the restarts spread along that trade-off.
+  bool names_strength = false;
+  for (const auto& u : s["unidentified"]) names_strength = names_strength || u == "pb_tau_c_MPa" || u == "pb_sigma_c_MPa";
+  EXPECT_TRUE(names_strength) << s["unidentified"];
+  EXPECT_EQ(demcal::test::slurp(history).rfind("algorithm,restart,seed,evaluations,best_objective\n", 0), 0u);
+}
+
+TEST_F(DemcalInvert, EveryAlgorithmWithPolishMeetsTheTargets) {
+  for (const char* algo : {"ga", "sa", "wca", "lhs-wca", "search"}) {
+    std::string out = temp_path(std::string("solution_") + algo + ".json");
+    auto r = run_program("demcal-invert", models_ + " --target sigma_u_MPa=40 --target E_GPa=25 --target nu=0.22 --algo " +
+                                              algo + " --polish --out " + out);
+    ASSERT_EQ(r.code, 0) << algo << ": " << r.err;
+    EXPECT_LT(read_json(out)["max_relative_error"].get<double>(), 1e-6) << algo;
+  }
+}
+
+TEST_F(DemcalInvert, UnreachableTargetExitsWithCodeThree) {
+  std::string out = temp_path("unreachable.json");
+  auto r = run_program("demcal-invert", models_ + " --target sigma_u_MPa=150 --target E_GPa=30 --out " + out);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("sigma_u_MPa = 150 lies outside the attainable"), std::string::npos) << r.err;
+  nlohmann::json s = read_json(out);
+  EXPECT_EQ(s["status"], "unreachable");
+  EXPECT_FALSE(s["attainable"]["sigma_u_MPa"]["inside"].get<bool>());
+  EXPECT_TRUE(s.contains("nearest_attainable"));
+}
+
+TEST_F(DemcalInvert, Errors) {
+  expect_one_line_error(run_program("demcal-invert", models_ + " --target density=2400 --out /tmp/x.json"), "demcal-invert",
+                        "no model predicts it");
+  expect_one_line_error(run_program("demcal-invert", models_ + " --target E_GPa --out /tmp/x.json"), "demcal-invert",
+                        "expected NAME=VALUE");
+  expect_one_line_error(run_program("demcal-invert", models_ + " --target E_GPa=30 --set populaton=300 --out /tmp/x.json"),
+                        "demcal-invert", "setting \"populaton\" does not apply to ga");
+  expect_one_line_error(run_program("demcal-invert", models_ + " --target E_GPa=30 --algo pso --out /tmp/x.json"),
+                        "demcal-invert", "unknown algorithm \"pso\"");
+  expect_one_line_error(run_program("demcal-invert", " --model /nonexistent.json --target E_GPa=30 --out /tmp/x.json"),
+                        "demcal-invert", "/nonexistent.json: cannot open model");
+}
+
+}  // namespace
