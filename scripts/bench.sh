@@ -41,3 +41,8 @@ PY
 }
 dem_bench "dem: UCS parallel bond, 25 x 50 mm" data/scenes/ucs_rock_pb.json
 dem_bench "dem: UCS parallel bond, 50 x 100 mm" data/scenes/bench/ucs_pb_9k.json
+
+# The inversion stage: five algorithms x 20 seeds on one problem (medians).
+echo
+echo "inversion: GA, SA, WCA, LHS-WCA and search, 20 seeds each, 20,000 evaluations, C30 target on the published surfaces"
+scripts/inversion_comparison.sh "$build" "$build/inversion_comparison" | grep -v '^build/'

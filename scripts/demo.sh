@@ -57,4 +57,5 @@ echo
 echo "Also in $out/: ucs_default.json, ucs_default_curve.csv, ccd_sigma_u_responses.h5 (+ .points/), ccd_sigma_u_responses.csv"
 
 scripts/demo_analysis.sh "$build"
-echo "Inversion and verification join this demo as those stages land."
+scripts/demo_inversion.sh "$build"
+echo "Verification in DEM joins this demo with the whole-chain stage."
