@@ -22,4 +22,9 @@ std::vector<std::string> Model::outside_domain(const std::vector<double>& x, dou
   return outside;
 }
 
+BoxModel::BoxModel(std::vector<InputRange> domain, std::vector<std::string> outputs)
+    : domain_(std::move(domain)), outputs_(std::move(outputs)) {
+  for (const InputRange& r : domain_) inputs_.push_back(r.name);
+}
+
 }  // namespace demcal

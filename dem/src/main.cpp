@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/atomic_file.hpp"
+#include "demcal/core/cli_main.hpp"
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
@@ -81,16 +82,8 @@ int main(int argc, char** argv) {
   batch->add_option("--csv", batch_options.csv_path, "flat CSV export: design columns, seed, status, macro values");
   batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
   batch->add_flag("--quiet", quiet, "no progress on stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "demcal-dem: error: " << e.what() << " (see --help)\n";
-    return 2;
-  }
-  if (quiet) log::set_level(log::Level::Quiet);
-  try {
+  return cli::run_main(app, argc, argv, [&]() {
+    if (quiet) log::set_level(log::Level::Quiet);
     if (batch->parsed()) {
       batch_options.cache_dir = cache_dir;
       batch_options.progress = !quiet;
@@ -114,11 +107,5 @@ int main(int argc, char** argv) {
     if (!curve.empty()) write_curve(result, curve);
     if (!quiet) std::cout << summary.dump(2) << "\n";
     return result.ok ? 0 : 4;
-  } catch (const Error& e) {
-    log::error(e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    log::error(std::string("unexpected failure: ") + e.what());
-    return 1;
-  }
+  });
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "demcal/core/cli_main.hpp"
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/parameter_space.hpp"
@@ -202,22 +203,8 @@ int main(int argc, char** argv) {
   app.add_option("--type", a.type, "ccd: circumscribed, inscribed or faced")->capture_default_str();
   app.add_option("--criterion", a.criterion, "lhs: random, center, maximin or phip")->capture_default_str();
   app.add_option("--iterations", a.iterations, "lhs maximin/phip: outer iterations of the optimiser (0: by size)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "demcal-doe: error: " << e.what() << " (see --help)\n";
-    return 2;
-  }
-  if (a.quiet) demcal::log::set_level(demcal::log::Level::Quiet);
-  try {
+  return demcal::cli::run_main(app, argc, argv, [&]() {
+    if (a.quiet) demcal::log::set_level(demcal::log::Level::Quiet);
     return run(a, app);
-  } catch (const demcal::Error& e) {
-    demcal::log::error(e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    demcal::log::error(std::string("unexpected failure: ") + e.what());
-    return 1;
-  }
+  });
 }

@@ -12,17 +12,15 @@ using nlohmann::json;
 
 NeuralNetworkModel::NeuralNetworkModel(std::vector<InputRange> domain, std::vector<std::string> outputs,
                                        MinMaxScaling input_scaling, MinMaxScaling output_scaling, NeuralNetwork network)
-    : domain_(std::move(domain)), outputs_(std::move(outputs)), input_scaling_(std::move(input_scaling)),
-      output_scaling_(std::move(output_scaling)), network_(std::move(network)) {
-  for (const InputRange& r : domain_) inputs_.push_back(r.name);
-}
+    : BoxModel(std::move(domain), std::move(outputs)), input_scaling_(std::move(input_scaling)),
+      output_scaling_(std::move(output_scaling)), network_(std::move(network)) {}
 
 void NeuralNetworkModel::predict(const double* x, double* y) const {
   thread_local std::vector<double> scaled;
-  scaled.resize(inputs_.size());
-  for (std::size_t i = 0; i < inputs_.size(); ++i) scaled[i] = input_scaling_.to_unit(static_cast<Eigen::Index>(i), x[i]);
+  scaled.resize(inputs().size());
+  for (std::size_t i = 0; i < inputs().size(); ++i) scaled[i] = input_scaling_.to_unit(static_cast<Eigen::Index>(i), x[i]);
   network_.forward(scaled.data(), y);
-  for (std::size_t o = 0; o < outputs_.size(); ++o) y[o] = output_scaling_.from_unit(static_cast<Eigen::Index>(o), y[o]);
+  for (std::size_t o = 0; o < outputs().size(); ++o) y[o] = output_scaling_.from_unit(static_cast<Eigen::Index>(o), y[o]);
 }
 
 namespace {

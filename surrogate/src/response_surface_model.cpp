@@ -12,11 +12,18 @@ namespace demcal::surrogate {
 
 using nlohmann::json;
 
-ResponseSurfaceModel::ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces)
-    : domain_(std::move(domain)), surfaces_(std::move(surfaces)) {
-  for (const InputRange& r : domain_) inputs_.push_back(r.name);
-  for (const Surface& s : surfaces_) outputs_.push_back(s.output);
+namespace {
+
+std::vector<std::string> output_names(const std::vector<ResponseSurfaceModel::Surface>& surfaces) {
+  std::vector<std::string> names;
+  for (const auto& s : surfaces) names.push_back(s.output);
+  return names;
 }
+
+}  // namespace
+
+ResponseSurfaceModel::ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces)
+    : BoxModel(std::move(domain), output_names(surfaces)), surfaces_(std::move(surfaces)) {}
 
 void ResponseSurfaceModel::predict(const double* x, double* y) const {
   for (std::size_t o = 0; o < surfaces_.size(); ++o) {

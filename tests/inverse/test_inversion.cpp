@@ -16,19 +16,13 @@ using namespace demcal::inverse;
 
 // strength = 2 a + b (a and b trade off: one equation, two unknowns);
 // stiffness = 10 c + a / 10.
-class Toy : public Model {
+class Toy : public BoxModel {
  public:
-  const std::vector<std::string>& inputs() const override { return inputs_; }
-  const std::vector<std::string>& outputs() const override { return outputs_; }
-  const std::vector<InputRange>& domain() const override { return domain_; }
+  Toy() : BoxModel({{"a", 0, 6}, {"b", 0, 10}, {"c", 1, 3}}, {"strength", "stiffness"}) {}
   void predict(const double* x, double* y) const override {
     y[0] = 2.0 * x[0] + x[1];
     y[1] = 10.0 * x[2] + 0.1 * x[0];
   }
-
- private:
-  std::vector<std::string> inputs_{"a", "b", "c"}, outputs_{"strength", "stiffness"};
-  std::vector<InputRange> domain_{{"a", 0, 6}, {"b", 0, 10}, {"c", 1, 3}};
 };
 
 TEST(Objectives, HandComputed) {

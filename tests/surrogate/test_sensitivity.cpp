@@ -10,30 +10,18 @@ namespace {
 
 using namespace demcal;
 
-class Ishigami : public Model {
+class Ishigami : public BoxModel {
  public:
-  const std::vector<std::string>& inputs() const override { return inputs_; }
-  const std::vector<std::string>& outputs() const override { return outputs_; }
-  const std::vector<InputRange>& domain() const override { return domain_; }
+  Ishigami() : BoxModel({{"x1", -M_PI, M_PI}, {"x2", -M_PI, M_PI}, {"x3", -M_PI, M_PI}}, {"f"}) {}
   void predict(const double* x, double* y) const override {
     y[0] = std::sin(x[0]) + 7.0 * std::pow(std::sin(x[1]), 2) + 0.1 * std::pow(x[2], 4) * std::sin(x[0]);
   }
-
- private:
-  std::vector<std::string> inputs_{"x1", "x2", "x3"}, outputs_{"f"};
-  std::vector<InputRange> domain_{{"x1", -M_PI, M_PI}, {"x2", -M_PI, M_PI}, {"x3", -M_PI, M_PI}};
 };
 
-class Linear : public Model {
+class Linear : public BoxModel {
  public:
-  const std::vector<std::string>& inputs() const override { return inputs_; }
-  const std::vector<std::string>& outputs() const override { return outputs_; }
-  const std::vector<InputRange>& domain() const override { return domain_; }
+  Linear() : BoxModel({{"a", 0, 2}, {"b", 10, 30}}, {"y"}) {}
   void predict(const double* x, double* y) const override { y[0] = 3.0 * x[0] - 0.5 * x[1]; }
-
- private:
-  std::vector<std::string> inputs_{"a", "b"}, outputs_{"y"};
-  std::vector<InputRange> domain_{{"a", 0, 2}, {"b", 10, 30}};
 };
 
 TEST(Sensitivity, SobolIndicesOfTheIshigamiFunction) {

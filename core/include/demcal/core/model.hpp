@@ -31,4 +31,20 @@ class Model {
   std::vector<std::string> outside_domain(const std::vector<double>& x, double tolerance = 1e-9) const;
 };
 
+// A model whose inputs, outputs and domain are set once at construction:
+// the usual case, so a subclass only has to predict.
+class BoxModel : public Model {
+ public:
+  BoxModel(std::vector<InputRange> domain, std::vector<std::string> outputs);
+
+  const std::vector<std::string>& inputs() const override { return inputs_; }
+  const std::vector<std::string>& outputs() const override { return outputs_; }
+  const std::vector<InputRange>& domain() const override { return domain_; }
+
+ private:
+  std::vector<InputRange> domain_;
+  std::vector<std::string> inputs_;
+  std::vector<std::string> outputs_;
+};
+
 }  // namespace demcal

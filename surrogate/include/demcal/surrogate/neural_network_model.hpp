@@ -16,20 +16,15 @@
 
 namespace demcal::surrogate {
 
-class NeuralNetworkModel : public Model {
+class NeuralNetworkModel : public BoxModel {
  public:
   NeuralNetworkModel(std::vector<InputRange> domain, std::vector<std::string> outputs, MinMaxScaling input_scaling,
                      MinMaxScaling output_scaling, NeuralNetwork network);
   static std::unique_ptr<NeuralNetworkModel> from_json(const nlohmann::json& file, const std::string& origin);
 
-  const std::vector<std::string>& inputs() const override { return inputs_; }
-  const std::vector<std::string>& outputs() const override { return outputs_; }
-  const std::vector<InputRange>& domain() const override { return domain_; }
   void predict(const double* x, double* y) const override;
 
  private:
-  std::vector<InputRange> domain_;
-  std::vector<std::string> inputs_, outputs_;
   MinMaxScaling input_scaling_, output_scaling_;
   NeuralNetwork network_;
 };

@@ -17,7 +17,7 @@
 
 namespace demcal::surrogate {
 
-class ResponseSurfaceModel : public Model {
+class ResponseSurfaceModel : public BoxModel {
  public:
   struct Surface {
     std::string output;
@@ -28,16 +28,10 @@ class ResponseSurfaceModel : public Model {
   ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces);
   static std::unique_ptr<ResponseSurfaceModel> from_json(const nlohmann::json& file, const std::string& origin);
 
-  const std::vector<std::string>& inputs() const override { return inputs_; }
-  const std::vector<std::string>& outputs() const override { return outputs_; }
-  const std::vector<InputRange>& domain() const override { return domain_; }
   void predict(const double* x, double* y) const override;
 
  private:
-  std::vector<InputRange> domain_;
   std::vector<Surface> surfaces_;
-  std::vector<std::string> inputs_;
-  std::vector<std::string> outputs_;
 };
 
 // The model file of fits made on the same factors (one fit per output).
