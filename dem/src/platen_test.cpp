@@ -6,6 +6,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/rng.hpp"
+#include "demcal/dem/concrete_specimen.hpp"
 #include "demcal/dem/vtk_writer.hpp"
 
 #include <sys/stat.h>
@@ -13,7 +14,8 @@
 namespace demcal::dem {
 
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
-                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep) {
+                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep,
+                        std::map<std::string, double>* info) {
   WorldSettings settings;
   settings.thickness_m = specimen.thickness_m;
   settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
@@ -24,8 +26,17 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     return world.add_model(
         ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where + pair), where + pair));
   };
-  world.assign(kSpecimenGroup, kSpecimenGroup, create("disk-disk"));
-  world.assign(kSpecimenGroup, kPlatenGroup, create("disk-platen"));
+  if (scene.aggregates()) {
+    world.assign(kSpecimenGroup, kSpecimenGroup, create("mortar-mortar"));
+    world.assign(kSpecimenGroup, kAggregateGroup, create("mortar-aggregate"));
+    world.assign(kAggregateGroup, kAggregateGroup, create("aggregate-aggregate"));
+    const std::uint8_t platen = create("disk-platen");
+    world.assign(kSpecimenGroup, kPlatenGroup, platen);
+    world.assign(kAggregateGroup, kPlatenGroup, platen);
+  } else {
+    world.assign(kSpecimenGroup, kSpecimenGroup, create("disk-disk"));
+    world.assign(kSpecimenGroup, kPlatenGroup, create("disk-platen"));
+  }
   world.bodies.reserve(specimen.size());
   double bottom_y = INFINITY, top_y = -INFINITY, r_min = INFINITY;
   for (std::size_t i = 0; i < specimen.size(); ++i) {
@@ -47,6 +58,19 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   bottom.vy = v;
   top.vy = -v;
   world.walls = {bottom, top};
+  if (scene.aggregates()) {
+    const AggregateSpec& spec = *scene.aggregates();
+    AggregatePlacement placement = place_aggregates(spec, specimen.width_m, specimen.height_m, seed);
+    AggregateSummary s = make_aggregate_clumps(world, placement, spec.density_kg_m3, specimen.thickness_m);
+    if (info) {
+      (*info)["aggregates_requested"] = s.requested;
+      (*info)["aggregates_placed"] = s.placed;
+      (*info)["aggregate_clumps"] = s.clumps;
+      (*info)["aggregates_without_disks"] = s.without_disks;
+      (*info)["aggregate_disks"] = static_cast<double>(s.aggregate_disks);
+      (*info)["aggregate_area_fraction"] = s.area_fraction;
+    }
+  }
 
   Rng bond_rng(seed, 0x626f6e64 /* "bond" */);
   const double tolerance = scene.loading().bond_gap_tolerance_m > 0 ? scene.loading().bond_gap_tolerance_m : 0.01 * r_min;
@@ -140,6 +164,19 @@ void record_run_end(const World& world, const RunOptions& options, std::chrono::
   for (const BreakEvent& b : world.breaks()) tension += b.mode == BreakMode::Tension;
   result.macro["cracks_tension"] = static_cast<double>(tension);
   result.macro["cracks_shear"] = static_cast<double>(world.breaks().size() - tension);
+  if (!world.clumps().empty()) {
+    // Concrete: cracks in the mortar and in the interfacial transition zone.
+    std::size_t mortar_t = 0, mortar_s = 0, itz_t = 0, itz_s = 0;
+    for (const BreakEvent& b : world.breaks()) {
+      const bool itz = b.group_i == kAggregateGroup || b.group_j == kAggregateGroup;
+      const bool t = b.mode == BreakMode::Tension;
+      (itz ? (t ? itz_t : itz_s) : (t ? mortar_t : mortar_s))++;
+    }
+    result.macro["cracks_mortar_tension"] = static_cast<double>(mortar_t);
+    result.macro["cracks_mortar_shear"] = static_cast<double>(mortar_s);
+    result.macro["cracks_itz_tension"] = static_cast<double>(itz_t);
+    result.macro["cracks_itz_shear"] = static_cast<double>(itz_s);
+  }
 }
 
 }  // namespace demcal::dem

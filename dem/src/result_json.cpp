@@ -12,6 +12,7 @@ nlohmann::json result_json(const TestResult& r, const std::map<std::string, doub
   out["seed"] = seed;
   out["particles"] = r.particles;
   out["porosity"] = r.porosity;
+  if (!r.specimen_info.empty()) out["specimen"] = r.specimen_info;
   out["steps"] = r.steps;
   out["dt_s"] = r.dt_s;
   if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;

@@ -20,12 +20,42 @@ double number_field(const json& object, const char* key, double fallback, const 
   return v.get<double>();
 }
 
+// The aggregates object: sizes in mm as engineers give them.
+AggregateSpec aggregate_spec(const json& a, const std::string& where) {
+  require_known_fields(a, {"size_range_mm", "bins", "coarse_fraction", "sides", "min_gap_m", "density_kg_m3", "max_attempts",
+                           "note"},
+                       where);
+  AggregateSpec spec;
+  if (a.contains("size_range_mm")) {
+    const json& r = a.at("size_range_mm");
+    if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
+      throw Error(where + ": size_range_mm must be [d_min, d_max]");
+    spec.d_min_m = r[0].get<double>() / 1000;
+    spec.d_max_m = r[1].get<double>() / 1000;
+  }
+  if (a.contains("sides")) {
+    const json& r = a.at("sides");
+    if (!r.is_array() || r.size() != 2 || !r[0].is_number_integer() || !r[1].is_number_integer())
+      throw Error(where + ": sides must be [min, max] integers");
+    spec.sides_min = r[0].get<int>();
+    spec.sides_max = r[1].get<int>();
+  }
+  spec.bins = static_cast<int>(number_field(a, "bins", spec.bins, where));
+  spec.coarse_fraction = number_field(a, "coarse_fraction", spec.coarse_fraction, where);
+  spec.min_gap_m = number_field(a, "min_gap_m", spec.min_gap_m, where);
+  spec.density_kg_m3 = number_field(a, "density_kg_m3", spec.density_kg_m3, where);
+  spec.max_attempts = static_cast<int>(number_field(a, "max_attempts", spec.max_attempts, where));
+  spec.validate(where);
+  return spec;
+}
+
 }  // namespace
 
 Scene Scene::load(const std::string& path) { return from_json(read_json_file(path, "scene file"), path); }
 
 Scene Scene::from_json(const json& root, const std::string& origin) {
-  require_known_fields(root, {"name", "test", "description", "specimen", "parameters", "contacts", "loading"}, origin);
+  require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
+                       origin);
   Scene scene;
   scene.origin_ = origin;
   scene.name_ = root.value("name", std::string("scene"));
@@ -56,9 +86,17 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     }
   }
 
+  if (root.contains("aggregates")) scene.aggregates_ = aggregate_spec(root.at("aggregates"), origin + ": aggregates");
   if (!root.contains("contacts")) throw Error(origin + ": missing \"contacts\"");
-  require_known_fields(root.at("contacts"), {"disk-disk", "disk-platen"}, origin + ": contacts");
-  for (const char* pair : {"disk-disk", "disk-platen"}) {
+  const std::vector<const char*> pairs =
+      scene.aggregates_ ? std::vector<const char*>{"mortar-mortar", "mortar-aggregate", "aggregate-aggregate", "disk-platen"}
+                        : std::vector<const char*>{"disk-disk", "disk-platen"};
+  if (scene.aggregates_)
+    require_known_fields(root.at("contacts"), {"mortar-mortar", "mortar-aggregate", "aggregate-aggregate", "disk-platen"},
+                         origin + ": contacts (a scene with aggregates)");
+  else
+    require_known_fields(root.at("contacts"), {"disk-disk", "disk-platen"}, origin + ": contacts");
+  for (const char* pair : pairs) {
     const std::string where = origin + ": contacts." + pair;
     if (!root.at("contacts").contains(pair)) throw Error(where + ": missing");
     const json& c = root.at("contacts").at(pair);

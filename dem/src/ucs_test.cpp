@@ -55,7 +55,8 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   SpecimenSpec spec = scene.specimen(parameters, options.seed);
   Specimen specimen = cached_specimen(spec, options.cache_dir);
 
-  World world = make_platen_world(scene, parameters, specimen, options.seed);
+  std::map<std::string, double> specimen_info;
+  World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &specimen_info);
   const double W = specimen.width_m, H0 = world.walls[1].y0 - world.walls[0].y0;
 
   // Lateral strain from the outermost disks of the middle third of the height.
@@ -71,6 +72,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   const double width0 = mean_x(world.bodies, right) - mean_x(world.bodies, left);
 
   TestResult result;
+  result.specimen_info = specimen_info;
   const auto loading_start = std::chrono::steady_clock::now();
   result.particles = specimen.size();
   result.porosity = specimen.porosity;

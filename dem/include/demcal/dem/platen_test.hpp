@@ -22,8 +22,12 @@ constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
 // scene's contact models, a bottom and a top platen touching the lowest and
 // highest disk and moving towards each other at the loading velocity, and
 // bonds on every pair closer than the scene's tolerance. Walls: [0] bottom, [1] top.
+// A scene with aggregates also places them (seeded by `seed`), makes their
+// clumps and binds the mortar, interface and aggregate contacts; `info`, when
+// given, receives what the specimen holds (aggregates placed, disks in them).
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
-                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr);
+                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
+                        std::map<std::string, double>* info = nullptr);
 
 // Empty when the state is sane; otherwise why the run must stop as failed
 // (non-finite values, a disk faster than 1000 x the platen speed, a disk

@@ -12,11 +12,18 @@
 //
 // A bound value is a number or a product of parameter names and numbers
 // ("Ec_GPa*1e9", "R_min_m*R_max_over_R_min").
+//
+// Concrete: an "aggregates" object (Walraven gradation, polygon sides, gap,
+// density) makes the disks inside each placed polygon one rigid clump, and
+// the contacts are then "mortar-mortar", "mortar-aggregate" (the interfacial
+// transition zone), "aggregate-aggregate" and "disk-platen".
 #include <map>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "demcal/dem/aggregates.hpp"
 #include "demcal/dem/genesis.hpp"
 
 namespace demcal::dem {
@@ -51,6 +58,8 @@ class Scene {
   const std::map<std::string, SceneParameter>& parameters() const { return parameters_; }
   const std::map<std::string, ContactSpec>& contacts() const { return contacts_; }
   const LoadingSpec& loading() const { return loading_; }
+  // The aggregates of a concrete scene; empty for a one-phase specimen.
+  const std::optional<AggregateSpec>& aggregates() const { return aggregates_; }
   const std::string& origin() const { return origin_; }
 
   // Defaults with `overrides` applied; unknown names, non-finite values and
@@ -70,6 +79,7 @@ class Scene {
   std::map<std::string, SceneParameter> parameters_;
   std::map<std::string, ContactSpec> contacts_;
   LoadingSpec loading_;
+  std::optional<AggregateSpec> aggregates_;
 };
 
 }  // namespace demcal::dem

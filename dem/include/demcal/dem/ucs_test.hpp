@@ -29,6 +29,7 @@ struct TestResult {
   double porosity = 0;
   double dt_s = 0;
   double density_scaling_dt_s = 0;  // > 0 when masses were scaled (quasi-static run)
+  std::map<std::string, double> specimen_info;  // concrete: aggregates placed, disks in them, ...
 };
 
 struct RunOptions {
