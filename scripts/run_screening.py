@@ -1,0 +1,114 @@
+#!/usr/bin/python3
+"""Runs a screening study file: design (demcal-doe), DEM batch (demcal-dem, resumable),
+range analysis and ANOVA (demcal-analyze) with main-effects and Pareto plots.
+
+    /usr/bin/python3 scripts/run_screening.py data/studies/concrete_screening.json [--build build] [--jobs 2]
+
+The batch and its HDF5 responses live in BUILD/studies/NAME/ (rerunning resumes it); the
+results the study names (CSV of design + responses, Markdown tables, PNGs, summary) go to
+its "results" folder.
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+import sys
+import time
+
+
+def fail(message):
+    print(f"run_screening.py: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def run(command):
+    print("+ " + " ".join(command), flush=True)
+    code = subprocess.run(command).returncode
+    return code
+
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("study")
+parser.add_argument("--build", default="build")
+parser.add_argument("--jobs", default=str(os.cpu_count() or 2))
+args = parser.parse_args()
+try:
+    study = json.load(open(args.study))
+except (OSError, ValueError) as e:
+    fail(f"cannot read {args.study}: {e}")
+allowed = {"name", "description", "scene", "space", "design", "seeds", "responses", "results"}
+unknown = set(study) - allowed
+if unknown:
+    fail(f"{args.study}: unknown field(s) {', '.join(sorted(unknown))} (allowed: {', '.join(sorted(allowed))})")
+for key in ("name", "scene", "space", "design", "responses", "results"):
+    if key not in study:
+        fail(f"{args.study}: missing \"{key}\"")
+design_spec = study["design"]
+if design_spec.get("kind") != "oa":
+    fail(f"{args.study}: design.kind must be \"oa\" for a screening (range analysis and ANOVA need an orthogonal plan)")
+
+bin_dir = os.path.join(args.build, "bin")
+work = os.path.join(args.build, "studies", study["name"])
+results = study["results"]
+os.makedirs(work, exist_ok=True)
+os.makedirs(results, exist_ok=True)
+start = time.time()
+
+design = os.path.join(work, "design.csv")
+if run([os.path.join(bin_dir, "demcal-doe"), "oa", "--space", study["space"], "--runs", str(design_spec["runs"]),
+        "--blank", str(design_spec.get("blank", 0)), "--out", design, "--quiet"]) != 0:
+    fail("the design could not be made")
+responses_h5 = os.path.join(work, "responses.h5")
+responses_csv = os.path.join(work, "responses.csv")
+batch_start = time.time()
+code = run([os.path.join(bin_dir, "demcal-dem"), "batch", "--scene", study["scene"], "--design", design, "--out",
+            responses_h5, "--csv", responses_csv, "--seeds", str(study.get("seeds", 1)), "--jobs", args.jobs,
+            "--cache", os.path.join(args.build, "cache")])
+batch_wall = time.time() - batch_start
+if code not in (0, 4):
+    fail(f"the DEM batch stopped (exit code {code}); rerun to resume")
+
+# The blank columns live in the design, not in the responses: join them by run.
+design_rows = {row["run"]: row for row in csv.DictReader(open(design))}
+blanks = [c for c in next(iter(design_rows.values())) if c.startswith("blank")]
+factors = [p["name"] for p in json.load(open(study["space"]))["parameters"]]
+table = os.path.join(results, "screening.csv")
+failed = []
+with open(responses_csv) as f, open(table, "w", newline="") as out:
+    reader = csv.DictReader(f)
+    writer = csv.writer(out)
+    writer.writerow(["run", "seed", "status"] + factors + blanks + study["responses"] + ["cracks_itz_tension", "cracks_mortar_tension"])
+    for row in reader:
+        if row["status"] != "ok":
+            failed.append((row["run"], row["status"]))
+        writer.writerow([row["run"], row["seed"], row["status"]] + [row[c] for c in factors] +
+                        [design_rows[row["run"]][c] for c in blanks] + [row.get(r, "nan") for r in study["responses"]] +
+                        [row.get("cracks_itz_tension", "nan"), row.get("cracks_mortar_tension", "nan")])
+
+terms = ",".join(factors + blanks)
+analyze = os.path.join(bin_dir, "demcal-analyze")
+plot = ["/usr/bin/python3", "scripts/plot_analysis.py"]
+for kind in ("range", "anova"):
+    for fmt in ("md", "json"):
+        if run([analyze, kind, "--data", table, "--factors", terms, "--responses", ",".join(study["responses"]),
+                "--format", fmt, "--out", os.path.join(results, f"{kind}.{fmt}")]) != 0:
+            fail(f"demcal-analyze {kind} failed")
+run(plot + ["main-effects", os.path.join(results, "range.json"), "--out", os.path.join(results, "main_effects.png")])
+run(plot + ["pareto", os.path.join(results, "anova.json"), "--out", os.path.join(results, "pareto.png")])
+
+anova = json.load(open(os.path.join(results, "anova.json")))
+with open(os.path.join(results, "summary.md"), "w") as f:
+    f.write(f"# {study['name']}\n\n{study.get('description', '')}\n\n")
+    f.write(f"Study file `{args.study}`; scene `{study['scene']}`; {len(design_rows)} design points x "
+            f"{study.get('seeds', 1)} seed(s).\n\n")
+    f.write(f"DEM batch wall time: {batch_wall:.0f} s ({batch_wall / 60:.1f} min) on {args.jobs} parallel jobs "
+            f"(this run; points already done in an earlier run are not repeated and not counted). "
+            f"Whole study: {time.time() - start:.0f} s.\n\n")
+    f.write(f"Failed points: {len(failed)}" + ("".join(f"\n- run {r}: {s}" for r, s in failed)) + "\n\n")
+    f.write("| response | significant at p < 0.01 (**) or p < 0.05 (*), by F |\n|---|---|\n")
+    for response, rows in anova.items():
+        marks = [(row.get("F") or 0, name + row["significance"]) for name, row in rows.items()
+                 if name != "error" and row.get("significance")]
+        f.write(f"| {response} | {', '.join(m for _, m in sorted(marks, reverse=True)) or 'none'} |\n")
+print(f"results in {results}/ (screening.csv, range.md, anova.md, main_effects_*.png, pareto_*.png, summary.md)")
