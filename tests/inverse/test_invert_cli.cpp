@@ -92,3 +92,33 @@ TEST_F(DemcalInvert, Errors) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
+  std::string solution = temp_path("verify_solution.json"), out = temp_path("verify.json"), md = temp_path("verify.md");
+  {
+    std::ofstream(solution) << R"({"status": "ok", "x": {"pb_sigma_c_MPa": 12, "pb_tau_c_MPa": 30},
+                                   "targets": {"sigma_u_MPa": 15, "E_GPa": 20}, "predicted": {"sigma_u_MPa": 15}})";
+  }
+  std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+  auto r = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --jobs 2 --out " + out +
+                                            " --md " + md + " --cache " + temp_path("verify_cache") + " --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json v = read_json(out);
+  ASSERT_EQ(v["seeds"].size(), 2u);
+  EXPECT_EQ(v["seeds"][0]["status"], "ok");
+  EXPECT_EQ(v["outputs"]["sigma_u_MPa"]["runs"], 2);
+  EXPECT_GT(v["outputs"]["sigma_u_MPa"]["mean"].get<double>(), 1.0);
+  EXPECT_EQ(v["parameters"]["pb_sigma_c_MPa"], 12.0);
+  EXPECT_NE(demcal::test::slurp(md).find("| E_GPa | 20 |"), std::string::npos);
+
+  std::string bad = temp_path("verify_bad.json");
+  {
+    std::ofstream(bad) << R"({"x": {"density": 1}, "targets": {"E_GPa": 20}})";
+  }
+  expect_one_line_error(run_program("demcal-verify", "--solution " + bad + " --scene " + scene + " --out " + out),
+                        "demcal-verify", "unknown parameter \"density\"");
+}
+
+}  // namespace

@@ -1,0 +1,151 @@
+// demcal-verify: runs the DEM at a calibrated solution with several seeds and
+// writes the verification table (target, mean, SD, CV, relative error, pass).
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+
+#include <sys/stat.h>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/atomic_file.hpp"
+#include "demcal/core/cli_main.hpp"
+#include "demcal/core/json_fields.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/core/parameter_space.hpp"
+#include "demcal/dem/batch.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/inverse/verification.hpp"
+
+namespace {
+
+using namespace demcal;
+using nlohmann::json;
+
+struct Arguments {
+  std::string solution, scene, space, out, csv, md, work, cache = "build/cache";
+  std::vector<std::string> sets;
+  int seeds = 5, jobs = 2;
+  double tolerance = 0.05;
+  bool quiet = false;
+};
+
+std::map<std::string, double> numbers(const json& object, const std::string& where) {
+  std::map<std::string, double> out;
+  if (!object.is_object()) throw Error(where + " must be an object of name: number");
+  for (auto it = object.begin(); it != object.end(); ++it) {
+    if (!it.value().is_number()) throw Error(where + "." + it.key() + " must be a number");
+    out[it.key()] = it.value().get<double>();
+  }
+  return out;
+}
+
+int run(const Arguments& a) {
+  if (a.seeds < 1) throw Error("--seeds must be at least 1");
+  if (!(a.tolerance > 0)) throw Error("--tolerance must be positive");
+  const json solution = read_json_file(a.solution, "solution");
+  if (!solution.contains("x") || !solution.contains("targets"))
+    throw Error(a.solution + ": not a demcal-invert solution (needs \"x\" and \"targets\")");
+  if (solution.value("status", std::string("ok")) != "ok")
+    log::warn(a.solution + ": the inversion reported status " + solution.value("status", std::string()) +
+              "; verifying its nearest point anyway");
+  const dem::Scene scene = dem::Scene::load(a.scene);
+
+  // The point to run: the solution's parameters, then the space's fixed and
+  // tied values, then --set; every name must be a scene parameter.
+  std::map<std::string, double> point = numbers(solution.at("x"), a.solution + ": x");
+  if (!a.space.empty()) {
+    ParameterSpace space = ParameterSpace::load(a.space);
+    for (const auto& [name, value] : space.fixed())
+      if (!point.count(name)) point[name] = value;
+    for (const TiedParameter& t : space.tied()) {
+      auto source = point.find(t.source);
+      if (source != point.end() && !point.count(t.name)) point[t.name] = t.factor * source->second + t.offset;
+    }
+  }
+  for (const std::string& s : a.sets) {
+    auto eq = s.find('=');
+    double value = 0;
+    if (eq == std::string::npos || !parse_double(s.substr(eq + 1), value)) throw Error("--set \"" + s + "\": expected NAME=VALUE");
+    point[s.substr(0, eq)] = value;
+  }
+  scene.resolve(point);  // unknown names and values outside the scene's ranges are errors here
+
+  const std::string work = a.work.empty() ? a.out + ".runs" : a.work;
+  ::mkdir(work.c_str(), 0755);
+  Table design(std::vector<int>{1});
+  for (const auto& [name, value] : point) design.add_column(name, {value});
+  const std::string design_path = work + "/design.csv";
+  design.write_csv(design_path);
+  dem::BatchOptions batch;
+  batch.scene_path = a.scene;
+  batch.design_path = design_path;
+  batch.out_path = work + "/runs.h5";
+  batch.csv_path = work + "/runs.csv";
+  batch.cache_dir = a.cache;
+  batch.seeds = a.seeds;
+  batch.jobs = a.jobs;
+  batch.progress = !a.quiet;
+  dem::BatchSummary summary = dem::run_batch(batch);
+
+  std::vector<inverse::SeedRun> seeds;
+  for (int s = 1; s <= a.seeds; ++s) {
+    const json r = read_json_file(batch.out_path + ".points/run1_seed" + std::to_string(s) + ".json", "DEM result");
+    inverse::SeedRun run;
+    run.seed = static_cast<std::uint64_t>(s);
+    run.ok = r.value("status", std::string()) == "ok";
+    run.reason = r.value("reason", std::string());
+    if (r.contains("macro"))
+      for (auto it = r.at("macro").begin(); it != r.at("macro").end(); ++it)
+        if (it.value().is_number()) run.macro[it.key()] = it.value().get<double>();
+    seeds.push_back(run);
+  }
+  std::map<std::string, double> predicted;
+  if (solution.contains("predicted"))
+    for (auto it = solution.at("predicted").begin(); it != solution.at("predicted").end(); ++it)
+      if (it.value().is_number()) predicted[it.key()] = it.value().get<double>();
+  inverse::Verification v = inverse::verify(numbers(solution.at("targets"), a.solution + ": targets"), predicted, seeds, a.tolerance);
+
+  json out = inverse::verification_json(v);
+  out["parameters"] = point;
+  out["scene"] = a.scene;
+  out["solution"] = a.solution;
+  out["runs"] = batch.out_path;
+  out["wall_s"] = summary.wall_s;
+  write_file_atomically(a.out, out.dump(2) + "\n");
+  if (!a.csv.empty()) write_file_atomically(a.csv, inverse::verification_csv(v));
+  const std::string table = inverse::verification_markdown(v);
+  if (!a.md.empty()) write_file_atomically(a.md, table);
+  if (!a.quiet) std::cout << table;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  log::set_program("demcal-verify");
+  Arguments a;
+  CLI::App app{"demcal-verify: the DEM at a calibrated solution over several seeds, against the targets.\n"
+               "  demcal-verify --solution SOLUTION.json --scene S.json [--space S.json] [--seeds 5] [--tolerance 0.05]\n"
+               "                --out VERIFY.json [--csv V.csv] [--md V.md]",
+               "demcal-verify"};
+  app.add_option("--solution", a.solution, "SOLUTION.json of demcal-invert (x, targets, predicted)")->required();
+  app.add_option("--scene", a.scene, "the DEM scene the solution's parameters belong to")->required();
+  app.add_option("--space", a.space, "parameter space whose fixed and tied values complete the point");
+  app.add_option("--set", a.sets, "NAME=VALUE for another scene parameter (repeatable)");
+  app.add_option("--seeds", a.seeds, "DEM seeds 1..K")->capture_default_str();
+  app.add_option("--jobs", a.jobs, "seeds run at once")->capture_default_str();
+  app.add_option("--tolerance", a.tolerance, "largest relative error that passes")->capture_default_str();
+  app.add_option("--out", a.out, "verification JSON")->required();
+  app.add_option("--csv", a.csv, "verification table as CSV");
+  app.add_option("--md", a.md, "verification table as Markdown");
+  app.add_option("--work", a.work, "folder of the DEM runs (default OUT.runs; rerunning resumes)");
+  app.add_option("--cache", a.cache, "packed specimens")->capture_default_str();
+  app.add_flag("--quiet", a.quiet, "no table or progress on stdout/stderr");
+  return cli::run_main(app, argc, argv, [&]() {
+    if (a.quiet) log::set_level(log::Level::Quiet);
+    return run(a);
+  });
+}
