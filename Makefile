@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean
+.PHONY: all deps configure build test demo bench sanitize clean study
 
 all: build
 
@@ -25,6 +25,14 @@ test: build
 
 demo: build
 	@scripts/demo.sh $(BUILD)
+
+# One study file, every stage a file target under build/studies/NAME (resumable; make -j2 works).
+STUDY ?= data/studies/demo.json
+STUDY_DIR = $(BUILD)/studies/$(basename $(notdir $(STUDY)))
+study: build
+	@/usr/bin/python3 scripts/study.py plan $(STUDY) $(STUDY_DIR) > /dev/null
+	@$(MAKE) --no-print-directory -f $(STUDY_DIR)/plan.mk BIN=$(BUILD)/bin CACHE=$(BUILD)/cache JOBS=$(JOBS) all
+	@echo "report: $(STUDY_DIR)/report.md and report.html"
 
 bench: build
 	@scripts/bench.sh $(BUILD)

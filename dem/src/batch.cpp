@@ -37,6 +37,18 @@ struct Point {
   std::string file;                      // its result file
 };
 
+// A stored result belongs to a point only if it was made with the same seed
+// and the same design values: a changed design never reuses a stale result.
+bool same_point(const json& stored, const Point& p) {
+  if (!stored.contains("seed") || stored.at("seed").get<std::uint64_t>() != p.seed) return false;
+  if (!stored.contains("parameters")) return false;
+  const json& parameters = stored.at("parameters");
+  for (const auto& [name, value] : p.design)
+    if (!parameters.contains(name) || !parameters.at(name).is_number() || parameters.at(name).get<double>() != value)
+      return false;
+  return true;
+}
+
 bool file_exists(const std::string& path) {
   struct stat info;
   return ::stat(path.c_str(), &info) == 0;
@@ -223,14 +235,19 @@ BatchSummary run_batch(const BatchOptions& options) {
   BatchSummary summary;
   summary.points = points.size();
   std::vector<const Point*> pending;
+  std::size_t stale = 0;
   for (const Point& p : points) {
     json existing;
-    if (read_json(p.file, existing)) {
+    if (read_json(p.file, existing) && same_point(existing, p)) {
       ++summary.skipped;
     } else {
+      if (file_exists(p.file)) ++stale;
       pending.push_back(&p);
     }
   }
+  if (stale > 0)
+    log::warn(std::to_string(stale) + " stored point(s) were made with other parameter values than the design now "
+              "gives them; running them again");
   if (summary.skipped > 0)
     log::info("resuming: " + std::to_string(summary.skipped) + " of " + std::to_string(points.size()) +
               " points already done");

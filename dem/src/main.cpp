@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   run->add_option("--scene", scene_path, "scene JSON (data/scenes/...)")->required();
   run->add_option("--set", sets, "NAME=VALUE for a scene parameter (repeatable)");
   run->add_option("--seed", seed, "packing and bond-strength seed")->capture_default_str();
-  run->add_option("--out", out, "result JSON")->required();
+  run->add_option("--out", out, "result JSON (default: the result is printed on stdout only)");
   run->add_option("--curve", curve, "stress-strain curve, .csv or .h5");
   run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
   std::string vtk_dir;
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     options.vtk_dir = vtk_dir;
     dem::TestResult result = dem::run_test(scene, parameters, options);
     json summary = dem::result_json(result, parameters, seed);
-    write_file_atomically(out, summary.dump(2) + "\n");
+    if (!out.empty()) write_file_atomically(out, summary.dump(2) + "\n");
     if (!curve.empty()) write_curve(result, curve);
     if (!quiet) std::cout << summary.dump(2) << "\n";
     return result.ok ? 0 : 4;

@@ -17,8 +17,10 @@ namespace {
 using namespace demcal;
 using namespace demcal::inverse;
 
-// Exit code of a target no point in the domain can reach.
+// Exit codes: a target no point in the domain can reach; targets attainable
+// one by one that the best point found still misses.
 constexpr int kUnreachable = 3;
+constexpr int kNotMet = 4;
 
 std::pair<std::string, double> name_value(const std::string& text, const std::string& option) {
   auto eq = text.find('=');
@@ -91,6 +93,10 @@ int run(const Arguments& a, const CLI::App& app) {
                "; nearest attainable written to " + a.out);
     return kUnreachable;
   }
+  if (result.status == "not_met") {
+    log::error("targets not met: " + solution["reason"].get<std::string>() + "; best point written to " + a.out);
+    return kNotMet;
+  }
   return 0;
 }
 
@@ -104,7 +110,7 @@ int main(int argc, char** argv) {
       "  demcal-invert --model M1.json [--model M2.json ...] --target NAME=VALUE [--target ...] [--space S.json]\n"
       "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel] [--polish]\n"
       "                [--restarts R] [--seed S] --out SOLUTION.json\n"
-      "Exit codes: 0 solved, 2 bad input, 3 targets unreachable in the domain.",
+      "Exit codes: 0 solved, 2 bad input, 3 a target outside what the domain can reach, 4 targets attainable but not met.",
       "demcal-invert"};
   app.add_option("--model", a.models, "saved model (demcal-fit); repeat for several")->required();
   app.add_option("--target", a.targets, "NAME=VALUE of a model output; repeat for several")->required();

@@ -143,7 +143,7 @@ InversionResult invert(const InversionProblem& problem, const InversionSettings&
   result.objective = best.objective;
   result.predicted = problem.predict_targets(best.x);
   result.max_relative_error = best.max_relative_error;
-  result.status = best.reached ? "ok" : "unreachable";
+  result.status = best.reached ? "ok" : "not_met";
 
   if (search) {
     result.candidates = search_candidates;
@@ -163,11 +163,17 @@ InversionResult invert(const InversionProblem& problem, const InversionSettings&
       c.predicted = problem.predict_targets(r.x);
       c.objective = r.objective;
       c.max_relative_error = r.max_relative_error;
+      c.within_tolerance = true;
       result.candidates.push_back(c);
     }
     record_spread(result, problem, reached, "restarts that reached the targets", settings.unidentified_fraction);
   }
   result.attainable = attainable_ranges(problem, settings.attainable_samples, settings.seed, result.predicted);
+  // Unreachable only when a target lies outside what the domain can give;
+  // otherwise a miss is the optimiser's and is said so (status not_met).
+  if (result.status == "not_met")
+    for (const AttainableRange& a : result.attainable)
+      if (!a.inside) result.status = "unreachable";
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -208,7 +214,8 @@ json solution_json(const InversionProblem& problem, const InversionSettings& set
     json p = json::object();
     for (std::size_t i = 0; i < problem.targets().size(); ++i) p[problem.targets()[i].output] = c.predicted[i];
     candidates.push_back({{"x", named(names, c.x)}, {"size", c.size}, {"predicted", p},
-                          {"objective", finite_or_null(c.objective)}, {"max_relative_error", finite_or_null(c.max_relative_error)}});
+                          {"objective", finite_or_null(c.objective)}, {"max_relative_error", finite_or_null(c.max_relative_error)},
+                          {"within_tolerance", c.within_tolerance}});
   }
   json spread = json::object(), unidentified = json::array();
   for (const ParameterSpread& s : result.spread) {
@@ -253,10 +260,17 @@ json solution_json(const InversionProblem& problem, const InversionSettings& set
       if (!a.inside)
         why += (why.empty() ? "" : "; ") + a.output + " = " + format_double(a.target) + " lies outside the attainable [" +
                format_double(a.min) + ", " + format_double(a.max) + "]";
-    if (why.empty()) why = "each target lies inside its attainable range, but no point meets them all together";
     out["reason"] = why;
     out["nearest_attainable"] = predicted;
+  } else if (result.status == "not_met") {
+    out["reason"] = "every target lies inside its attainable range, but the best point found misses them by " +
+                    format_double(result.max_relative_error) +
+                    " (max relative error): more budget, restarts, --polish or another algorithm may meet them, or "
+                    "they may not be attainable together";
+    out["nearest_attainable"] = predicted;
   }
+  if (result.spread_basis.empty())
+    out["spread_note"] = "fewer than two runs met the targets: run --restarts R (R >= 2) to see which parameters they identify";
   return out;
 }
 

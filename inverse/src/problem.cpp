@@ -51,6 +51,29 @@ InversionProblem::InversionProblem(std::vector<const Model*> models, const Param
     if (found > 1) throw Error("--target " + t.output + ": more than one model predicts it; give one model per output");
   }
 
+  // A model that predicts no target has no say: leave it out, so parameters
+  // only it uses are not given values the targets never constrained.
+  {
+    std::vector<const Model*> used;
+    std::vector<std::pair<std::size_t, std::size_t>> slots;
+    std::vector<std::size_t> renumber(models_.size(), models_.size());
+    for (auto [m, o] : target_slots_) {
+      if (renumber[m] == models_.size()) {
+        renumber[m] = used.size();
+        used.push_back(models_[m]);
+      }
+      slots.push_back({renumber[m], o});
+    }
+    for (std::size_t m = 0; m < models_.size(); ++m)
+      if (renumber[m] == models_.size()) {
+        std::string outs;
+        for (const std::string& o : models_[m]->outputs()) outs += (outs.empty() ? "" : ", ") + o;
+        warnings_.push_back("a model of " + outs + " predicts no targeted output: left out of the inversion");
+      }
+    models_ = used;
+    target_slots_ = slots;
+  }
+
   // Every input any model needs, in order of first appearance.
   std::vector<std::string> inputs;
   for (const Model* m : models_)

@@ -59,6 +59,8 @@ SearchRun tolerance_search(const InversionProblem& problem, const SearchSettings
       candidate.predicted = predictions[first + c];
       candidate.objective = relative_objective(problem.objective_kind(), candidate.predicted, targets);
       candidate.max_relative_error = max_relative_error(candidate.predicted, targets);
+      // A centre of a curved cluster can itself fall outside the tolerance: say so.
+      candidate.within_tolerance = candidate.max_relative_error <= settings.tolerance;
       out.candidates.push_back(candidate);
     }
   }

@@ -44,6 +44,9 @@ int design_analysis(const Arguments& a) {
   std::vector<std::string> responses = split_names(a.responses, "--responses");
   if (factors.empty()) throw Error("--factors A,B,... is required (the design columns)");
   if (responses.empty()) throw Error("--responses R1,R2,... is required");
+  for (const std::string& r : responses)
+    if (std::find(factors.begin(), factors.end(), r) != factors.end())
+      throw Error("column " + r + " is both a factor (--factors) and a response (--responses)");
 
   DesignAnovaOptions options;
   if (a.error.rfind("column:", 0) == 0) {

@@ -35,7 +35,7 @@ struct Arguments {
 
 const std::vector<std::string> kSurfaceOptions = {"--space", "--eliminate"};
 const std::vector<std::string> kGabpOptions = {"--hidden", "--validation-fraction", "--ga-population",
-                                               "--ga-generations", "--seed"};
+                                               "--ga-generations"};
 
 std::vector<FactorCoding> coding_from_space(const std::string& path, const std::vector<std::string>& factors) {
   ParameterSpace space = ParameterSpace::load(path);
@@ -81,6 +81,8 @@ int run(const Arguments& a, const CLI::App& app) {
   const bool surface = a.kind == "quadratic" || a.kind == "linear";
   for (const std::string& option : surface ? kGabpOptions : kSurfaceOptions)
     if (app.count(option) > 0) throw Error("option " + option + " does not apply to " + a.kind);
+  if (surface && app.count("--seed") > 0)
+    log::detail("--seed: a least-squares surface has nothing random; the seed does not change it");
   Table table = cli::read_data(a.data);
   std::vector<std::string> x_names = split_names(a.x, "--x");
   std::vector<std::string> y_names;
@@ -164,7 +166,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--ga-population", a.ga_population, "gabp: GA population for the initial weights")->capture_default_str();
   app.add_option("--ga-generations", a.ga_generations, "gabp: GA generations")->capture_default_str();
-  app.add_option("--seed", a.seed, "gabp: seed of the split, the GA and the training")->capture_default_str();
+  app.add_option("--seed", a.seed, "gabp: seed of the split, the GA and the training (surfaces: accepted, no effect)")
+      ->capture_default_str();
   app.add_flag("--quiet", a.quiet, "no report on stdout, no progress on stderr");
   return cli::run_main(app, argc, argv, [&]() {
     if (a.quiet) log::set_level(log::Level::Quiet);

@@ -118,10 +118,15 @@ std::string anova_markdown(const std::vector<DesignAnova>& tables) {
     for (const AnovaRow& r : t.terms) {
       md << "| " << r.source << (r.pooled ? " (pooled)" : "") << " | " << r.df << " | " << format_number(r.ss) << " | "
          << format_number(r.ms) << " | " << format_number(r.f) << " | " << format_p(r.p) << " | "
-         << (r.pooled ? "" : significance_word(r.p)) << " | " << format_number(100.0 * r.ss / t.total.ss, 4) << " |\n";
+         << (r.pooled ? "" : significance_word(r.p)) << " | "
+         << (r.pooled ? std::string("in Error") : format_number(100.0 * r.ss / t.total.ss, 4)) << " |\n";
     }
     md << "| Error | " << t.error.df << " | " << format_number(t.error.ss) << " | " << format_number(t.error.ms)
        << " |  |  |  | " << format_number(100.0 * t.error.ss / t.total.ss, 4) << " |\n";
+    if (t.unassigned.df > 0)
+      md << "| " << t.unassigned.source << " | " << t.unassigned.df << " | " << format_number(t.unassigned.ss)
+         << " | " << format_number(t.unassigned.ss / t.unassigned.df) << " |  |  |  | "
+         << format_number(100.0 * t.unassigned.ss / t.total.ss, 4) << " |\n";
     md << "| Total | " << t.total.df << " | " << format_number(t.total.ss) << " |  |  |  |  |  |\n\n";
     md << "R-sq of the model with every term: " << format_number(100.0 * t.r2, 5)
        << " %. Marks: ** p < 0.01 (highly significant), * p < 0.05 (significant).\n\n";
@@ -144,6 +149,10 @@ json anova_json(const std::vector<DesignAnova>& tables) {
     }
     table["error"] = {{"ss", t.error.ss}, {"df", t.error.df}, {"ms", json_number(t.error.ms)},
                       {"source", t.error_description}, {"total_ss", t.total.ss}, {"total_df", t.total.df}};
+    if (t.unassigned.df > 0) {
+      table["error"]["unassigned_ss"] = t.unassigned.ss;
+      table["error"]["unassigned_df"] = t.unassigned.df;
+    }
     out[t.response] = table;
   }
   return out;
@@ -158,6 +167,8 @@ std::string anova_csv(const std::vector<DesignAnova>& tables) {
       csv << t.response << ',' << r.source << ',' << r.df << ',' << num(r.ss) << ',' << num(r.ms) << ',' << num(r.f)
           << ',' << num(r.p) << ',' << (r.pooled ? "" : significance_mark(r.p)) << ',' << (r.pooled ? 1 : 0) << '\n';
     csv << t.response << ",Error," << t.error.df << ',' << num(t.error.ss) << ',' << num(t.error.ms) << ",,,,0\n";
+    if (t.unassigned.df > 0)
+      csv << t.response << ",Residual (not in the error)," << t.unassigned.df << ',' << num(t.unassigned.ss) << ",,,,,0\n";
     csv << t.response << ",Total," << t.total.df << ',' << num(t.total.ss) << ",,,,,0\n";
   }
   return csv.str();

@@ -34,7 +34,7 @@ Eigen::MatrixXd select_columns(const Table& table, const std::vector<std::string
     for (std::size_t i = 0; i < column.size(); ++i) {
       if (!std::isfinite(column[i]))
         throw Error(origin + ": column " + names[j] + ", run " + std::to_string(table.run_ids()[i]) +
-                    ": not a number (a failed point? drop or rerun it before fitting)");
+                    ": not a number (a failed DEM point? drop or rerun it)");
       values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = column[i];
     }
   }

@@ -115,6 +115,7 @@ DesignAnova design_anova(const std::vector<std::string>& names, const Eigen::Mat
     error.df = rows[error_block].df;
     result.error_description = "SS of column " + options.error_column;
     rows.pop_back();
+    result.unassigned = AnovaRow{"Residual (not in the error)", full.sse, full.residual_df};
   } else {
     error.ss = full.sse;
     error.df = full.residual_df;

@@ -19,15 +19,21 @@ std::string surface_markdown(const SurfaceFit& fit) {
   for (std::size_t j = 0; j < fit.factors.size(); ++j)
     md << " " << fit.factors[j] << ": center " << format_number(fit.coding[j].center) << ", half_range "
        << format_number(fit.coding[j].half_range) << (j + 1 < fit.factors.size() ? ";" : "");
-  md << "\n\n| Term | Coef | SE Coef | T-Value | P-Value |\n|---|---|---|---|---|\n";
+  md << "\n\n| Term | Coef | SE Coef | T-Value | P-Value | VIF |\n|---|---|---|---|---|---|\n";
   for (const CoefficientRow& r : fit.coded)
     md << "| " << (r.term == "1" ? "Constant" : r.term) << " | " << format_number(r.coef) << " | "
-       << format_number(r.se) << " | " << format_number(r.t, 4) << " | " << format_p(r.p) << " |\n";
+       << format_number(r.se) << " | " << format_number(r.t, 4) << " | " << format_p(r.p) << " | "
+       << format_number(r.vif, 4) << " |\n";
   md << "\n### Model summary\n\n| S | R-sq | R-sq(adj) | R-sq(pred) | PRESS |\n|---|---|---|---|---|\n| "
      << format_number(fit.s) << " | " << format_number(100.0 * fit.r2, 5) << " % | "
-     << format_number(100.0 * fit.r2_adj, 5) << " % | " << format_number(100.0 * std::max(0.0, fit.r2_pred), 5) << " % | "
-     << format_number(fit.press) << " |\n";
-  if (fit.r2_pred < 0) md << "\nPredicted R-sq is negative (" << format_number(fit.r2_pred, 4) << "); shown as 0 as Minitab does.\n";
+     << format_number(100.0 * fit.r2_adj, 5) << " % | "
+     << (std::isfinite(fit.r2_pred) ? format_number(100.0 * std::max(0.0, fit.r2_pred), 5) + " %" : std::string("*"))
+     << " | " << (std::isfinite(fit.press) ? format_number(fit.press) : std::string("*")) << " |\n";
+  if (!std::isfinite(fit.r2_pred))
+    md << "\nR-sq(pred) is undefined (*): a point has leverage 1, so leaving it out leaves its term unestimable "
+          "(e.g. a single centre point); add replicates.\n";
+  else if (fit.r2_pred < 0)
+    md << "\nPredicted R-sq is negative (" << format_number(fit.r2_pred, 4) << "); shown as 0 as Minitab does.\n";
   md << "\n### Analysis of variance (adjusted SS)\n\n| Source | DF | Adj SS | Adj MS | F-Value | P-Value |\n"
      << "|---|---|---|---|---|---|\n";
   for (const AnovaRow& r : fit.anova) {

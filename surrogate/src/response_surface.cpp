@@ -161,6 +161,13 @@ SurfaceFit fit_surface(const std::vector<std::string>& factors, const Eigen::Mat
   result.observed = y;
   result.fitted = fit.fitted;
   result.coded = coefficient_table(terms, fit, mse);
+  // Variance inflation factors (Minitab prints them beside the coded coefficients):
+  // VIF_j = [(X'X)^-1]_jj * sum_i (x_ij - mean_j)^2.
+  for (std::size_t t = 1; t < terms.size(); ++t) {
+    const auto j = static_cast<Eigen::Index>(t);
+    const double centred = (M.col(j).array() - M.col(j).mean()).square().sum();
+    result.coded[t].vif = fit.unscaled_covariance(j, j) * centred;
+  }
 
   // Natural units: the same (hierarchical) term set spans the same functions.
   LeastSquaresFit natural = least_squares(term_matrix(terms, X), y);

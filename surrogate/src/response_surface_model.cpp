@@ -77,7 +77,7 @@ json coefficient_table_json(const std::vector<CoefficientRow>& rows) {
   json table = json::array();
   for (const CoefficientRow& row : rows)
     table.push_back({{"term", row.term}, {"coef", json_number(row.coef)}, {"se", json_number(row.se)},
-                     {"t", json_number(row.t)}, {"p", json_number(row.p)}});
+                     {"t", json_number(row.t)}, {"p", json_number(row.p)}, {"vif", json_number(row.vif)}});
   return table;
 }
 

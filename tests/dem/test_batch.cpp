@@ -114,3 +114,26 @@ TEST(DemcalDemBatch, ABadDesignPointIsRecordedAsFailedAndTheBatchGoesOn) {
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 4);
   EXPECT_NE(text.find("\n3,12,16,1,ok,"), std::string::npos) << text;
 }
+
+TEST(DemcalDemBatch, AChangedDesignPointIsRunAgainNotReused) {
+  const std::string out = temp("changed.h5"), cache = temp("cache_changed");
+  auto batch = [&](const std::string& design) {
+    std::string command = kBin + " batch --scene " + kScene + " --design " + design + " --out " + out + " --jobs 2 --cache " +
+                          cache + " --quiet 2>" + temp("changed.err");
+    return std::system(command.c_str());
+  };
+  const std::string design = temp("changed_design.csv");
+  {
+    std::ofstream(design) << "run,pb_sigma_c_MPa\n1,9\n2,11\n";
+  }
+  ASSERT_EQ(batch(design), 0);
+  std::map<std::string, std::string> before = point_files(out + ".points");
+  {
+    std::ofstream(design) << "run,pb_sigma_c_MPa\n1,9\n2,14\n";  // run 2 now means something else
+  }
+  ASSERT_EQ(batch(design), 0);
+  std::map<std::string, std::string> after = point_files(out + ".points");
+  EXPECT_EQ(after.at("run1_seed1.json"), before.at("run1_seed1.json"));  // unchanged: reused
+  EXPECT_NE(after.at("run2_seed1.json"), before.at("run2_seed1.json"));  // changed: run again
+  EXPECT_NE(after.at("run2_seed1.json").find("\"pb_sigma_c_MPa\":14.0"), std::string::npos) << after.at("run2_seed1.json");
+}

@@ -70,6 +70,31 @@ TEST(Inversion, UnreachableTargetIsFlaggedWithTheAttainableRange) {
   EXPECT_NEAR(j["nearest_attainable"]["strength"].get<double>(), 22.0, 1e-6);
 }
 
+TEST(Inversion, AMissedButAttainableTargetIsNotMetNotUnreachable) {
+  Toy toy;
+  InversionProblem problem({&toy}, nullptr, {{"strength", 12.0}, {"stiffness", 20.5}}, ObjectiveKind::SumRel);
+  InversionSettings settings;
+  settings.budget.max_evaluations = 1;  // one random point: surely a miss
+  InversionResult r = invert(problem, settings);
+  EXPECT_EQ(r.status, "not_met");
+  nlohmann::json j = solution_json(problem, settings, r);
+  EXPECT_NE(j["reason"].get<std::string>().find("inside its attainable range"), std::string::npos);
+  EXPECT_TRUE(j.contains("spread_note"));
+}
+
+TEST(Inversion, AModelThatPredictsNoTargetIsLeftOut) {
+  Toy toy;
+  class Other : public BoxModel {
+   public:
+    Other() : BoxModel({{"d", 0, 1}}, {"density"}) {}
+    void predict(const double* x, double* y) const override { y[0] = x[0]; }
+  } other;
+  InversionProblem problem({&toy, &other}, nullptr, {{"strength", 12.0}}, ObjectiveKind::SumRel);
+  EXPECT_EQ(problem.parameter_names(), (std::vector<std::string>{"a", "b", "c"}));  // no "d"
+  ASSERT_EQ(problem.warnings().size(), 1u);
+  EXPECT_NE(problem.warnings()[0].find("density"), std::string::npos);
+}
+
 TEST(Inversion, SpaceFixesTiesAndReportsFreeParameters) {
   Toy toy;
   nlohmann::json space_json = {
@@ -121,6 +146,8 @@ TEST(Inversion, ToleranceSearchReturnsClusterCentresAsCandidates) {
     EXPECT_TRUE(problem.bounds().contains(c.x));
   }
   EXPECT_EQ(total, r.spread_points);
+  for (const Candidate& c : r.candidates)
+    EXPECT_EQ(c.within_tolerance, c.max_relative_error <= settings.search.tolerance);
   EXPECT_EQ(r.spread_basis, "search points within the tolerance");
   EXPECT_LE(r.max_relative_error, settings.search.tolerance);
 }

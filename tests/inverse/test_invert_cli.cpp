@@ -78,14 +78,23 @@ TEST_F(DemcalInvert, UnreachableTargetExitsWithCodeThree) {
   EXPECT_TRUE(s.contains("nearest_attainable"));
 }
 
+TEST_F(DemcalInvert, AnOptimiserThatMissesAttainableTargetsExitsWithCodeFour) {
+  std::string out = temp_path("not_met.json");
+  auto r = run_program("demcal-invert", models_ + " --target sigma_u_MPa=30 --target E_GPa=30 --target nu=0.2 --budget 1 --out " + out);
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(read_json(out)["status"], "not_met");
+  EXPECT_NE(r.err.find("targets not met"), std::string::npos) << r.err;
+}
+
 TEST_F(DemcalInvert, Errors) {
   expect_one_line_error(run_program("demcal-invert", models_ + " --target density=2400 --out /tmp/x.json"), "demcal-invert",
                         "no model predicts it");
   expect_one_line_error(run_program("demcal-invert", models_ + " --target E_GPa --out /tmp/x.json"), "demcal-invert",
                         "expected NAME=VALUE");
-  expect_one_line_error(run_program("demcal-invert", models_ + " --target E_GPa=30 --set populaton=300 --out /tmp/x.json"),
+  const std::string all = " --target E_GPa=30 --target sigma_u_MPa=30 --target nu=0.2";
+  expect_one_line_error(run_program("demcal-invert", models_ + all + " --set populaton=300 --out /tmp/x.json"),
                         "demcal-invert", "setting \"populaton\" does not apply to ga");
-  expect_one_line_error(run_program("demcal-invert", models_ + " --target E_GPa=30 --algo pso --out /tmp/x.json"),
+  expect_one_line_error(run_program("demcal-invert", models_ + all + " --algo pso --out /tmp/x.json"),
                         "demcal-invert", "unknown algorithm \"pso\"");
   expect_one_line_error(run_program("demcal-invert", " --model /nonexistent.json --target E_GPa=30 --out /tmp/x.json"),
                         "demcal-invert", "/nonexistent.json: cannot open model");

@@ -143,6 +143,10 @@ TEST(ResponseSurface, PublishedBoxBehnkenForNu) {
   EXPECT_NEAR(coefficient(fit.natural, "mu"), -0.158166666666665, 1e-12);
   EXPECT_NEAR(anova_row(fit, "kn_ks").f, 1217.8310322156465, 1e-7);
   EXPECT_NEAR(anova_row(fit, "Lack-of-Fit").p, 0.9999858651256659, 1e-11);
+  // Variance inflation of a Box-Behnken: 1 for linear and interaction terms, 1.25 for squares here.
+  EXPECT_NEAR(fit.coded[1].vif, 1.0, 1e-12);
+  EXPECT_NEAR(fit.coded[5].vif, 1.25, 1e-12);
+  EXPECT_NEAR(fit.coded[9].vif, 1.0, 1e-12);
 
   SurfaceOptions linear;
   linear.kind = SurfaceKind::Linear;

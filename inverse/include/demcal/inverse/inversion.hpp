@@ -42,6 +42,7 @@ struct Candidate {
   std::vector<double> predicted;
   double objective = 0.0;
   double max_relative_error = 0.0;
+  bool within_tolerance = false;  // every target within the search tolerance at the centre itself
 };
 
 struct RestartRecord {
@@ -72,7 +73,9 @@ struct AttainableRange {
 };
 
 struct InversionResult {
-  std::string status;  // "ok" or "unreachable"
+  // "ok"; "unreachable" (a target outside the attainable range); "not_met"
+  // (every target attainable, but the best point misses the tolerance)
+  std::string status;
   Point x;
   double objective = 0.0;
   double max_relative_error = 0.0;

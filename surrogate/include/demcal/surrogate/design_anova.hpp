@@ -27,6 +27,9 @@ struct DesignAnova {
   std::vector<AnovaRow> terms;  // in the order given; pooled ones flagged
   AnovaRow error;               // source "Error" (residual, the blank column, plus pooled terms)
   AnovaRow total;
+  // With a blank column as the error: the model's residual, which is then in
+  // no row of the test (shown so the table adds up); df 0 otherwise.
+  AnovaRow unassigned;
   std::string error_description;
   double r2 = 0.0;              // of the model with every term
 };

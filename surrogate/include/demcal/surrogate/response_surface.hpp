@@ -4,6 +4,7 @@
 // The fit, its ANOVA and its coded coefficients are computed in coded units
 // x = (X - center) / half_range, as Minitab does; the coefficients are also
 // given in natural units (the model file predicts with those).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,7 @@ struct CoefficientRow {
   double se = 0.0;
   double t = 0.0;
   double p = 0.0;
+  double vif = std::numeric_limits<double>::quiet_NaN();  // coded table only, not for the constant
 };
 
 struct SurfaceFit {

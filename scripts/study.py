@@ -1,0 +1,496 @@
+#!/usr/bin/python3
+"""Study files: validation, the make plan of a study, design preparation and the report.
+
+    study.py plan STUDY.json OUT_DIR     validate and write OUT_DIR/plan.mk with its stage configs
+    study.py design CONFIG.json OUT.csv  a surface's design in natural units, fixed values added
+    study.py refine OUT_DIR              while verification fails: add its DEM runs to the data, refit,
+                                         re-invert, re-verify (up to refinement.rounds rounds)
+    study.py report OUT_DIR              OUT_DIR/report.md and a self-contained report.html
+
+`make study STUDY=data/studies/NAME.json` runs plan, then make on the plan: every stage is a
+file target (design -> DEM responses -> models -> solution -> verification -> report), so an
+interrupted study resumes, `make -j2` runs independent stages together, and a change to the study
+rewrites only the stage configs it touches (their contents are compared), so only what depends
+on them runs again.
+"""
+import base64
+import csv
+import hashlib
+import html
+import json
+import os
+import re
+import subprocess
+import sys
+
+KNOWN = {"name", "description", "scene", "space", "targets", "fixed", "surfaces", "surrogate", "inversion",
+         "verification", "refinement", "seeds_per_point"}
+SURROGATES = {"quadratic", "linear", "gabp"}
+ALGORITHMS = {"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "search"}
+OBJECTIVES = {"sum-rel", "max-rel", "sse-rel"}
+DESIGNS = {"ccd", "bbd", "lhs"}
+MACROS = {"sigma_u_MPa", "E_GPa", "E50_GPa", "nu", "peak_strain", "sigma_t_MPa"}
+
+
+def fail(message):
+    print(f"study.py: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def load_json(path, what):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except OSError as e:
+        fail(f"{path}: cannot open {what} ({e.strerror})")
+    except ValueError as e:
+        fail(f"{path}: not valid JSON ({e})")
+
+
+def write_if_changed(path, text):
+    """Writes only when the content differs, so make sees a change only where there is one."""
+    if os.path.exists(path) and open(path).read() == text:
+        return
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def validate(study, path):
+    where = path
+    unknown = sorted(set(study) - KNOWN)
+    if unknown:
+        fail(f"{where}: unknown field \"{unknown[0]}\" (allowed: {', '.join(sorted(KNOWN))})")
+    for key in ("name", "scene", "space", "targets", "surfaces"):
+        if key not in study:
+            fail(f"{where}: missing \"{key}\"")
+    if not re.fullmatch(r"[A-Za-z0-9_.-]+", study["name"]):
+        fail(f"{where}: name \"{study['name']}\" must be letters, digits, '_', '-' or '.'")
+    scene = load_json(study["scene"], "scene")
+    space = load_json(study["space"], "parameter space")
+    scene_params = set(scene.get("parameters", {}))
+    space_params = {p["name"]: p for p in space.get("parameters", [])}
+    targets = study["targets"]
+    if not isinstance(targets, dict) or not targets:
+        fail(f"{where}: targets must be an object of output: value")
+    for name, value in targets.items():
+        if name not in MACROS:
+            fail(f"{where}: targets.{name}: not a DEM output (outputs: {', '.join(sorted(MACROS))})")
+        if not isinstance(value, (int, float)) or value == 0:
+            fail(f"{where}: targets.{name} must be a non-zero number")
+    fixed = study.get("fixed", "reference")
+    if fixed != "reference" and not isinstance(fixed, dict):
+        fail(f"{where}: fixed must be \"reference\" or an object of parameter: value")
+    if isinstance(fixed, dict):
+        for name, value in fixed.items():
+            if name not in scene_params:
+                fail(f"{where}: fixed.{name}: not a parameter of {study['scene']}")
+            if not isinstance(value, (int, float)):
+                fail(f"{where}: fixed.{name} must be a number")
+    covered = set()
+    for k, surface in enumerate(study["surfaces"]):
+        w = f"{where}: surfaces[{k}]"
+        extra = sorted(set(surface) - {"outputs", "factors", "design"})
+        if extra:
+            fail(f"{w}: unknown field \"{extra[0]}\" (allowed: outputs, factors, design)")
+        for key in ("outputs", "factors", "design"):
+            if key not in surface:
+                fail(f"{w}: missing \"{key}\"")
+        for o in surface["outputs"]:
+            if o not in MACROS:
+                fail(f"{w}: output {o} is not a DEM output")
+            if o in covered:
+                fail(f"{w}: output {o} has a surface already")
+            covered.add(o)
+        for f in surface["factors"]:
+            if f not in space_params:
+                fail(f"{w}: factor {f} is not a parameter of {study['space']} (parameters: {', '.join(space_params)})")
+            if f not in scene_params:
+                fail(f"{w}: factor {f} is not a parameter of {study['scene']}")
+        d = surface["design"]
+        if d.get("kind") not in DESIGNS:
+            fail(f"{w}: design.kind must be one of {', '.join(sorted(DESIGNS))}")
+        extra = sorted(set(d) - {"kind", "center", "alpha", "runs", "criterion"})
+        if extra:
+            fail(f"{w}: design: unknown field \"{extra[0]}\"")
+        k_factors = len(surface["factors"])
+        if d["kind"] == "bbd" and not 3 <= k_factors <= 7:
+            fail(f"{w}: a Box-Behnken design needs 3 to 7 factors, not {k_factors}")
+        if d["kind"] == "lhs" and int(d.get("runs", 0)) < (k_factors + 1) * (k_factors + 2) // 2 + 1:
+            fail(f"{w}: an LHS for a quadratic in {k_factors} factors needs at least "
+                 f"{(k_factors + 1) * (k_factors + 2) // 2 + 1} runs (design.runs)")
+    missing = sorted(set(targets) - covered)
+    if missing:
+        fail(f"{where}: target {missing[0]} has no surface (add it to a surfaces[].outputs)")
+    if study.get("surrogate", "quadratic") not in SURROGATES:
+        fail(f"{where}: surrogate must be one of {', '.join(sorted(SURROGATES))}")
+    inv = study.get("inversion", {})
+    if inv.get("algorithm", "ga") not in ALGORITHMS:
+        fail(f"{where}: inversion.algorithm must be one of {', '.join(sorted(ALGORITHMS))}")
+    if inv.get("objective", "sum-rel") not in OBJECTIVES:
+        fail(f"{where}: inversion.objective must be one of {', '.join(sorted(OBJECTIVES))}")
+    ver = study.get("verification", {})
+    if int(ver.get("seeds", 5)) < 2:
+        fail(f"{where}: verification.seeds must be at least 2 (a spread needs two runs)")
+    ref = study.get("refinement", {"rounds": 0})
+    if not isinstance(ref, dict) or set(ref) - {"rounds"} or not isinstance(ref.get("rounds", 0), int) or ref.get("rounds", 0) < 0:
+        fail(f"{where}: refinement must be {{\"rounds\": N}} with N >= 0")
+    if int(study.get("seeds_per_point", 1)) < 1:
+        fail(f"{where}: seeds_per_point must be at least 1")
+    return scene, space
+
+
+def fixed_values(study, scene, space, varied):
+    """Every scene parameter not varied: the study's fixed value or the space's reference."""
+    values = {}
+    refs = {p["name"]: p.get("reference") for p in space.get("parameters", [])}
+    for name, spec in scene["parameters"].items():
+        if name in varied:
+            continue
+        if isinstance(study.get("fixed"), dict) and name in study["fixed"]:
+            values[name] = study["fixed"][name]
+        elif refs.get(name) is not None:
+            values[name] = refs[name]
+        else:
+            values[name] = spec["value"]
+    values.update(space.get("fixed", {}))
+    return values
+
+
+def subspace(space, factors, fixed):
+    params = [p for p in space["parameters"] if p["name"] in factors]
+    return {"parameters": params, "fixed": {k: v for k, v in fixed.items()}}
+
+
+def plan(study_path, out):
+    study = load_json(study_path, "study")
+    scene, space = validate(study, study_path)
+    cfg = os.path.join(out, "config")
+    seeds = int(study.get("seeds_per_point", 1))
+    surrogate = study.get("surrogate", "quadratic")
+    varied_all = [f for s in study["surfaces"] for f in s["factors"]]
+    varied_all = list(dict.fromkeys(varied_all))
+    rules = [f"# Generated by scripts/study.py from {study_path}; do not edit.",
+             "BIN ?= build/bin", "CACHE ?= build/cache", "JOBS ?= 2", "PY := /usr/bin/python3", f"D := {out}", ""]
+    models = []
+    for k, surface in enumerate(study["surfaces"]):
+        g = f"g{k + 1}"
+        fixed = fixed_values(study, scene, space, surface["factors"])
+        write_if_changed(os.path.join(cfg, f"space_{g}.json"), json.dumps(subspace(space, surface["factors"], fixed), indent=1) + "\n")
+        write_if_changed(os.path.join(cfg, f"design_{g}.json"), json.dumps(
+            {"space": os.path.join(cfg, f"space_{g}.json"), "design": surface["design"], "fixed": fixed}, indent=1) + "\n")
+        write_if_changed(os.path.join(cfg, f"batch_{g}.json"), json.dumps({"scene": study["scene"], "seeds": seeds}) + "\n")
+        rules += [
+            f"$(D)/{g}/design.csv: $(D)/config/design_{g}.json $(D)/config/space_{g}.json scripts/study.py",
+            f"\t$(PY) scripts/study.py design $< $@",
+            f"$(D)/{g}/responses.csv: $(D)/{g}/design.csv $(D)/config/batch_{g}.json {study['scene']}",
+            f"\t$(BIN)/demcal-dem batch --scene {study['scene']} --design $< --out $(D)/{g}/responses.h5 "
+            f"--csv $(D)/{g}/responses.partial.csv --seeds {seeds} --jobs $(JOBS) --cache $(CACHE) || [ $$? -eq 4 ]",
+            f"\tmv $(D)/{g}/responses.partial.csv $@", ""]
+        for output in surface["outputs"]:
+            fit = {"kind": surrogate, "x": surface["factors"], "y": output}
+            write_if_changed(os.path.join(cfg, f"fit_{output}.json"), json.dumps(fit) + "\n")
+            coding = f" --space $(D)/config/space_{g}.json" if surrogate != "gabp" else " --seed 1"
+            rules += [
+                f"$(D)/models/{output}.json: $(D)/{g}/responses.csv $(D)/config/fit_{output}.json",
+                f"\t@mkdir -p $(D)/models",
+                f"\t$(BIN)/demcal-fit {surrogate} --data $< --x {','.join(surface['factors'])} --y {output}{coding} "
+                f"--out $@ --report $(D)/models/{output}.md --residuals $(D)/models/{output}_residuals.csv --quiet",
+                f"\t$(PY) scripts/plot_analysis.py fit $(D)/models/{output}_residuals.csv --out $(D)/models/{output}_fit.png > /dev/null",
+                ""]
+            models.append(output)
+    inv = study.get("inversion", {})
+    fixed_inv = fixed_values(study, scene, space, varied_all)
+    write_if_changed(os.path.join(cfg, "space_inversion.json"), json.dumps(subspace(space, varied_all, fixed_inv), indent=1) + "\n")
+    inversion = {"targets": study["targets"], "algorithm": inv.get("algorithm", "ga"),
+                 "objective": inv.get("objective", "sum-rel"), "restarts": int(inv.get("restarts", 5)),
+                 "polish": bool(inv.get("polish", True)), "seed": int(inv.get("seed", 1))}
+    write_if_changed(os.path.join(cfg, "inversion.json"), json.dumps(inversion, indent=1) + "\n")
+    targets = " ".join(f"--target {k}={v}" for k, v in study["targets"].items())
+    model_args = " ".join(f"--model $(D)/models/{m}.json" for m in models)
+    rules += [
+        f"$(D)/solution.json: {' '.join(f'$(D)/models/{m}.json' for m in models)} $(D)/config/inversion.json $(D)/config/space_inversion.json",
+        f"\t$(BIN)/demcal-invert {model_args} {targets} --space $(D)/config/space_inversion.json "
+        f"--algo {inversion['algorithm']} --objective {inversion['objective']} --restarts {inversion['restarts']} "
+        f"--seed {inversion['seed']}{' --polish' if inversion['polish'] else ''} --out $@ --history $(D)/inversion_history.csv "
+        "|| case $$? in 3|4) ;; *) exit 1 ;; esac", ""]
+    ver = study.get("verification", {})
+    verification = {"seeds": int(ver.get("seeds", 5)), "tolerance": float(ver.get("tolerance", 0.05)), "scene": study["scene"]}
+    write_if_changed(os.path.join(cfg, "verification.json"), json.dumps(verification) + "\n")
+    rules += [
+        f"$(D)/verification.json: $(D)/solution.json $(D)/config/verification.json {study['scene']}",
+        f"\t$(BIN)/demcal-verify --solution $< --scene {study['scene']} --space $(D)/config/space_inversion.json "
+        f"--seeds {verification['seeds']} --tolerance {verification['tolerance']} --jobs $(JOBS) --cache $(CACHE) "
+        f"--work $(D)/verification --md $(D)/verification.md --csv $(D)/verification.csv --out $@", ""]
+    write_if_changed(os.path.join(cfg, "study.json"), json.dumps(study, indent=1, sort_keys=True) + "\n")
+    write_if_changed(os.path.join(cfg, "refinement.json"), json.dumps(study.get("refinement", {"rounds": 0})) + "\n")
+    rules += [
+        "$(D)/refined.json: $(D)/verification.json $(D)/config/refinement.json",
+        "\t$(PY) scripts/study.py refine $(D)", "",
+        "$(D)/report.md: $(D)/refined.json $(D)/config/study.json scripts/study.py",
+        "\t$(PY) scripts/study.py report $(D)", "",
+        "all: $(D)/report.md", ".PHONY: all", ".DEFAULT_GOAL := all", ""]
+    write_if_changed(os.path.join(out, "plan.mk"), "\n".join(rules))
+    print(os.path.join(out, "plan.mk"))
+
+
+def design(config_path, out_csv):
+    cfg = load_json(config_path, "design config")
+    d = cfg["design"]
+    os.makedirs(os.path.dirname(out_csv) or ".", exist_ok=True)
+    cmd = ["build/bin/demcal-doe", d["kind"], "--space", cfg["space"], "--out", out_csv + ".tmp.csv", "--quiet"]
+    for key in ("center", "alpha", "runs", "criterion"):
+        if key in d:
+            cmd += [f"--{key}", str(d[key])]
+    if subprocess.run(cmd).returncode != 0:
+        fail(f"demcal-doe failed for {config_path}")
+    with open(out_csv + ".tmp.csv") as f:
+        rows = list(csv.reader(f))
+    header = rows[0] + list(cfg["fixed"])
+    os.makedirs(os.path.dirname(out_csv) or ".", exist_ok=True)
+    with open(out_csv + ".tmp2", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        for row in rows[1:]:
+            w.writerow(row + [repr(float(v)) for v in cfg["fixed"].values()])
+    os.replace(out_csv + ".tmp2", out_csv)
+    os.remove(out_csv + ".tmp.csv")
+
+
+def merged_rows(paths):
+    """Rows of several DEM response CSVs (different column orders), status ok only."""
+    rows = []
+    for path, run_offset in paths:
+        with open(path) as f:
+            for row in csv.DictReader(f):
+                if row.get("status") != "ok":
+                    continue
+                row["run"] = str(int(row["run"]) + run_offset + int(row.get("seed", 1)))
+                rows.append(row)
+    return rows
+
+
+def refine(out):
+    """Adds each verification's DEM runs to the data, refits, re-inverts and re-verifies."""
+    study = load_json(os.path.join(out, "config", "study.json"), "study")
+    rounds = int(study.get("refinement", {}).get("rounds", 0))
+    bin_dir = os.environ.get("BIN", "build/bin")
+    cache = os.environ.get("CACHE", "build/cache")
+    jobs = os.environ.get("JOBS", "2")
+    inversion = load_json(os.path.join(out, "config", "inversion.json"), "inversion")
+    verification = load_json(os.path.join(out, "config", "verification.json"), "verification")
+    current = {"solution": os.path.join(out, "solution.json"), "verification": os.path.join(out, "verification.json"),
+               "runs": os.path.join(out, "verification", "runs.csv")}
+    record = {"rounds": [], "final": current}
+    added = []
+    for k in range(1, rounds + 1):
+        if load_json(current["verification"], "verification")["passed"]:
+            break
+        added.append((current["runs"], 100000 * k))
+        rd = os.path.join(out, "refine", f"round{k}")
+        os.makedirs(os.path.join(rd, "models"), exist_ok=True)
+        models = []
+        for g, surface in enumerate(study["surfaces"], start=1):
+            rows = merged_rows([(os.path.join(out, f"g{g}", "responses.csv"), 0)] + added)
+            columns = ["run"] + surface["factors"] + surface["outputs"]
+            data = os.path.join(rd, f"data_g{g}.csv")
+            with open(data, "w", newline="") as f:
+                w = csv.writer(f)
+                w.writerow(columns)
+                for row in rows:
+                    w.writerow([row[c] for c in columns])
+            for o in surface["outputs"]:
+                model = os.path.join(rd, "models", f"{o}.json")
+                code = subprocess.run([os.path.join(bin_dir, "demcal-fit"), study.get("surrogate", "quadratic"), "--data", data,
+                                       "--x", ",".join(surface["factors"]), "--y", o, "--space",
+                                       os.path.join(out, "config", f"space_g{g}.json"), "--out", model, "--quiet"]).returncode
+                if code != 0:
+                    fail(f"refinement round {k}: demcal-fit failed for {o}")
+                models += ["--model", model]
+        solution = os.path.join(rd, "solution.json")
+        cmd = [os.path.join(bin_dir, "demcal-invert")] + models
+        for t, v in study["targets"].items():
+            cmd += ["--target", f"{t}={v}"]
+        cmd += ["--space", os.path.join(out, "config", "space_inversion.json"), "--algo", inversion["algorithm"],
+                "--objective", inversion["objective"], "--restarts", str(inversion["restarts"]), "--seed", str(inversion["seed"]),
+                "--out", solution, "--quiet"] + (["--polish"] if inversion["polish"] else [])
+        if subprocess.run(cmd).returncode not in (0, 3, 4):
+            fail(f"refinement round {k}: demcal-invert failed")
+        ver = os.path.join(rd, "verification.json")
+        if subprocess.run([os.path.join(bin_dir, "demcal-verify"), "--solution", solution, "--scene", study["scene"], "--space",
+                           os.path.join(out, "config", "space_inversion.json"), "--seeds", str(verification["seeds"]),
+                           "--tolerance", str(verification["tolerance"]), "--jobs", jobs, "--cache", cache, "--work",
+                           os.path.join(rd, "verification"), "--md", os.path.join(rd, "verification.md"), "--out", ver,
+                           "--quiet"]).returncode != 0:
+            fail(f"refinement round {k}: demcal-verify failed")
+        v = load_json(ver, "verification")
+        record["rounds"].append({"round": k, "data_points": len(rows), "dem_runs": verification["seeds"],
+                                 "passed": v["passed"],
+                                 "relative_error_pct": {o: r["relative_error_pct"] for o, r in v["outputs"].items()}})
+        print(f"refinement round {k}: " + ", ".join(f"{o} {r['relative_error_pct']:+.2f} %" for o, r in v["outputs"].items())
+              + (" - passed" if v["passed"] else ""), flush=True)
+        current = {"solution": solution, "verification": ver, "runs": os.path.join(rd, "verification", "runs.csv")}
+        record["final"] = current
+    write_if_changed(os.path.join(out, "refined.json"), json.dumps(record, indent=1) + "\n")
+
+
+def curves_png(runs_h5, out_png):
+    try:
+        import h5py
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        return f"(no curve plot: {e})"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    with h5py.File(runs_h5, "r") as f:
+        for name in sorted(f["points"]):
+            g = f["points"][name]
+            if "curve_axial_strain" in g and "curve_stress_MPa" in g:
+                ax.plot(g["curve_axial_strain"][:] * 100, g["curve_stress_MPa"][:], label=name.replace("run1_", ""))
+    ax.set_xlabel("axial strain (%)")
+    ax.set_ylabel("axial stress (MPa)")
+    ax.set_title("Verification runs at the calibrated parameters")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=150)
+    return None
+
+
+def md_to_html(md, base):
+    """Enough Markdown for the report: headings, tables, images (inlined), paragraphs, code."""
+    out, table, code = [], [], False
+    def flush_table():
+        if not table:
+            return
+        out.append("<table>")
+        for i, row in enumerate(table):
+            if i == 1 and set(row.replace("|", "").strip()) <= set("-: "):
+                continue
+            cells = [c.strip() for c in row.strip().strip("|").split("|")]
+            tag = "th" if i == 0 else "td"
+            out.append("<tr>" + "".join(f"<{tag}>{html.escape(c)}</{tag}>" for c in cells) + "</tr>")
+        out.append("</table>")
+        table.clear()
+    for line in md.split("\n"):
+        if line.startswith("```"):
+            flush_table()
+            out.append("</pre>" if code else "<pre>")
+            code = not code
+            continue
+        if code:
+            out.append(html.escape(line))
+            continue
+        if line.startswith("|"):
+            table.append(line)
+            continue
+        flush_table()
+        m = re.match(r"!\[(.*)\]\((.*)\)", line.strip())
+        if m:
+            path = os.path.join(base, m.group(2))
+            if os.path.exists(path):
+                data = base64.b64encode(open(path, "rb").read()).decode()
+                out.append(f'<p><img alt="{html.escape(m.group(1))}" src="data:image/png;base64,{data}" style="max-width:100%"></p>')
+            continue
+        h = re.match(r"(#+) (.*)", line)
+        if h:
+            n = len(h.group(1))
+            out.append(f"<h{n}>{html.escape(h.group(2))}</h{n}>")
+        elif line.strip():
+            out.append(f"<p>{html.escape(line)}</p>")
+    flush_table()
+    style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}table{border-collapse:collapse;"
+             "margin:1em 0}td,th{border:1px solid #bbb;padding:.2em .5em;text-align:left}th{background:#eee}")
+    return f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>demcal report</title><style>{style}</style></head><body>\n" + \
+        "\n".join(out) + "\n</body></html>\n"
+
+
+def number(value, digits=4):
+    """A statistic for the report: fixed digits, or a dash when the tool wrote null."""
+    return f"{value:.{digits}f}" if isinstance(value, (int, float)) else "-"
+
+
+def report(out):
+    study = load_json(os.path.join(out, "config", "study.json"), "study")
+    refined = load_json(os.path.join(out, "refined.json"), "refinement record")
+    final = refined["final"]
+    first = load_json(os.path.join(out, "verification.json"), "verification")
+    solution = load_json(final["solution"], "solution")
+    lines = [f"# Calibration report: {study['name']}", "", study.get("description", ""), "",
+             f"Scene `{study['scene']}`, space `{study['space']}`.", "", "## Targets and parameter space", "",
+             "| output | target |", "|---|---|"]
+    lines += [f"| {k} | {v} |" for k, v in study["targets"].items()]
+    space = load_json(os.path.join(out, "config", "space_inversion.json"), "space")
+    lines += ["", "| varied parameter | low | high |", "|---|---|---|"]
+    lines += [f"| {p['name']} | {p['low']} | {p['high']} |" for p in space["parameters"]]
+    lines += ["", "Fixed: " + ", ".join(f"{k} = {v}" for k, v in space.get("fixed", {}).items()), "", "## Surrogates", "",
+              "| output | model | runs | R^2 | adjusted R^2 | predicted R^2 |", "|---|---|---|---|---|---|"]
+    figures = []
+    for surface in study["surfaces"]:
+        for o in surface["outputs"]:
+            m = load_json(os.path.join(out, "models", f"{o}.json"), "model")
+            r = m["responses"][0] if "responses" in m else {}
+            lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
+                         f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
+            figures.append(f"![fit of {o}](models/{o}_fit.png)")
+    lines += [""] + figures + ["", "## Inversion", "",
+              f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
+              f"{solution['evaluations']} evaluations, status **{solution['status']}**"
+              + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "") + ".", "",
+              "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+    for name, value in solution["x"].items():
+        s = solution.get("spread", {}).get(name)
+        spread = f"{s['min']:.4g} - {s['max']:.4g}" if s else ""
+        ident = ("yes" if s["identified"] else "no") if s else ""
+        lines.append(f"| {name} | {value:.4g} | {spread} | {ident} |")
+    lines += ["", "| output | target | surrogate at the solution | attainable range |", "|---|---|---|---|"]
+    for o, t in solution["targets"].items():
+        a = solution["attainable"].get(o, {})
+        lines.append(f"| {o} | {t} | {solution['predicted'].get(o, float('nan')):.4g} | {a.get('min', 0):.4g} - {a.get('max', 0):.4g} |")
+    if solution.get("unidentified"):
+        lines += ["", "Not identified by these targets (restarts that meet them spread over more than half the range): "
+                  + ", ".join(solution["unidentified"]) + "."]
+    lines += ["", "## Verification in DEM", ""]
+    if refined["rounds"]:
+        lines += ["The first verification " + ("passed" if first["passed"] else "failed") + ": " +
+                  ", ".join(f"{o} {r['relative_error_pct']:+.2f} %" for o, r in first["outputs"].items()) +
+                  ". Refinement (its DEM runs added to the data, surrogates refitted, inverted and verified again):", "",
+                  "| round | data points | DEM runs | relative errors | passed |", "|---|---|---|---|---|"]
+        for r in refined["rounds"]:
+            errors = ", ".join(f"{o} {e:+.2f} %" for o, e in r["relative_error_pct"].items())
+            lines.append(f"| {r['round']} | {r['data_points']} | {r['dem_runs']} | {errors} | {'yes' if r['passed'] else 'no'} |")
+        lines += ["", "The final round:", ""]
+    lines += open(final["verification"].replace(".json", ".md")).read().rstrip().split("\n")
+    runs = os.path.join(os.path.dirname(final["verification"]), "verification", "runs.h5")
+    if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png")) is None:
+        lines += ["", "![stress-strain curves](verification_curves.png)"]
+    text = "\n".join(lines) + "\n"
+    write_if_changed(os.path.join(out, "report.md"), text)
+    write_if_changed(os.path.join(out, "report.html"), md_to_html(text, out))
+    print(os.path.join(out, "report.md"))
+    print(os.path.join(out, "report.html"))
+
+
+def main():
+    if len(sys.argv) < 3 or sys.argv[1] not in ("plan", "design", "refine", "report"):
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+    command = sys.argv[1]
+    if command == "plan" and len(sys.argv) == 4:
+        plan(sys.argv[2], sys.argv[3])
+    elif command == "design" and len(sys.argv) == 4:
+        design(sys.argv[2], sys.argv[3])
+    elif command == "refine" and len(sys.argv) == 3:
+        refine(sys.argv[2])
+    elif command == "report" and len(sys.argv) == 3:
+        report(sys.argv[2])
+    else:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+
+
+if __name__ == "__main__":
+    main()
