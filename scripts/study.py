@@ -441,6 +441,10 @@ def report(out):
               f"{solution['evaluations']} evaluations, status **{solution['status']}**"
               + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "") + ".", "",
               "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+    if refined["rounds"]:
+        lines.insert(len(lines) - 3, f"(The solution of the last refinement round, {len(refined['rounds'])}; its surrogates "
+                                     "were refitted with the verification runs added.)")
+        lines.insert(len(lines) - 3, "")
     for name, value in solution["x"].items():
         s = solution.get("spread", {}).get(name)
         spread = f"{s['min']:.4g} - {s['max']:.4g}" if s else ""

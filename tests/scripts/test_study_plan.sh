@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Study files: a valid study plans into file-target stages; a change to one
+# part rewrites only that stage's config; bad studies stop with one line
+# naming the field.
+set -euo pipefail
+src=$1
+cd "$src"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+study="/usr/bin/python3 scripts/study.py"
+
+$study plan data/studies/demo.json "$work/demo" > /dev/null
+for f in plan.mk config/design_g1.json config/space_g1.json config/inversion.json config/verification.json; do
+  [ -s "$work/demo/$f" ] || { echo "FAIL: $f not written"; exit 1; }
+done
+grep -q '^\$(D)/solution.json:' "$work/demo/plan.mk" || { echo "FAIL: no solution stage"; exit 1; }
+
+# Changing the targets touches the inversion config, not the design's.
+design_before=$(stat -c %Y "$work/demo/config/design_g1.json")
+sleep 1
+sed 's/"sigma_u_MPa": 25/"sigma_u_MPa": 24/' data/studies/demo.json > "$work/changed.json"
+$study plan "$work/changed.json" "$work/demo" > /dev/null
+[ "$(stat -c %Y "$work/demo/config/design_g1.json")" = "$design_before" ] || { echo "FAIL: design config rewritten"; exit 1; }
+grep -q '"sigma_u_MPa": 24' "$work/demo/config/inversion.json" || { echo "FAIL: inversion config not updated"; exit 1; }
+
+expect_error() {  # file fragment
+  set +e
+  err=$($study plan "$1" "$work/bad" 2>&1 >/dev/null)
+  code=$?
+  set -e
+  [ "$code" -eq 2 ] || { echo "FAIL: $1: exit $code, expected 2"; exit 1; }
+  [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || { echo "FAIL: more than one error line: $err"; exit 1; }
+  printf '%s' "$err" | grep -q "$2" || { echo "FAIL: '$err' lacks '$2'"; exit 1; }
+}
+sed 's/"surrogate"/"surogate"/' data/studies/demo.json > "$work/typo.json"
+expect_error "$work/typo.json" 'unknown field "surogate"'
+sed 's/"kn_ks_j"\]/"kn_ks_x"]/' data/studies/demo.json > "$work/factor.json"
+expect_error "$work/factor.json" 'factor kn_ks_x is not a parameter'
+sed 's/"nu": 0.2/"density": 2400/' data/studies/demo.json > "$work/target.json"
+expect_error "$work/target.json" 'targets.density: not a DEM output'
+expect_error "$work/missing.json" 'cannot open study'
+echo "study plan: stages written, a target change leaves the design alone, 4 bad studies rejected"
