@@ -61,11 +61,20 @@ if run([os.path.join(bin_dir, "demcal-doe"), "oa", "--space", study["space"], "-
     fail("the design could not be made")
 responses_h5 = os.path.join(work, "responses.h5")
 responses_csv = os.path.join(work, "responses.csv")
+points_dir = responses_h5 + ".points"
+done_before = len(os.listdir(points_dir)) if os.path.isdir(points_dir) else 0
 batch_start = time.time()
 code = run([os.path.join(bin_dir, "demcal-dem"), "batch", "--scene", study["scene"], "--design", design, "--out",
             responses_h5, "--csv", responses_csv, "--seeds", str(study.get("seeds", 1)), "--jobs", args.jobs,
             "--cache", os.path.join(args.build, "cache")])
 batch_wall = time.time() - batch_start
+# The wall time of the batch runs that did work, kept across resumed runs.
+times_path = os.path.join(work, "batch_wall_s.json")
+times = json.load(open(times_path)) if os.path.exists(times_path) else []
+if len(os.listdir(points_dir)) > done_before:
+    times.append(batch_wall)
+    json.dump(times, open(times_path, "w"))
+batch_wall = sum(times)
 if code not in (0, 4):
     fail(f"the DEM batch stopped (exit code {code}); rerun to resume")
 
@@ -77,14 +86,16 @@ table = os.path.join(results, "screening.csv")
 failed = []
 with open(responses_csv) as f, open(table, "w", newline="") as out:
     reader = csv.DictReader(f)
+    # Every DEM output the batch wrote (responses first), after the design columns.
+    skip = set(factors) | {"run", "seed", "status"}
+    outputs = list(study["responses"]) + [c for c in reader.fieldnames if c not in skip and c not in study["responses"]]
     writer = csv.writer(out)
-    writer.writerow(["run", "seed", "status"] + factors + blanks + study["responses"] + ["cracks_itz_tension", "cracks_mortar_tension"])
+    writer.writerow(["run", "seed", "status"] + factors + blanks + outputs)
     for row in reader:
         if row["status"] != "ok":
             failed.append((row["run"], row["status"]))
         writer.writerow([row["run"], row["seed"], row["status"]] + [row[c] for c in factors] +
-                        [design_rows[row["run"]][c] for c in blanks] + [row.get(r, "nan") for r in study["responses"]] +
-                        [row.get("cracks_itz_tension", "nan"), row.get("cracks_mortar_tension", "nan")])
+                        [design_rows[row["run"]][c] for c in blanks] + [row.get(o, "nan") for o in outputs])
 
 terms = ",".join(factors + blanks)
 analyze = os.path.join(bin_dir, "demcal-analyze")
@@ -102,9 +113,8 @@ with open(os.path.join(results, "summary.md"), "w") as f:
     f.write(f"# {study['name']}\n\n{study.get('description', '')}\n\n")
     f.write(f"Study file `{args.study}`; scene `{study['scene']}`; {len(design_rows)} design points x "
             f"{study.get('seeds', 1)} seed(s).\n\n")
-    f.write(f"DEM batch wall time: {batch_wall:.0f} s ({batch_wall / 60:.1f} min) on {args.jobs} parallel jobs "
-            f"(this run; points already done in an earlier run are not repeated and not counted). "
-            f"Whole study: {time.time() - start:.0f} s.\n\n")
+    f.write(f"DEM batch wall time: {batch_wall:.0f} s ({batch_wall / 60:.1f} min) on {args.jobs} parallel jobs, "
+            f"summed over the {len(times)} run(s) of the batch that computed points (a resumed batch repeats none).\n\n")
     f.write(f"Failed points: {len(failed)}" + ("".join(f"\n- run {r}: {s}" for r, s in failed)) + "\n\n")
     f.write("| response | significant at p < 0.01 (**) or p < 0.05 (*), by F |\n|---|---|\n")
     for response, rows in anova.items():
