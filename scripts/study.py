@@ -127,6 +127,10 @@ def validate(study, path):
     if study.get("surrogate", "quadratic") not in SURROGATES:
         fail(f"{where}: surrogate must be one of {', '.join(sorted(SURROGATES))}")
     inv = study.get("inversion", {})
+    extra = sorted(set(inv) - {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget"})
+    if extra:
+        fail(f"{where}: inversion: unknown field \"{extra[0]}\" (allowed: algorithm, objective, restarts, polish, seed, "
+             "population, budget)")
     if inv.get("algorithm", "ga") not in ALGORITHMS:
         fail(f"{where}: inversion.algorithm must be one of {', '.join(sorted(ALGORITHMS))}")
     if inv.get("objective", "sum-rel") not in OBJECTIVES:
@@ -207,6 +211,12 @@ def plan(study_path, out):
     inversion = {"targets": study["targets"], "algorithm": inv.get("algorithm", "ga"),
                  "objective": inv.get("objective", "sum-rel"), "restarts": int(inv.get("restarts", 5)),
                  "polish": bool(inv.get("polish", True)), "seed": int(inv.get("seed", 1))}
+    extra_args = []
+    if "population" in inv:
+        extra_args += ["--set", f"population={int(inv['population'])}"]
+    if "budget" in inv:
+        extra_args += ["--budget", str(int(inv["budget"]))]
+    inversion["extra"] = extra_args
     write_if_changed(os.path.join(cfg, "inversion.json"), json.dumps(inversion, indent=1) + "\n")
     targets = " ".join(f"--target {k}={v}" for k, v in study["targets"].items())
     model_args = " ".join(f"--model $(D)/models/{m}.json" for m in models)
@@ -214,7 +224,8 @@ def plan(study_path, out):
         f"$(D)/solution.json: {' '.join(f'$(D)/models/{m}.json' for m in models)} $(D)/config/inversion.json $(D)/config/space_inversion.json",
         f"\t$(BIN)/demcal-invert {model_args} {targets} --space $(D)/config/space_inversion.json "
         f"--algo {inversion['algorithm']} --objective {inversion['objective']} --restarts {inversion['restarts']} "
-        f"--seed {inversion['seed']}{' --polish' if inversion['polish'] else ''} --out $@ --history $(D)/inversion_history.csv "
+        f"--seed {inversion['seed']}{' --polish' if inversion['polish'] else ''} {' '.join(extra_args)} --out $@ "
+        "--history $(D)/inversion_history.csv "
         "|| case $$? in 3|4) ;; *) exit 1 ;; esac", ""]
     ver = study.get("verification", {})
     verification = {"seeds": int(ver.get("seeds", 5)), "tolerance": float(ver.get("tolerance", 0.05)), "scene": study["scene"]}
@@ -315,7 +326,7 @@ def refine(out):
             cmd += ["--target", f"{t}={v}"]
         cmd += ["--space", os.path.join(out, "config", "space_inversion.json"), "--algo", inversion["algorithm"],
                 "--objective", inversion["objective"], "--restarts", str(inversion["restarts"]), "--seed", str(inversion["seed"]),
-                "--out", solution, "--quiet"] + (["--polish"] if inversion["polish"] else [])
+                "--out", solution, "--quiet"] + (["--polish"] if inversion["polish"] else []) + inversion.get("extra", [])
         if subprocess.run(cmd).returncode not in (0, 3, 4):
             fail(f"refinement round {k}: demcal-invert failed")
         ver = os.path.join(rd, "verification.json")
