@@ -175,13 +175,16 @@ def plot_main_effects(response, grand_mean, runs, factors, path):
     save(fig, path)
 
 
-def cmd_main_effects(args):
-    data = load_json(args.input)
-    responses = select_responses(data.keys(), args.response, args.input)
-    several = len(responses) > 1
+def for_each_response(args, tables, draw):
+    """Calls draw(response, table, png path) for the chosen response or every one."""
+    responses = select_responses(tables.keys(), args.response, args.input)
     for response in responses:
-        grand_mean, runs, factors = parse_range(response, data[response])
-        plot_main_effects(response, grand_mean, runs, factors, output_path(args.out, response, several))
+        draw(response, tables[response], output_path(args.out, response, len(responses) > 1))
+
+
+def cmd_main_effects(args):
+    for_each_response(args, load_json(args.input),
+                      lambda response, table, path: plot_main_effects(response, *parse_range(response, table), path))
 
 
 # --------------------------------------------------------------- pareto ---
@@ -284,12 +287,8 @@ def plot_pareto(response, terms, pooled, error_df, path):
 
 
 def cmd_pareto(args):
-    data = load_json(args.input)
-    responses = select_responses(data.keys(), args.response, args.input)
-    several = len(responses) > 1
-    for response in responses:
-        terms, pooled, error_df = parse_anova(response, data[response])
-        plot_pareto(response, terms, pooled, error_df, output_path(args.out, response, several))
+    for_each_response(args, load_json(args.input),
+                      lambda response, table, path: plot_pareto(response, *parse_anova(response, table), path))
 
 
 # ------------------------------------------------------------------ fit ---
@@ -386,10 +385,7 @@ def plot_fit(response, kind, rows, path):
 def cmd_fit(args):
     header, rows = load_csv(args.input)
     kind, by_response = parse_residuals(args.input, header, rows)
-    responses = select_responses(by_response.keys(), args.response, args.input)
-    several = len(responses) > 1
-    for response in responses:
-        plot_fit(response, kind, by_response[response], output_path(args.out, response, several))
+    for_each_response(args, by_response, lambda response, points, path: plot_fit(response, kind, points, path))
 
 
 # ----------------------------------------------------------------- main ---
