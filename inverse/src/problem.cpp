@@ -5,6 +5,7 @@
 #include <set>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
 
 namespace demcal::inverse {
 
@@ -14,13 +15,6 @@ std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
   return out;
-}
-
-std::string number(double v) {
-  std::string s = std::to_string(v);
-  s.erase(s.find_last_not_of('0') + 1);
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  return s;
 }
 
 }  // namespace
@@ -39,7 +33,7 @@ InversionProblem::InversionProblem(std::vector<const Model*> models, const Param
   for (const Target& t : targets_) {
     if (!seen_targets.insert(t.output).second) throw Error("--target " + t.output + " is given twice");
     if (!std::isfinite(t.value) || t.value == 0.0)
-      throw Error("--target " + t.output + "=" + number(t.value) + ": a target must be finite and non-zero (errors are relative to it)");
+      throw Error("--target " + t.output + "=" + format_double(t.value) + ": a target must be finite and non-zero (errors are relative to it)");
     int found = 0;
     for (std::size_t m = 0; m < models_.size(); ++m) {
       const auto& outs = models_[m]->outputs();
@@ -123,8 +117,8 @@ InversionProblem::InversionProblem(std::vector<const Model*> models, const Param
         double low, high;
         domain_of(p.name, low, high);
         if (p.low < low || p.high > high)
-          warnings_.push_back("the space's range of " + p.name + " [" + number(p.low) + ", " + number(p.high) +
-                              "] goes beyond a model's fitted domain [" + number(low) + ", " + number(high) +
+          warnings_.push_back("the space's range of " + p.name + " [" + format_double(p.low) + ", " + format_double(p.high) +
+                              "] goes beyond a model's fitted domain [" + format_double(low) + ", " + format_double(high) +
                               "]: predictions there are extrapolations");
       } else {
         free_.push_back({p.name, p.low, p.high});
@@ -165,8 +159,8 @@ InversionProblem::InversionProblem(std::vector<const Model*> models, const Param
   }
   for (std::size_t j = 0; j < names_.size(); ++j)
     if (!(bounds_.low[j] < bounds_.high[j]))
-      throw Error("invert: parameter " + names_[j] + " has an empty range [" + number(bounds_.low[j]) + ", " +
-                  number(bounds_.high[j]) + "]");
+      throw Error("invert: parameter " + names_[j] + " has an empty range [" + format_double(bounds_.low[j]) + ", " +
+                  format_double(bounds_.high[j]) + "]");
 }
 
 std::vector<double> InversionProblem::target_values() const {

@@ -98,7 +98,6 @@ LmResult train_lm(NeuralNetwork& net, const Eigen::MatrixXd& Xt, const Eigen::Ma
   int fails = 0;
   LmResult result;
   result.stop_reason = "maximum epochs";
-  const int P = net.parameter_count();
   for (int epoch = 1; epoch <= o.lm_max_epochs; ++epoch) {
     result.epochs = epoch;
     Eigen::MatrixXd H = J.transpose() * J;
@@ -145,7 +144,6 @@ LmResult train_lm(NeuralNetwork& net, const Eigen::MatrixXd& Xt, const Eigen::Ma
       break;
     }
   }
-  (void)P;
   net.parameters() = best;
   return result;
 }
