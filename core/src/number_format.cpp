@@ -1,5 +1,7 @@
 #include "demcal/core/number_format.hpp"
 
+#include "demcal/core/error.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -26,6 +28,18 @@ bool parse_double(std::string_view text, double& value) {
   if (text.front() == '+') text.remove_prefix(1);
   auto result = std::from_chars(text.data(), text.data() + text.size(), value);
   return result.ec == std::errc() && result.ptr == text.data() + text.size();
+}
+
+}  // namespace demcal
+
+namespace demcal {
+
+std::pair<std::string, double> parse_name_value(const std::string& text, const std::string& option) {
+  const std::size_t eq = text.find('=');
+  double value = 0;
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size() || !parse_double(text.substr(eq + 1), value))
+    throw Error(option + " \"" + text + "\": expected NAME=VALUE with a number");
+  return {text.substr(0, eq), value};
 }
 
 }  // namespace demcal

@@ -26,11 +26,8 @@ using json = nlohmann::json;
 std::map<std::string, double> parse_sets(const std::vector<std::string>& sets) {
   std::map<std::string, double> values;
   for (const std::string& item : sets) {
-    std::size_t eq = item.find('=');
-    double value = 0;
-    if (eq == std::string::npos || eq == 0 || !parse_double(item.substr(eq + 1), value) || item.size() == eq + 1)
-      throw Error("--set \"" + item + "\": expected NAME=VALUE with a number");
-    values[item.substr(0, eq)] = value;
+    auto [name, value] = parse_name_value(item, "--set");
+    values[name] = value;
   }
   return values;
 }

@@ -22,14 +22,6 @@ using namespace demcal::inverse;
 constexpr int kUnreachable = 3;
 constexpr int kNotMet = 4;
 
-std::pair<std::string, double> name_value(const std::string& text, const std::string& option) {
-  auto eq = text.find('=');
-  double value = 0;
-  if (eq == std::string::npos || eq == 0 || !parse_double(text.substr(eq + 1), value))
-    throw Error(option + " \"" + text + "\": expected NAME=VALUE with a number");
-  return {text.substr(0, eq), value};
-}
-
 struct Arguments {
   std::vector<std::string> models, targets, sets;
   std::string space, algorithm = "ga", objective = "sum-rel", out, history;
@@ -51,7 +43,7 @@ int run(const Arguments& a, const CLI::App& app) {
   }
   std::vector<Target> targets;
   for (const std::string& t : a.targets) {
-    auto [name, value] = name_value(t, "--target");
+    auto [name, value] = parse_name_value(t, "--target");
     targets.push_back({name, value});
   }
   std::unique_ptr<ParameterSpace> space;
@@ -61,7 +53,7 @@ int run(const Arguments& a, const CLI::App& app) {
 
   InversionSettings settings;
   settings.algorithm = a.algorithm;
-  for (const std::string& s : a.sets) settings.optimizer_settings.insert(name_value(s, "--set"));
+  for (const std::string& s : a.sets) settings.optimizer_settings.insert(parse_name_value(s, "--set"));
   settings.restarts = a.restarts;
   settings.seed = a.seed;
   settings.polish = a.polish;

@@ -66,10 +66,8 @@ int run(const Arguments& a) {
     }
   }
   for (const std::string& s : a.sets) {
-    auto eq = s.find('=');
-    double value = 0;
-    if (eq == std::string::npos || !parse_double(s.substr(eq + 1), value)) throw Error("--set \"" + s + "\": expected NAME=VALUE");
-    point[s.substr(0, eq)] = value;
+    auto [name, value] = parse_name_value(s, "--set");
+    point[name] = value;
   }
   scene.resolve(point);  // unknown names and values outside the scene's ranges are errors here
 
