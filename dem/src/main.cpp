@@ -1,4 +1,5 @@
-// demcal-dem: runs the DEM scenes (one run now; batches follow).
+// demcal-dem: runs the DEM scenes: one run, a resumable batch over a design
+// (local processes, MPI ranks or a shard of a job array), and the merge of shards.
 #include <CLI/CLI.hpp>
 
 #include <fstream>
@@ -14,6 +15,8 @@
 #include "demcal/core/table.hpp"
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/batch.hpp"
+#include "demcal/dem/batch_mpi.hpp"
+#include "demcal/dem/merge.hpp"
 #include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/ucs_test.hpp"
@@ -78,18 +81,48 @@ int main(int argc, char** argv) {
   batch->add_option("--jobs", batch_options.jobs, "points run at once")->capture_default_str();
   batch->add_option("--csv", batch_options.csv_path, "flat CSV export: design columns, seed, status, macro values");
   batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
+  std::string shard;
+  batch->add_option("--shard", shard, "I/N: run only every N-th point, starting at the I-th (job arrays; join with merge)");
   batch->add_flag("--quiet", quiet, "no progress on stderr");
+  std::vector<std::string> merge_inputs;
+  std::string merge_out, merge_csv;
+  CLI::App* merge = app.add_subcommand("merge", "join the result files of batch shards into one (resumable by batch)");
+  merge->add_option("inputs", merge_inputs, "responses .h5 of the shards")->required();
+  merge->add_option("--out", merge_out, "merged responses .h5 (point results also under OUT.points/)")->required();
+  merge->add_option("--csv", merge_csv, "flat CSV export of the merged results");
   return cli::run_main(app, argc, argv, [&]() {
     if (quiet) log::set_level(log::Level::Quiet);
     if (batch->parsed()) {
       batch_options.cache_dir = cache_dir;
       batch_options.progress = !quiet;
       if (!is_hdf5_path(batch_options.out_path)) throw Error("--out must be an .h5 file (the responses)");
-      dem::BatchSummary s = dem::run_batch(batch_options);
+      if (!shard.empty()) dem::parse_shard(shard, batch_options);
+      dem::BatchSummary s;
+      if (dem::started_by_mpi_launcher()) {
+        dem::MpiSession mpi;
+        if (mpi.size() > 1) {
+          if (mpi.rank() > 0) log::set_level(log::Level::Quiet);
+          bool failed = false;
+          s = dem::run_batch_mpi(batch_options, mpi, failed);
+          if (mpi.rank() > 0) return failed ? 2 : 0;
+        } else {
+          s = dem::run_batch(batch_options);
+        }
+      } else {
+        s = dem::run_batch(batch_options);
+      }
       log::info(std::to_string(s.points) + " points: " + std::to_string(s.ok) + " ok, " + std::to_string(s.failed) +
                 " failed, " + std::to_string(s.skipped) + " done before; " + format_duration(s.wall_s) + "; wrote " +
                 batch_options.out_path);
       return s.failed > 0 ? 4 : 0;
+    }
+    if (merge->parsed()) {
+      if (!is_hdf5_path(merge_out)) throw Error("--out must be an .h5 file (the merged responses)");
+      dem::MergeSummary m = dem::merge_results(merge_inputs, merge_out, merge_csv);
+      log::info("merged " + std::to_string(m.inputs) + " file(s): " + std::to_string(m.points) + " points (" +
+                std::to_string(m.failed) + " failed, " + std::to_string(m.duplicates) + " duplicate(s) dropped); wrote " +
+                merge_out);
+      return 0;
     }
     dem::Scene scene = dem::Scene::load(scene_path);
     std::map<std::string, double> parameters = scene.resolve(parse_sets(sets));

@@ -31,11 +31,15 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
-inline CommandResult run_program(const std::string& program, const std::string& arguments) {
-  std::string out = temp_path(program + ".stdout"), err = temp_path(program + ".stderr");
-  std::string command = std::string(DEMCAL_BIN_DIR) + "/" + program + " " + arguments + " >" + out + " 2>" + err;
-  int status = std::system(command.c_str());
+// Runs a shell command line; `label` names its captured output files.
+inline CommandResult run_command(const std::string& command_line, const std::string& label) {
+  std::string out = temp_path(label + ".stdout"), err = temp_path(label + ".stderr");
+  int status = std::system((command_line + " >" + out + " 2>" + err).c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+inline CommandResult run_program(const std::string& program, const std::string& arguments) {
+  return run_command(std::string(DEMCAL_BIN_DIR) + "/" + program + " " + arguments, program);
 }
 
 // A failed call prints exactly one line, "<program>: error: ...", containing `fragment`.

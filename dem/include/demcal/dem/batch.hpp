@@ -6,8 +6,18 @@
 // under <out>.points/; the HDF5 responses file and the CSV export are rebuilt
 // from those files after every point, also atomically. A kill -9 therefore
 // loses at most the points that were running; a rerun skips the rest.
+//
+// A shard (--shard i/N) runs every N-th point only, for the job arrays of a
+// cluster scheduler; demcal-dem merge joins the shards' result files.
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/dem/point_store.hpp"
+#include "demcal/dem/scene.hpp"
 
 namespace demcal::dem {
 
@@ -17,8 +27,10 @@ struct BatchOptions {
   std::string out_path;         // responses, .h5
   std::string csv_path;         // flat export; empty: none
   std::string cache_dir;        // packed specimens
-  int seeds = 1;                // seeds 1..K per design point
+  int seeds = 1;                // seeds per design point (1..K)
   int jobs = 1;                 // points at once (one process each)
+  int shard_index = 1;          // this shard, 1..shard_count
+  int shard_count = 1;
   bool progress = true;
 };
 
@@ -27,6 +39,29 @@ struct BatchSummary {
   double wall_s = 0;
 };
 
+// Parses "i/N" (1 <= i <= N) into the options; throws a one-line error.
+void parse_shard(const std::string& text, BatchOptions& options);
+
+// The points of the batch (this shard's only), with their result files.
+std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
+                                    std::vector<std::string>& design_columns);
+
 BatchSummary run_batch(const BatchOptions& options);
+
+struct PointRunOptions {
+  int jobs = 1;
+  std::string cache_dir;
+  bool progress = true;
+  std::string progress_label = "points";
+};
+
+// Runs the points that have no stored result of their own (at most `jobs`
+// at once, one process each, specimens packed once beforehand), stores each
+// result as it finishes and calls on_done(point index, result). Returns every
+// point's result, stored or new, in the order given.
+std::vector<nlohmann::json> run_points(const Scene& scene, const std::vector<PointSpec>& points,
+                                       const PointRunOptions& options,
+                                       const std::function<void(std::size_t, const nlohmann::json&)>& on_done = {},
+                                       std::size_t* skipped = nullptr);
 
 }  // namespace demcal::dem

@@ -1,0 +1,66 @@
+#pragma once
+// The results of design points, one JSON file per (run, seed), and the two
+// files rebuilt from them (the HDF5 responses and the flat CSV). Shared by
+// the process-parallel batch, the MPI batch, shards and their merge, and the
+// DEM-in-the-loop model, so every way of running points stores them alike.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/table.hpp"
+#include "demcal/dem/scene.hpp"
+
+namespace demcal::dem {
+
+struct PointSpec {
+  int run = 0;
+  std::uint64_t seed = 1;
+  std::map<std::string, double> design;  // the design's values of scene parameters
+  std::string file;                      // its result file
+};
+
+// The design's columns that are scene parameters; warns about the others
+// (coded and blank columns are expected and pass silently). Throws when none is.
+std::vector<std::string> design_parameter_columns(const Scene& scene, const Table& design,
+                                                  const std::string& design_path);
+
+// Every (row, seed 1..seeds) of the design, in row order then seed order,
+// with result files under points_dir.
+std::vector<PointSpec> design_points(const Table& design, const std::vector<std::string>& columns, int seeds,
+                                     const std::string& points_dir);
+
+// Reads a stored result; false when the file is missing or not a result.
+bool read_point_file(const std::string& path, nlohmann::json& out);
+// A stored result belongs to a point only if it was made with the same seed
+// and the same design values: a changed design never reuses a stale result.
+bool same_point(const nlohmann::json& stored, const PointSpec& point);
+// The stored result of `point`, when there is one made with its values.
+bool stored_result(const PointSpec& point, nlohmann::json& out);
+
+// Runs one point in this process (never throws: a failure is a failed result).
+nlohmann::json compute_point(const Scene& scene, const PointSpec& point, const std::string& cache_dir);
+nlohmann::json failed_point(const PointSpec& point, const std::string& reason);
+void store_point(const PointSpec& point, const nlohmann::json& result);
+
+struct OutputFiles {
+  std::string out_path;     // responses .h5
+  std::string csv_path;     // flat CSV; empty: none
+  std::string scene_path;   // recorded as attributes
+  std::string design_path;
+};
+
+// Rewrites the responses file and the CSV (atomically) from the results, in
+// the order given. Each HDF5 point group keeps its whole result as the JSON
+// attribute "result" besides the macro values and the curve, so shards merge
+// without loss.
+void write_point_outputs(const std::vector<nlohmann::json>& results, const std::vector<std::string>& design_columns,
+                         const OutputFiles& files);
+
+// Reads the point results back from a responses file written above.
+std::vector<nlohmann::json> read_point_outputs(const std::string& out_path, std::string& scene_path,
+                                               std::string& design_path, std::vector<std::string>& design_columns);
+
+}  // namespace demcal::dem
