@@ -12,6 +12,11 @@ std::vector<double> Model::predict(const std::vector<double>& x) const {
   return y;
 }
 
+void Model::predict_batch(const std::vector<std::vector<double>>& xs, std::vector<std::vector<double>>& ys) const {
+  ys.resize(xs.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) ys[i] = predict(xs[i]);
+}
+
 std::vector<std::string> Model::outside_domain(const std::vector<double>& x, double tolerance) const {
   std::vector<std::string> outside;
   const std::vector<InputRange>& box = domain();

@@ -1,5 +1,6 @@
 // demcal-invert: finds micro-parameters whose predicted macro values match
-// targets, on saved models (response surfaces, GA-BP networks).
+// targets, on saved models (response surfaces, GA-BP networks) or on the DEM
+// itself (DEM in the loop, --dem-scene).
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -9,6 +10,7 @@
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/dem/dem_model.hpp"
 #include "demcal/inverse/inversion.hpp"
 #include "demcal/surrogate/model_file.hpp"
 
@@ -25,6 +27,8 @@ constexpr int kNotMet = 4;
 struct Arguments {
   std::vector<std::string> models, targets, sets;
   std::string space, algorithm = "ga", objective = "sum-rel", out, history;
+  std::string dem_scene, dem_work, cache = "build/cache";
+  int dem_seeds = 1, jobs = 1;
   bool polish = false, quiet = false;
   int restarts = 1, samples = 5000, attainable_samples = 2000;
   std::uint64_t seed = 1;
@@ -35,12 +39,14 @@ struct Arguments {
 int run(const Arguments& a, const CLI::App& app) {
   if (a.algorithm != "search" && (app.count("--samples") || app.count("--tolerance")))
     throw Error("--samples and --tolerance apply to --algo search");
-  std::vector<std::unique_ptr<Model>> owned;
-  std::vector<const Model*> models;
-  for (const std::string& path : a.models) {
-    owned.push_back(surrogate::load_model(path));
-    models.push_back(owned.back().get());
-  }
+  const bool dem_in_loop = !a.dem_scene.empty();
+  if (dem_in_loop == !a.models.empty()) throw Error("give --model (a saved surrogate) or --dem-scene (DEM in the loop), not both");
+  if (!dem_in_loop)
+    for (const char* option : {"--dem-seeds", "--dem-work", "--jobs", "--cache"})
+      if (app.count(option)) throw Error(std::string(option) + " applies to --dem-scene only");
+  if (dem_in_loop && a.polish) throw Error("--polish needs a smooth surrogate (finite differences of a DEM run are noise)");
+  if (dem_in_loop && app.count("--attainable-samples"))
+    throw Error("--attainable-samples does not apply to --dem-scene (each sample would be a DEM run)");
   std::vector<Target> targets;
   for (const std::string& t : a.targets) {
     auto [name, value] = parse_name_value(t, "--target");
@@ -48,6 +54,28 @@ int run(const Arguments& a, const CLI::App& app) {
   }
   std::unique_ptr<ParameterSpace> space;
   if (!a.space.empty()) space = std::make_unique<ParameterSpace>(ParameterSpace::load(a.space));
+  if (dem_in_loop && !space) throw Error("--dem-scene needs --space: the parameters to calibrate, their bounds and fixed values");
+
+  std::vector<std::unique_ptr<Model>> owned;
+  std::vector<const Model*> models;
+  dem::DemModel* dem_model = nullptr;
+  for (const std::string& path : a.models) {
+    owned.push_back(surrogate::load_model(path));
+    models.push_back(owned.back().get());
+  }
+  if (dem_in_loop) {
+    dem::DemModelOptions options;
+    options.work_dir = a.dem_work.empty() ? a.out + ".dem" : a.dem_work;
+    options.seeds = a.dem_seeds;
+    options.jobs = a.jobs;
+    options.cache_dir = a.cache;
+    options.progress = !a.quiet;
+    std::vector<std::string> outputs;
+    for (const Target& t : targets) outputs.push_back(t.output);
+    owned.push_back(std::make_unique<dem::DemModel>(a.dem_scene, *space, outputs, options));
+    dem_model = static_cast<dem::DemModel*>(owned.back().get());
+    models.push_back(dem_model);
+  }
   InversionProblem problem(models, space.get(), targets, parse_objective(a.objective));
   for (const std::string& w : problem.warnings()) log::warn(w);
 
@@ -65,10 +93,24 @@ int run(const Arguments& a, const CLI::App& app) {
   settings.search.samples = a.samples;
   settings.search.tolerance = a.tolerance;
   settings.reach_tolerance = a.reach_tolerance;
-  settings.attainable_samples = a.attainable_samples;
+  settings.attainable_samples = dem_in_loop ? 0 : a.attainable_samples;
 
   InversionResult result = invert(problem, settings);
   nlohmann::json solution = solution_json(problem, settings, result);
+  if (dem_model) {
+    // Every DEM run the calibration needed, including those an interrupted
+    // earlier attempt made (reused, not repeated).
+    solution["dem"] = {{"scene", a.dem_scene},
+                       {"seeds_per_point", a.dem_seeds},
+                       {"points", dem_model->points()},
+                       {"runs", dem_model->points() * a.dem_seeds},
+                       {"runs_made_now", dem_model->runs_made()},
+                       {"runs_reused", dem_model->runs_reused()},
+                       {"runs_failed", dem_model->runs_failed()},
+                       {"dem_wall_s", dem_model->dem_wall_s()},
+                       {"jobs", a.jobs},
+                       {"evaluations_csv", dem_model->evaluations_csv()}};
+  }
   write_file_atomically(a.out, solution.dump(2) + "\n");
   if (!a.history.empty()) write_file_atomically(a.history, history_csv(settings, result));
 
@@ -78,6 +120,10 @@ int run(const Arguments& a, const CLI::App& app) {
   log::info(a.algorithm + ": " + result.status + ", " + to_string(problem.objective_kind()) + " " +
             format_double(result.objective) + " (max relative error " + format_double(result.max_relative_error) +
             ") after " + std::to_string(result.evaluations) + " evaluations in " + format_double(result.wall_s) + " s: " + x);
+  if (dem_model)
+    log::info("DEM in the loop: " + std::to_string(dem_model->points() * a.dem_seeds) + " DEM runs (" +
+              std::to_string(dem_model->runs_made()) + " made now, " + std::to_string(dem_model->runs_reused()) +
+              " reused from an earlier attempt); runs listed in " + dem_model->evaluations_csv());
   for (const auto& name : solution["unidentified"])
     log::info("not identified by these targets: " + name.get<std::string>());
   if (result.status == "unreachable") {
@@ -100,11 +146,18 @@ int main(int argc, char** argv) {
   CLI::App app{
       "demcal-invert: micro-parameters whose predicted macro values match targets.\n"
       "  demcal-invert --model M1.json [--model M2.json ...] --target NAME=VALUE [--target ...] [--space S.json]\n"
+      "  demcal-invert --dem-scene SCENE.json --space S.json --target NAME=VALUE ... [--dem-seeds K] [--jobs J]\n"
       "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel] [--polish]\n"
       "                [--restarts R] [--seed S] --out SOLUTION.json\n"
       "Exit codes: 0 solved, 2 bad input, 3 a target outside what the domain can reach, 4 targets attainable but not met.",
       "demcal-invert"};
-  app.add_option("--model", a.models, "saved model (demcal-fit); repeat for several")->required();
+  app.add_option("--model", a.models, "saved model (demcal-fit); repeat for several");
+  app.add_option("--dem-scene", a.dem_scene, "DEM in the loop: every evaluation is a DEM run of this scene (needs --space)");
+  app.add_option("--dem-seeds", a.dem_seeds, "DEM in the loop: specimens per point (outputs are their mean)")
+      ->capture_default_str();
+  app.add_option("--jobs", a.jobs, "DEM in the loop: points run at once")->capture_default_str();
+  app.add_option("--dem-work", a.dem_work, "DEM in the loop: folder of its runs (default OUT.dem); a rerun resumes from it");
+  app.add_option("--cache", a.cache, "DEM in the loop: folder of cached packed specimens")->capture_default_str();
   app.add_option("--target", a.targets, "NAME=VALUE of a model output; repeat for several")->required();
   app.add_option("--space", a.space, "parameter space JSON: bounds, fixed and tied values (default: the models' domains)");
   app.add_option("--algo", a.algorithm, "ga, sa, sa-vfsr, wca, lhs-wca or search")->capture_default_str();

@@ -168,7 +168,9 @@ InversionResult invert(const InversionProblem& problem, const InversionSettings&
     }
     record_spread(result, problem, reached, "restarts that reached the targets", settings.unidentified_fraction);
   }
-  result.attainable = attainable_ranges(problem, settings.attainable_samples, settings.seed, result.predicted);
+  // Zero samples: not assessed (each sample would be a DEM run in the loop).
+  if (settings.attainable_samples > 0)
+    result.attainable = attainable_ranges(problem, settings.attainable_samples, settings.seed, result.predicted);
   // Unreachable only when a target lies outside what the domain can give;
   // otherwise a miss is the optimiser's and is said so (status not_met).
   if (result.status == "not_met")
@@ -263,7 +265,9 @@ json solution_json(const InversionProblem& problem, const InversionSettings& set
     out["reason"] = why;
     out["nearest_attainable"] = predicted;
   } else if (result.status == "not_met") {
-    out["reason"] = "every target lies inside its attainable range, but the best point found misses them by " +
+    out["reason"] = std::string(result.attainable.empty() ? "the attainable ranges were not assessed; "
+                                                          : "every target lies inside its attainable range, but ") +
+                    "the best point found misses them by " +
                     format_double(result.max_relative_error) +
                     " (max relative error): more budget, restarts, --polish or another algorithm may meet them, or "
                     "they may not be attainable together";

@@ -61,8 +61,10 @@ std::unique_ptr<Optimizer> make_optimizer(const std::string& name, const Setting
     s.cooling = r.get("beta", s.cooling);
     s.markov_chain_length = r.get_int("markov_chain_length", s.markov_chain_length);
     s.step_scale = r.get("step_scale", s.step_scale);
-    if (!(s.initial_temperature > 0) || !(s.cooling > 0 && s.cooling < 1) || s.markov_chain_length < 1 || !(s.step_scale > 0))
-      throw Error(name + ": T0 > 0, 0 < beta < 1, markov_chain_length >= 1, step_scale > 0");
+    s.parallel_trials = r.get_int("parallel_trials", s.parallel_trials);
+    if (!(s.initial_temperature > 0) || !(s.cooling > 0 && s.cooling < 1) || s.markov_chain_length < 1 ||
+        !(s.step_scale > 0) || s.parallel_trials < 1)
+      throw Error(name + ": T0 > 0, 0 < beta < 1, markov_chain_length >= 1, step_scale > 0, parallel_trials >= 1");
     optimizer = std::make_unique<SimulatedAnnealing>(s);
   } else if (name == "wca" || name == "lhs-wca") {
     WcaSettings s;

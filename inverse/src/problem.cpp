@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "demcal/core/error.hpp"
@@ -210,14 +211,33 @@ std::map<std::string, double> InversionProblem::predict_all(const Point& x) cons
   return all;
 }
 
-double InversionProblem::objective(const Point& x) const {
-  return relative_objective(objective_, predict_targets(x), target_values());
+double InversionProblem::objective(const Point& x) const { return objective_of(predict_targets(x)); }
+
+double InversionProblem::objective_of(const std::vector<double>& predicted) const {
+  double value = relative_objective(objective_, predicted, target_values());
+  // A point the model cannot predict (a failed DEM run) is never a solution.
+  return std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
 }
 
 BatchObjective InversionProblem::batch_objective() const {
   return [this](const std::vector<Point>& points, std::vector<double>& values) {
+    // Each model predicts the whole batch at once (a DEM model runs it in parallel).
+    std::vector<std::vector<std::vector<double>>> outputs(models_.size());
+    std::vector<bool> needed(models_.size(), false);
+    for (auto [m, o] : target_slots_) needed[m] = true;
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      if (!needed[m]) continue;
+      std::vector<std::vector<double>> inputs(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i) model_inputs(m, points[i], inputs[i]);
+      models_[m]->predict_batch(inputs, outputs[m]);
+    }
     values.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) values[i] = objective(points[i]);
+    std::vector<double> predicted;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      predicted.clear();
+      for (auto [m, o] : target_slots_) predicted.push_back(outputs[m][i][o]);
+      values[i] = objective_of(predicted);
+    }
   };
 }
 

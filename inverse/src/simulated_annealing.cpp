@@ -1,5 +1,6 @@
 #include "demcal/inverse/simulated_annealing.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "demcal/core/rng.hpp"
@@ -49,14 +50,18 @@ RunResult SimulatedAnnealing::minimize(const BatchObjective& objective, const Bo
       break;
     }
     for (int trial = 0; trial < settings_.markov_chain_length && !counter.should_stop(); ++trial) {
-      Point candidate = x;
-      for (std::size_t j = 0; j < n; ++j)
-        candidate[j] = perturb(x[j], bounds.low[j], bounds.high[j], t, settings_.vfsr, settings_.step_scale, rng);
-      double e = counter.evaluate(candidate);
-      double delta = e - energy;
+      // One candidate (the paper's chain), or several evaluated together of
+      // which the best faces the Metropolis test (a DEM runs them in parallel).
+      std::vector<Point> candidates(static_cast<std::size_t>(settings_.parallel_trials), x);
+      for (Point& candidate : candidates)
+        for (std::size_t j = 0; j < n; ++j)
+          candidate[j] = perturb(x[j], bounds.low[j], bounds.high[j], t, settings_.vfsr, settings_.step_scale, rng);
+      std::vector<double> energies = counter.evaluate(candidates);
+      const std::size_t best = static_cast<std::size_t>(std::min_element(energies.begin(), energies.end()) - energies.begin());
+      double delta = energies[best] - energy;
       if (delta < 0 || rng.uniform() < std::exp(-delta / temperature)) {
-        x = candidate;
-        energy = e;
+        x = candidates[best];
+        energy = energies[best];
       }
     }
   }

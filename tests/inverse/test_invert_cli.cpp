@@ -131,3 +131,70 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
 }
 
 }  // namespace
+
+namespace {
+
+// DEM in the loop (Wang & Cao 2017): the annealing drives the DEM itself.
+class DemcalInvertDemInTheLoop : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    space_ = temp_path("dem_loop_space.json");
+    std::ofstream(space_) << R"({"parameters": [
+        {"name": "Ec_GPa", "low": 8, "high": 30},
+        {"name": "pb_sigma_c_MPa", "low": 8, "high": 16},
+        {"name": "pb_tau_c_MPa", "low": 20, "high": 40}]})";
+  }
+  std::string args(const std::string& out) const {
+    return "--dem-scene " + scene_ + " --space " + space_ +
+           " --target sigma_u_MPa=16 --target E_GPa=20 --algo sa --objective max-rel --set parallel_trials=2"
+           " --jobs 2 --budget 300 --cache " + temp_path("dem_loop_cache") + " --out " + out;
+  }
+  std::string scene_ = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+  std::string space_;
+};
+
+TEST_F(DemcalInvertDemInTheLoop, AnnealingMeetsTargetsOnTheDemAndARerunRepeatsNoRun) {
+  const std::string out = temp_path("dem_loop.json");
+  auto r = run_program("demcal-invert", args(out));
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json s = read_json(out);
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_LE(s["max_relative_error"].get<double>(), 0.10);  // Wang & Cao's stop
+  const long runs = s["dem"]["runs"].get<long>();
+  EXPECT_GE(runs, 1);
+  EXPECT_LE(runs, s["evaluations"].get<long>());
+  EXPECT_EQ(s["dem"]["runs_made_now"].get<long>(), runs);
+
+  // The solution's predicted values are those of a DEM run at its parameters.
+  std::string sets;
+  for (auto it = s["x"].begin(); it != s["x"].end(); ++it)
+    sets += " --set " + it.key() + "=" + nlohmann::json(it.value().get<double>()).dump();
+  const std::string run_out = temp_path("dem_loop_check.json");
+  auto check = run_program("demcal-dem", "run --scene " + scene_ + sets + " --seed 1 --quiet --cache " +
+                                             temp_path("dem_loop_cache") + " --out " + run_out);
+  ASSERT_EQ(check.code, 0) << check.err;
+  nlohmann::json direct = read_json(run_out);
+  EXPECT_DOUBLE_EQ(s["predicted"]["sigma_u_MPa"].get<double>(), direct["macro"]["sigma_u_MPa"].get<double>());
+  EXPECT_DOUBLE_EQ(s["predicted"]["E_GPa"].get<double>(), direct["macro"]["E_GPa"].get<double>());
+
+  // Rerun (as after a crash): the same points, every DEM run taken from the folder.
+  auto again = run_program("demcal-invert", args(out));
+  ASSERT_EQ(again.code, 0) << again.err;
+  nlohmann::json t = read_json(out);
+  EXPECT_EQ(t["x"], s["x"]);
+  EXPECT_EQ(t["dem"]["runs_made_now"], 0);
+  EXPECT_EQ(t["dem"]["runs_reused"].get<long>(), runs);
+}
+
+TEST_F(DemcalInvertDemInTheLoop, Errors) {
+  const std::string out = temp_path("dem_loop_err.json");
+  expect_one_line_error(run_program("demcal-invert", args(out) + " --model " + temp_path("m.json")), "demcal-invert",
+                        "not both");
+  expect_one_line_error(run_program("demcal-invert", "--dem-scene " + scene_ + " --target E_GPa=20 --out " + out),
+                        "demcal-invert", "--dem-scene needs --space");
+  expect_one_line_error(run_program("demcal-invert", args(out) + " --polish"), "demcal-invert", "--polish");
+  expect_one_line_error(run_program("demcal-invert", "--model " + temp_path("m.json") + " --target E_GPa=20 --jobs 2 --out " + out),
+                        "demcal-invert", "--jobs applies to --dem-scene only");
+}
+
+}  // namespace

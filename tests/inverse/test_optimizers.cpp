@@ -68,11 +68,13 @@ INSTANTIATE_TEST_SUITE_P(Inverse, EveryOptimizer,
                          // local minimum of Rastrigin, as MATLAB's does; 200 (its default above 5) finds it.
                          ::testing::Values(Case{"ga", {{"population", 200}}, 50000, 1e-2, 1e-3},
                                            Case{"sa", {{"T0", 1.0}, {"beta", 0.9}}, 60000, 1e-2, 1e-2},
+                                           Case{"sa", {{"T0", 1.0}, {"beta", 0.9}, {"parallel_trials", 4}}, 60000, 1e-2, 1e-2},
                                            Case{"sa-vfsr", {{"T0", 1.0}, {"beta", 0.9}}, 60000, 1e-2, 1e-2},
                                            Case{"wca", {}, 20000, 1e-2, 1e-3},
                                            Case{"lhs-wca", {}, 20000, 1e-2, 1e-3}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            std::string name = info.param.algorithm;
+                           if (info.param.settings.count("parallel_trials")) name += "_parallel_trials";
                            for (char& ch : name)
                              if (ch == '-') ch = '_';
                            return name;
@@ -87,6 +89,24 @@ TEST(Optimizers, UnknownNamesAndSettingsAreErrors) {
     EXPECT_NE(std::string(e.what()).find("populaton"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("population"), std::string::npos);
   }
+}
+
+TEST(Optimizers, ParallelAnnealingTrialsArriveAsOneBatch) {
+  // The start alone, then 4 candidates per Markov step: a DEM objective runs each batch at once.
+  std::vector<std::size_t> sizes;
+  BatchObjective objective = [&](const std::vector<Point>& points, std::vector<double>& values) {
+    sizes.push_back(points.size());
+    values.clear();
+    for (const Point& x : points) values.push_back(test::shifted_rosenbrock(x, kShift2));
+  };
+  Budget budget;
+  budget.max_evaluations = 401;
+  RunResult r = make_optimizer("sa", {{"parallel_trials", 4}})->minimize(objective, test::box(2, -5, 5), 3, budget);
+  EXPECT_EQ(r.evaluations, 401);
+  ASSERT_EQ(sizes.size(), 101u);
+  EXPECT_EQ(sizes.front(), 1u);
+  for (std::size_t i = 1; i < sizes.size(); ++i) EXPECT_EQ(sizes[i], 4u) << "batch " << i;
+  EXPECT_THROW(make_optimizer("sa", {{"parallel_trials", 0}}), Error);
 }
 
 TEST(Optimizers, GeneticAlgorithmUsesMatlabDefaults) {

@@ -1,7 +1,7 @@
 #pragma once
 // What every model of macro values looks like from outside: named inputs in
 // natural units, named outputs, the domain it is valid on, and a prediction.
-// Response surfaces, networks and (later) a DEM-backed model implement it, so
+// Response surfaces, networks and the DEM itself (dem::DemModel) implement it, so
 // sensitivity analysis and inversion never need to know how a model was made.
 #include <string>
 #include <vector>
@@ -26,6 +26,9 @@ class Model {
   virtual void predict(const double* x, double* y) const = 0;
 
   std::vector<double> predict(const std::vector<double>& x) const;
+  // Several points at once: a DEM-backed model runs them in parallel; the
+  // default predicts them one by one. ys[i] receives outputs() values.
+  virtual void predict_batch(const std::vector<std::vector<double>>& xs, std::vector<std::vector<double>>& ys) const;
   // Names of the inputs of `x` outside domain() (relative slack `tolerance`
   // of each range's width, so values on a bound count as inside).
   std::vector<std::string> outside_domain(const std::vector<double>& x, double tolerance = 1e-9) const;

@@ -32,7 +32,7 @@ struct InversionSettings {
   // Reached: every target within this relative error, or the objective at or
   // below budget.target_value, or (search) every target within search.tolerance.
   double reach_tolerance = 0.01;
-  int attainable_samples = 2000;
+  int attainable_samples = 2000;  // 0: not assessed (status never "unreachable")
   double unidentified_fraction = 0.5;  // spread above this share of the range: not identified
 };
 

@@ -43,7 +43,9 @@ class InversionProblem {
   std::vector<double> predict_targets(const Point& x) const;
   // Every output of every model at x.
   std::map<std::string, double> predict_all(const Point& x) const;
+  // The objective at x; +infinity where the model gives no finite value.
   double objective(const Point& x) const;
+  double objective_of(const std::vector<double>& predicted_targets) const;
   BatchObjective batch_objective() const;
 
  private:

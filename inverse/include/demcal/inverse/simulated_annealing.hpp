@@ -5,6 +5,10 @@
 // T_k = T0 beta^(k/N) after each Markov chain of L trials (N = number of
 // variables); stop below an objective threshold or at the budget.
 //
+// parallel_trials = k > 1 draws k candidates per step from the same state,
+// evaluates them as one batch (in parallel for a DEM-backed objective) and
+// submits the best to the Metropolis test; k = 1 is the published method.
+//
 // The generating distribution narrows with the temperature, as in Ingber's
 // fast annealing: x_new = x + (ub - lb) * s_k * C, C standard Cauchy,
 // s_k = scale * T_k / T0. The VFSR variant uses Ingber's generating function
@@ -19,6 +23,7 @@ struct SaSettings {
   int markov_chain_length = 100;       // L
   double step_scale = 0.1;             // Cauchy scale at T0, as a fraction of the bound width
   bool vfsr = false;                   // Ingber's VFSR generating function
+  int parallel_trials = 1;             // candidates per Markov step, best one tested (1: Wang & Cao)
 };
 
 class SimulatedAnnealing : public Optimizer {
