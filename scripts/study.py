@@ -23,8 +23,10 @@ import re
 import subprocess
 import sys
 
-KNOWN = {"name", "description", "scene", "space", "targets", "fixed", "surfaces", "surrogate", "inversion",
-         "verification", "refinement", "seeds_per_point"}
+KNOWN = {"name", "description", "strategy", "scene", "space", "targets", "fixed", "surfaces", "factors", "surrogate",
+         "inversion", "verification", "refinement", "seeds_per_point"}
+STRATEGIES = {"surrogate", "dem_in_the_loop"}
+INVERSION_FIELDS = {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget", "stop_below", "settings"}
 SURROGATES = {"quadratic", "linear", "gabp"}
 ALGORITHMS = {"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "search"}
 OBJECTIVES = {"sum-rel", "max-rel", "sse-rel"}
@@ -63,9 +65,16 @@ def validate(study, path):
     unknown = sorted(set(study) - KNOWN)
     if unknown:
         fail(f"{where}: unknown field \"{unknown[0]}\" (allowed: {', '.join(sorted(KNOWN))})")
-    for key in ("name", "scene", "space", "targets", "surfaces"):
+    strategy = study.get("strategy", "surrogate")
+    if strategy not in STRATEGIES:
+        fail(f"{where}: strategy must be one of {', '.join(sorted(STRATEGIES))}")
+    loop = strategy == "dem_in_the_loop"
+    for key in ("name", "scene", "space", "targets") + (("factors",) if loop else ("surfaces",)):
         if key not in study:
             fail(f"{where}: missing \"{key}\"")
+    for key in (("surfaces", "surrogate", "refinement") if loop else ("factors",)):
+        if key in study:
+            fail(f"{where}: \"{key}\" does not apply to strategy {strategy}")
     if not re.fullmatch(r"[A-Za-z0-9_.-]+", study["name"]):
         fail(f"{where}: name \"{study['name']}\" must be letters, digits, '_', '-' or '.'")
     scene = load_json(study["scene"], "scene")
@@ -89,8 +98,16 @@ def validate(study, path):
                 fail(f"{where}: fixed.{name}: not a parameter of {study['scene']}")
             if not isinstance(value, (int, float)):
                 fail(f"{where}: fixed.{name} must be a number")
-    covered = set()
-    for k, surface in enumerate(study["surfaces"]):
+    if loop:
+        if not isinstance(study["factors"], list) or not study["factors"]:
+            fail(f"{where}: factors must be a non-empty list of the parameters to calibrate")
+        for f in study["factors"]:
+            if f not in space_params:
+                fail(f"{where}: factor {f} is not a parameter of {study['space']} (parameters: {', '.join(space_params)})")
+            if f not in scene_params:
+                fail(f"{where}: factor {f} is not a parameter of {study['scene']}")
+    covered = set(targets) if loop else set()
+    for k, surface in enumerate(study.get("surfaces", [])):
         w = f"{where}: surfaces[{k}]"
         extra = sorted(set(surface) - {"outputs", "factors", "design"})
         if extra:
@@ -127,10 +144,16 @@ def validate(study, path):
     if study.get("surrogate", "quadratic") not in SURROGATES:
         fail(f"{where}: surrogate must be one of {', '.join(sorted(SURROGATES))}")
     inv = study.get("inversion", {})
-    extra = sorted(set(inv) - {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget"})
+    extra = sorted(set(inv) - INVERSION_FIELDS)
     if extra:
-        fail(f"{where}: inversion: unknown field \"{extra[0]}\" (allowed: algorithm, objective, restarts, polish, seed, "
-             "population, budget)")
+        fail(f"{where}: inversion: unknown field \"{extra[0]}\" (allowed: {', '.join(sorted(INVERSION_FIELDS))})")
+    if not isinstance(inv.get("settings", {}), dict) or not all(
+            isinstance(v, (int, float)) for v in inv.get("settings", {}).values()):
+        fail(f"{where}: inversion.settings must be an object of optimiser setting: number")
+    if loop and inv.get("polish"):
+        fail(f"{where}: inversion.polish needs a smooth surrogate; it does not apply to dem_in_the_loop")
+    if loop and inv.get("algorithm", "sa") == "search":
+        fail(f"{where}: inversion.algorithm search samples thousands of points; use an optimiser for dem_in_the_loop")
     if inv.get("algorithm", "ga") not in ALGORITHMS:
         fail(f"{where}: inversion.algorithm must be one of {', '.join(sorted(ALGORITHMS))}")
     if inv.get("objective", "sum-rel") not in OBJECTIVES:
@@ -141,6 +164,8 @@ def validate(study, path):
     ref = study.get("refinement", {"rounds": 0})
     if not isinstance(ref, dict) or set(ref) - {"rounds"} or not isinstance(ref.get("rounds", 0), int) or ref.get("rounds", 0) < 0:
         fail(f"{where}: refinement must be {{\"rounds\": N}} with N >= 0")
+    if int(inv.get("budget", 1)) < 1:
+        fail(f"{where}: inversion.budget must be at least 1 evaluation")
     if int(study.get("seeds_per_point", 1)) < 1:
         fail(f"{where}: seeds_per_point must be at least 1")
     return scene, space
@@ -174,12 +199,13 @@ def plan(study_path, out):
     cfg = os.path.join(out, "config")
     seeds = int(study.get("seeds_per_point", 1))
     surrogate = study.get("surrogate", "quadratic")
-    varied_all = [f for s in study["surfaces"] for f in s["factors"]]
+    loop = study.get("strategy", "surrogate") == "dem_in_the_loop"
+    varied_all = study["factors"] if loop else [f for s in study["surfaces"] for f in s["factors"]]
     varied_all = list(dict.fromkeys(varied_all))
     rules = [f"# Generated by scripts/study.py from {study_path}; do not edit.",
              "BIN ?= build/bin", "CACHE ?= build/cache", "JOBS ?= 2", "PY := /usr/bin/python3", f"D := {out}", ""]
     models = []
-    for k, surface in enumerate(study["surfaces"]):
+    for k, surface in enumerate(study.get("surfaces", [])):
         g = f"g{k + 1}"
         fixed = fixed_values(study, scene, space, surface["factors"])
         write_if_changed(os.path.join(cfg, f"space_{g}.json"), json.dumps(subspace(space, surface["factors"], fixed), indent=1) + "\n")
@@ -208,20 +234,34 @@ def plan(study_path, out):
     inv = study.get("inversion", {})
     fixed_inv = fixed_values(study, scene, space, varied_all)
     write_if_changed(os.path.join(cfg, "space_inversion.json"), json.dumps(subspace(space, varied_all, fixed_inv), indent=1) + "\n")
-    inversion = {"targets": study["targets"], "algorithm": inv.get("algorithm", "ga"),
-                 "objective": inv.get("objective", "sum-rel"), "restarts": int(inv.get("restarts", 5)),
-                 "polish": bool(inv.get("polish", True)), "seed": int(inv.get("seed", 1))}
+    inversion = {"targets": study["targets"], "algorithm": inv.get("algorithm", "sa" if loop else "ga"),
+                 "objective": inv.get("objective", "max-rel" if loop else "sum-rel"),
+                 "restarts": int(inv.get("restarts", 1 if loop else 5)),
+                 "polish": bool(inv.get("polish", not loop)), "seed": int(inv.get("seed", 1))}
     extra_args = []
     if "population" in inv:
         extra_args += ["--set", f"population={int(inv['population'])}"]
+    for name, value in inv.get("settings", {}).items():
+        extra_args += ["--set", f"{name}={value}"]
     if "budget" in inv:
         extra_args += ["--budget", str(int(inv["budget"]))]
+    if "stop_below" in inv:
+        extra_args += ["--stop-below", str(float(inv["stop_below"]))]
+    if loop:
+        inversion["dem_seeds"] = seeds
     inversion["extra"] = extra_args
     write_if_changed(os.path.join(cfg, "inversion.json"), json.dumps(inversion, indent=1) + "\n")
     targets = " ".join(f"--target {k}={v}" for k, v in study["targets"].items())
-    model_args = " ".join(f"--model $(D)/models/{m}.json" for m in models)
+    if loop:
+        # Every evaluation is a DEM run, stored under solution.json.dem/: an
+        # interrupted calibration resumes without repeating a finished run.
+        model_args = f"--dem-scene {study['scene']} --dem-seeds {seeds} --jobs $(JOBS) --cache $(CACHE)"
+        model_files = study["scene"]
+    else:
+        model_args = " ".join(f"--model $(D)/models/{m}.json" for m in models)
+        model_files = " ".join(f"$(D)/models/{m}.json" for m in models)
     rules += [
-        f"$(D)/solution.json: {' '.join(f'$(D)/models/{m}.json' for m in models)} $(D)/config/inversion.json $(D)/config/space_inversion.json",
+        f"$(D)/solution.json: {model_files} $(D)/config/inversion.json $(D)/config/space_inversion.json",
         f"\t$(BIN)/demcal-invert {model_args} {targets} --space $(D)/config/space_inversion.json "
         f"--algo {inversion['algorithm']} --objective {inversion['objective']} --restarts {inversion['restarts']} "
         f"--seed {inversion['seed']}{' --polish' if inversion['polish'] else ''} {' '.join(extra_args)} --out $@ "

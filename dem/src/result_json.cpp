@@ -6,6 +6,7 @@ nlohmann::json result_json(const TestResult& r, const std::map<std::string, doub
   nlohmann::json out;
   out["status"] = r.ok ? "ok" : "failed";
   out["reason"] = r.reason;
+  if (!r.ended_by.empty()) out["ended_by"] = r.ended_by;
   out["macro"] = nlohmann::json::object();
   for (const auto& [name, value] : r.macro) out["macro"][name] = value;
   out["parameters"] = parameters;

@@ -25,6 +25,8 @@ std::string to_string(ObjectiveKind kind) {
 double relative_objective(ObjectiveKind kind, const std::vector<double>& predicted, const std::vector<double>& targets) {
   double total = 0.0;
   for (std::size_t i = 0; i < targets.size(); ++i) {
+    // No prediction (a failed DEM run) is infinitely far; std::max would drop a NaN.
+    if (!std::isfinite(predicted[i])) return std::numeric_limits<double>::infinity();
     double e = (predicted[i] - targets[i]) / std::fabs(targets[i]);
     if (kind == ObjectiveKind::SumRel) total += std::fabs(e);
     else if (kind == ObjectiveKind::MaxRel) total = std::max(total, std::fabs(e));

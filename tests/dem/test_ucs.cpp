@@ -86,3 +86,27 @@ TEST(BrazilianScene, SmallDiscSplitsAtAPlausibleTensileStrength) {
   ASSERT_TRUE(strong.ok);
   EXPECT_GT(strong.macro.at("sigma_t_MPa"), 1.3 * r.macro.at("sigma_t_MPa"));
 }
+
+TEST(UcsScene, AStrongBrittleSpecimenThatBurstsAfterItsPeakIsAResultNotAFailure) {
+  // Strong contact bonds store so much strain energy that failure throws disks
+  // off at more than 1000 x the platen speed (50 m/s); past the peak that ends
+  // the test with the peak values, as a laboratory burst does.
+  Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_rock_cb_small.json");
+  RunOptions options;
+  options.seed = 1;
+  TestResult r = run_ucs(scene,
+                         scene.resolve({{"Ec_Pa", 29.7e9}, {"cb_sigma_c_mean_Pa", 230e6}, {"cb_tau_c_mean_Pa", 317e6}, {"mu", 0.94}}),
+                         options);
+  ASSERT_TRUE(r.ok) << r.reason;
+  EXPECT_EQ(r.ended_by.rfind("burst after the peak (a disk moves faster than 1000 x the platen speed", 0), 0u) << r.ended_by;
+  double peak = 0;
+  for (const CurvePoint& p : r.curve) peak = std::max(peak, p.stress_pa);
+  EXPECT_DOUBLE_EQ(r.macro.at("sigma_u_MPa"), peak / 1e6);
+  EXPECT_LE(r.curve.back().stress_pa, 0.98 * peak);
+  EXPECT_GT(r.macro.at("E_GPa"), 1.0);
+
+  // The default (weaker) sandstone ends the ordinary way.
+  TestResult normal = run_ucs(scene, scene.resolve({}), options);
+  ASSERT_TRUE(normal.ok) << normal.reason;
+  EXPECT_EQ(normal.ended_by, "stress below stop_fraction_of_peak");
+}

@@ -4,6 +4,9 @@
 // space, and the candidate set of the tolerance search.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
@@ -32,6 +35,9 @@ TEST(Objectives, HandComputed) {
   EXPECT_NEAR(relative_objective(ObjectiveKind::MaxRel, y, t), 0.25, 1e-15);
   EXPECT_NEAR(relative_objective(ObjectiveKind::SseRel, y, t), 0.01 + 0.01 + 0.0625, 1e-15);
   EXPECT_NEAR(relative_objective(ObjectiveKind::SumRel, {-3}, {-2}), 0.5, 1e-15);  // |t| in the denominator
+  // No prediction (a failed DEM run) is never a solution, whatever the objective.
+  for (ObjectiveKind kind : {ObjectiveKind::SumRel, ObjectiveKind::MaxRel, ObjectiveKind::SseRel})
+    EXPECT_EQ(relative_objective(kind, {std::nan(""), 18}, {10, 20}), std::numeric_limits<double>::infinity());
   EXPECT_EQ(parse_objective("max-rel"), ObjectiveKind::MaxRel);
   EXPECT_THROW(parse_objective("rms"), Error);
 }

@@ -20,6 +20,7 @@ struct CurvePoint {
 struct TestResult {
   bool ok = false;
   std::string reason;          // why it failed
+  std::string ended_by;        // why a successful test stopped (post-peak fraction, strain limit, burst)
   std::map<std::string, double> macro;  // sigma_u_MPa, E_GPa, E50_GPa, nu, peak_strain, cracks_*
   std::vector<CurvePoint> curve;
   std::size_t particles = 0;
