@@ -3,6 +3,7 @@
 
     study.py plan STUDY.json OUT_DIR     validate and write OUT_DIR/plan.mk with its stage configs
     study.py design CONFIG.json OUT.csv  a surface's design in natural units, fixed values added
+    study.py screen OUT_DIR              range analysis and ANOVA of the screening, main-effects and Pareto plots
     study.py refine OUT_DIR              while verification fails: add its DEM runs to the data, refit,
                                          re-invert, re-verify (up to refinement.rounds rounds)
     study.py report OUT_DIR              OUT_DIR/report.md and a self-contained report.html
@@ -23,8 +24,9 @@ import re
 import subprocess
 import sys
 
-KNOWN = {"name", "description", "strategy", "scene", "space", "targets", "fixed", "surfaces", "factors", "surrogate",
-         "inversion", "verification", "refinement", "seeds_per_point"}
+KNOWN = {"name", "description", "strategy", "scene", "space", "targets", "fixed", "screening", "surfaces", "factors",
+         "surrogate", "inversion", "verification", "refinement", "seeds_per_point"}
+SCREENING_FIELDS = {"design", "outputs", "seeds", "p_threshold", "max_factors"}
 STRATEGIES = {"surrogate", "dem_in_the_loop"}
 INVERSION_FIELDS = {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget", "stop_below", "settings"}
 SURROGATES = {"quadratic", "linear", "gabp"}
@@ -106,6 +108,33 @@ def validate(study, path):
                 fail(f"{where}: factor {f} is not a parameter of {study['space']} (parameters: {', '.join(space_params)})")
             if f not in scene_params:
                 fail(f"{where}: factor {f} is not a parameter of {study['scene']}")
+    screening = study.get("screening")
+    if screening is not None:
+        w = f"{where}: screening"
+        if not isinstance(screening, dict):
+            fail(f"{w} must be an object")
+        extra = sorted(set(screening) - SCREENING_FIELDS)
+        if extra:
+            fail(f"{w}: unknown field \"{extra[0]}\" (allowed: {', '.join(sorted(SCREENING_FIELDS))})")
+        for key in ("design", "outputs"):
+            if key not in screening:
+                fail(f"{w}: missing \"{key}\"")
+        if screening["design"].get("kind") != "oa":
+            fail(f"{w}: design.kind must be \"oa\" (range analysis and ANOVA need an orthogonal plan)")
+        extra = sorted(set(screening["design"]) - {"kind", "runs", "blank", "levels"})
+        if extra:
+            fail(f"{w}: design: unknown field \"{extra[0]}\" (allowed: kind, runs, blank, levels)")
+        for o in screening["outputs"]:
+            if o not in MACROS:
+                fail(f"{w}: output {o} is not a DEM output")
+        for name in space_params:
+            if name not in scene_params:
+                fail(f"{w}: the space's parameter {name} is not a parameter of {study['scene']}")
+        p = screening.get("p_threshold", 0.05)
+        if not isinstance(p, (int, float)) or not 0 < p < 1:
+            fail(f"{w}: p_threshold must lie in (0, 1)")
+        if int(screening.get("max_factors", 6)) < 2:
+            fail(f"{w}: max_factors must be at least 2")
     covered = set(targets) if loop else set()
     for k, surface in enumerate(study.get("surfaces", [])):
         w = f"{where}: surfaces[{k}]"
@@ -121,7 +150,15 @@ def validate(study, path):
             if o in covered:
                 fail(f"{w}: output {o} has a surface already")
             covered.add(o)
-        for f in surface["factors"]:
+        if surface["factors"] == "auto":
+            if screening is None:
+                fail(f"{w}: factors \"auto\" are chosen from the screening ANOVA: add a \"screening\" stage")
+            missing_out = [o for o in surface["outputs"] if o not in screening["outputs"]]
+            if missing_out:
+                fail(f"{w}: factors \"auto\" needs output {missing_out[0]} in screening.outputs")
+        elif not isinstance(surface["factors"], list) or not surface["factors"]:
+            fail(f"{w}: factors must be a list of parameters or \"auto\"")
+        for f in (surface["factors"] if isinstance(surface["factors"], list) else []):
             if f not in space_params:
                 fail(f"{w}: factor {f} is not a parameter of {study['space']} (parameters: {', '.join(space_params)})")
             if f not in scene_params:
@@ -132,6 +169,8 @@ def validate(study, path):
         extra = sorted(set(d) - {"kind", "center", "alpha", "runs", "criterion"})
         if extra:
             fail(f"{w}: design: unknown field \"{extra[0]}\"")
+        if surface["factors"] == "auto":
+            continue  # the design is checked once the screening has chosen the factors
         k_factors = len(surface["factors"])
         if d["kind"] == "bbd" and not 3 <= k_factors <= 7:
             fail(f"{w}: a Box-Behnken design needs 3 to 7 factors, not {k_factors}")
@@ -193,6 +232,99 @@ def subspace(space, factors, fixed):
     return {"parameters": params, "fixed": {k: v for k, v in fixed.items()}}
 
 
+MIN_FACTORS = {"bbd": 3, "ccd": 2, "lhs": 1}
+
+
+def screening_rules(study, scene, space, cfg):
+    """The screening stages: the orthogonal plan over the whole space, its DEM batch, its analysis."""
+    screening = study["screening"]
+    varied = [p["name"] for p in space["parameters"]]
+    fixed = fixed_values(study, scene, space, varied)
+    write_if_changed(os.path.join(cfg, "screening_design.json"), json.dumps(
+        {"space": study["space"], "design": screening["design"], "fixed": fixed}, indent=1) + "\n")
+    seeds = int(screening.get("seeds", 1))
+    write_if_changed(os.path.join(cfg, "screening_batch.json"), json.dumps({"scene": study["scene"], "seeds": seeds}) + "\n")
+    write_if_changed(os.path.join(cfg, "screening.json"), json.dumps(
+        {"space": study["space"], "outputs": screening["outputs"], "p_threshold": screening.get("p_threshold", 0.05)}) + "\n")
+    return [
+        "$(D)/screening/design.csv: $(D)/config/screening_design.json scripts/study.py",
+        "\t$(PY) scripts/study.py design $< $@",
+        f"$(D)/screening/responses.csv: $(D)/screening/design.csv $(D)/config/screening_batch.json {study['scene']}",
+        f"\t$(BIN)/demcal-dem batch --scene {study['scene']} --design $< --out $(D)/screening/responses.h5 "
+        f"--csv $(D)/screening/responses.partial.csv --seeds {seeds} --jobs $(JOBS) --cache $(CACHE) || [ $$? -eq 4 ]",
+        "\tmv $(D)/screening/responses.partial.csv $@",
+        "$(D)/screening/anova.json: $(D)/screening/responses.csv $(D)/config/screening.json",
+        "\t$(PY) scripts/study.py screen $(D)", ""]
+
+
+def choose_factors(study, space, anova):
+    """Factors of each "auto" surface: the parameters whose screening ANOVA p lies below the
+    threshold for any of its outputs, strongest (largest F) first, at most max_factors; when
+    fewer pass than the design needs, the next strongest are added and the report says so."""
+    screening = study["screening"]
+    threshold = float(screening.get("p_threshold", 0.05))
+    limit = int(screening.get("max_factors", 6))
+    names = {p["name"] for p in space["parameters"]}
+    chosen = {}
+    for k, surface in enumerate(study["surfaces"]):
+        if surface["factors"] != "auto":
+            continue
+        best = {}
+        for o in surface["outputs"]:
+            for name, row in anova.get(o, {}).items():
+                if name in names and isinstance(row.get("F"), (int, float)):
+                    f, p = row["F"], row.get("p", 1.0)
+                    if name not in best or f > best[name][0]:
+                        best[name] = (f, p)
+        ranked = sorted(best, key=lambda n: -best[n][0])
+        significant = [n for n in ranked if best[n][1] < threshold]
+        factors = significant[:limit]
+        need = MIN_FACTORS.get(surface["design"]["kind"], 1)
+        note = ""
+        if len(significant) > limit:
+            note = f"{len(significant)} parameters pass p < {threshold}; the {limit} strongest are kept (max_factors)"
+        if len(factors) < need:
+            added = [n for n in ranked if n not in factors][:need - len(factors)]
+            note = (f"only {len(factors)} parameter(s) pass p < {threshold}; a {surface['design']['kind']} needs {need}, "
+                    f"so {', '.join(added)} (the next strongest) joined")
+            factors += added
+        chosen[f"g{k + 1}"] = {"outputs": surface["outputs"], "factors": factors, "threshold": threshold,
+                               "p": {n: best[n][1] for n in ranked}, "F": {n: best[n][0] for n in ranked}, "note": note}
+    return chosen
+
+
+def screen(out):
+    """Range analysis and ANOVA of the screening (blank columns joined from the design), with plots."""
+    cfg = load_json(os.path.join(out, "config", "screening.json"), "screening config")
+    bin_dir = os.environ.get("BIN", "build/bin")
+    d = os.path.join(out, "screening")
+    with open(os.path.join(d, "design.csv")) as f:
+        design_rows = {row["run"]: row for row in csv.DictReader(f)}
+    blanks = [c for c in next(iter(design_rows.values())) if c.startswith("blank")]
+    factors = [p["name"] for p in load_json(cfg["space"], "space")["parameters"]]
+    table = os.path.join(d, "screening.csv")
+    with open(os.path.join(d, "responses.csv")) as f, open(table + ".tmp", "w", newline="") as o:
+        reader = csv.DictReader(f)
+        writer = csv.writer(o)
+        writer.writerow(["run", "seed", "status"] + factors + blanks + cfg["outputs"])
+        for row in reader:
+            writer.writerow([row["run"], row["seed"], row["status"]] + [row[c] for c in factors] +
+                            [design_rows[row["run"]][c] for c in blanks] + [row.get(x, "nan") for x in cfg["outputs"]])
+    os.replace(table + ".tmp", table)
+    for kind in ("range", "anova"):
+        for fmt in ("md", "json"):
+            code = subprocess.run([os.path.join(bin_dir, "demcal-analyze"), kind, "--data", table, "--factors",
+                                   ",".join(factors + blanks), "--responses", ",".join(cfg["outputs"]), "--format", fmt,
+                                   "--out", os.path.join(d, f"{kind}.{fmt}")]).returncode
+            if code != 0:
+                fail(f"demcal-analyze {kind} failed on {table}")
+    plot = ["/usr/bin/python3", "scripts/plot_analysis.py"]
+    subprocess.run(plot + ["main-effects", os.path.join(d, "range.json"), "--out", os.path.join(d, "main_effects.png")],
+                   stdout=subprocess.DEVNULL)
+    subprocess.run(plot + ["pareto", os.path.join(d, "anova.json"), "--out", os.path.join(d, "pareto.png")],
+                   stdout=subprocess.DEVNULL)
+
+
 def plan(study_path, out):
     study = load_json(study_path, "study")
     scene, space = validate(study, study_path)
@@ -200,10 +332,29 @@ def plan(study_path, out):
     seeds = int(study.get("seeds_per_point", 1))
     surrogate = study.get("surrogate", "quadratic")
     loop = study.get("strategy", "surrogate") == "dem_in_the_loop"
-    varied_all = study["factors"] if loop else [f for s in study["surfaces"] for f in s["factors"]]
-    varied_all = list(dict.fromkeys(varied_all))
     rules = [f"# Generated by scripts/study.py from {study_path}; do not edit.",
              "BIN ?= build/bin", "CACHE ?= build/cache", "JOBS ?= 2", "PY := /usr/bin/python3", f"D := {out}", ""]
+    write_if_changed(os.path.join(cfg, "study.json"), json.dumps(study, indent=1, sort_keys=True) + "\n")
+    if "screening" in study:
+        rules += screening_rules(study, scene, space, cfg)
+    if any(surface["factors"] == "auto" for surface in study.get("surfaces", [])):
+        anova = os.path.join(out, "screening", "anova.json")
+        if not os.path.exists(anova):
+            # The factors come from the screening: run it, then plan again.
+            rules += ["all: $(D)/screening/anova.json",
+                      f"\t$(PY) scripts/study.py plan {study_path} $(D) > /dev/null",
+                      "\t$(MAKE) --no-print-directory -f $(D)/plan.mk BIN=$(BIN) CACHE=$(CACHE) JOBS=$(JOBS) all",
+                      ".PHONY: all", ".DEFAULT_GOAL := all", ""]
+            write_if_changed(os.path.join(out, "plan.mk"), "\n".join(rules))
+            print(os.path.join(out, "plan.mk"))
+            return
+        chosen = choose_factors(study, space, load_json(anova, "screening ANOVA"))
+        write_if_changed(os.path.join(cfg, "factors.json"), json.dumps(chosen, indent=1) + "\n")
+        for k, surface in enumerate(study["surfaces"]):
+            if surface["factors"] == "auto":
+                surface["factors"] = chosen[f"g{k + 1}"]["factors"]
+    varied_all = study["factors"] if loop else [f for s in study["surfaces"] for f in s["factors"]]
+    varied_all = list(dict.fromkeys(varied_all))
     models = []
     for k, surface in enumerate(study.get("surfaces", [])):
         g = f"g{k + 1}"
@@ -275,7 +426,6 @@ def plan(study_path, out):
         f"\t$(BIN)/demcal-verify --solution $< --scene {study['scene']} --space $(D)/config/space_inversion.json "
         f"--seeds {verification['seeds']} --tolerance {verification['tolerance']} --jobs $(JOBS) --cache $(CACHE) "
         f"--work $(D)/verification --md $(D)/verification.md --csv $(D)/verification.csv --out $@", ""]
-    write_if_changed(os.path.join(cfg, "study.json"), json.dumps(study, indent=1, sort_keys=True) + "\n")
     write_if_changed(os.path.join(cfg, "refinement.json"), json.dumps(study.get("refinement", {"rounds": 0})) + "\n")
     rules += [
         "$(D)/refined.json: $(D)/verification.json $(D)/config/refinement.json",
@@ -292,7 +442,7 @@ def design(config_path, out_csv):
     d = cfg["design"]
     os.makedirs(os.path.dirname(out_csv) or ".", exist_ok=True)
     cmd = ["build/bin/demcal-doe", d["kind"], "--space", cfg["space"], "--out", out_csv + ".tmp.csv", "--quiet"]
-    for key in ("center", "alpha", "runs", "criterion"):
+    for key in ("center", "alpha", "runs", "criterion", "blank", "levels"):
         if key in d:
             cmd += [f"--{key}", str(d[key])]
     if subprocess.run(cmd).returncode != 0:
@@ -323,6 +473,13 @@ def merged_rows(paths):
     return rows
 
 
+def factors_of(out, g, surface):
+    """A surface's factors: listed in the study, or chosen by the screening (config/factors.json)."""
+    if surface["factors"] != "auto":
+        return surface["factors"]
+    return load_json(os.path.join(out, "config", "factors.json"), "chosen factors")[f"g{g}"]["factors"]
+
+
 def refine(out):
     """Adds each verification's DEM runs to the data, refits, re-inverts and re-verifies."""
     study = load_json(os.path.join(out, "config", "study.json"), "study")
@@ -345,7 +502,7 @@ def refine(out):
         models = []
         for g, surface in enumerate(study["surfaces"], start=1):
             rows = merged_rows([(os.path.join(out, f"g{g}", "responses.csv"), 0)] + added)
-            columns = ["run"] + surface["factors"] + surface["outputs"]
+            columns = ["run"] + factors_of(out, g, surface) + surface["outputs"]
             data = os.path.join(rd, f"data_g{g}.csv")
             with open(data, "w", newline="") as f:
                 w = csv.writer(f)
@@ -354,9 +511,11 @@ def refine(out):
                     w.writerow([row[c] for c in columns])
             for o in surface["outputs"]:
                 model = os.path.join(rd, "models", f"{o}.json")
-                code = subprocess.run([os.path.join(bin_dir, "demcal-fit"), study.get("surrogate", "quadratic"), "--data", data,
-                                       "--x", ",".join(surface["factors"]), "--y", o, "--space",
-                                       os.path.join(out, "config", f"space_g{g}.json"), "--out", model, "--quiet"]).returncode
+                kind = study.get("surrogate", "quadratic")
+                coding = ["--seed", "1"] if kind == "gabp" else ["--space", os.path.join(out, "config", f"space_g{g}.json")]
+                code = subprocess.run([os.path.join(bin_dir, "demcal-fit"), kind, "--data", data, "--x",
+                                       ",".join(factors_of(out, g, surface)), "--y", o] + coding +
+                                      ["--out", model, "--quiet"]).returncode
                 if code != 0:
                     fail(f"refinement round {k}: demcal-fit failed for {o}")
                 models += ["--model", model]
@@ -408,6 +567,31 @@ def curves_png(runs_h5, out_png):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out_png, dpi=150)
+    return None
+
+
+def convergence_png(history_csv, out_png, objective_kind):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        return f"(no convergence plot: {e})"
+    with open(history_csv) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        return "(empty history)"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for restart in sorted({r["restart"] for r in rows}):
+        pts = [(int(r["evaluations"]), float(r["best_objective"])) for r in rows if r["restart"] == restart]
+        ax.step([p[0] for p in pts], [p[1] for p in pts], where="post", label=f"run {restart}")
+    ax.set_yscale("log")
+    ax.set_xlabel("evaluations (DEM runs asked for)")
+    ax.set_ylabel(f"best {objective_kind}")
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=150)
+    plt.close(fig)
     return None
 
 
@@ -464,6 +648,42 @@ def number(value, digits=4):
     return f"{value:.{digits}f}" if isinstance(value, (int, float)) else "-"
 
 
+def screening_section(study, out):
+    if "screening" not in study:
+        return []
+    d = os.path.join(out, "screening")
+    sc = study["screening"]
+    with open(os.path.join(d, "screening.csv")) as f:
+        rows = list(csv.DictReader(f))
+    failed = [r for r in rows if r["status"] != "ok"]
+    lines = ["## Screening", "",
+             f"Orthogonal plan of {sc['design'].get('runs', '?')} runs over the whole space "
+             f"({sc['design'].get('blank', 0)} blank column(s) for the error), {sc.get('seeds', 1)} seed(s) per point: "
+             f"{len(rows)} DEM runs, {len(failed)} failed" + (" (left out of the analysis)" if failed else "") + ".", ""]
+    lines += open(os.path.join(d, "range.md")).read().rstrip().split("\n")
+    for o in sc["outputs"]:
+        if os.path.exists(os.path.join(d, f"main_effects_{o}.png")):
+            lines += ["", f"![main effects on {o}](screening/main_effects_{o}.png)"]
+    lines += [""] + open(os.path.join(d, "anova.md")).read().rstrip().split("\n")
+    for o in sc["outputs"]:
+        if os.path.exists(os.path.join(d, f"pareto_{o}.png")):
+            lines += ["", f"![Pareto chart of F for {o}](screening/pareto_{o}.png)"]
+    lines += ["", "### Factors kept for the response surfaces", "",
+              "| surface | outputs | factors | how chosen |", "|---|---|---|---|"]
+    chosen_path = os.path.join(out, "config", "factors.json")
+    chosen = load_json(chosen_path, "chosen factors") if os.path.exists(chosen_path) else {}
+    for k, surface in enumerate(study.get("surfaces", []), start=1):
+        c = chosen.get(f"g{k}")
+        if c:
+            how = (f"screening ANOVA, p < {c['threshold']}: " +
+                   ", ".join(f"{n} (p = {c['p'][n]:.2g})" for n in c["factors"]) + (f"; {c['note']}" if c["note"] else ""))
+            factors = c["factors"]
+        else:
+            how, factors = "listed in the study", surface["factors"]
+        lines.append(f"| g{k} | {', '.join(surface['outputs'])} | {', '.join(factors)} | {how} |")
+    return lines + [""]
+
+
 def report(out):
     study = load_json(os.path.join(out, "config", "study.json"), "study")
     refined = load_json(os.path.join(out, "refined.json"), "refinement record")
@@ -477,21 +697,43 @@ def report(out):
     space = load_json(os.path.join(out, "config", "space_inversion.json"), "space")
     lines += ["", "| varied parameter | low | high |", "|---|---|---|"]
     lines += [f"| {p['name']} | {p['low']} | {p['high']} |" for p in space["parameters"]]
-    lines += ["", "Fixed: " + ", ".join(f"{k} = {v}" for k, v in space.get("fixed", {}).items()), "", "## Surrogates", "",
-              "| output | model | runs | R^2 | adjusted R^2 | predicted R^2 |", "|---|---|---|---|---|---|"]
-    figures = []
-    for surface in study["surfaces"]:
-        for o in surface["outputs"]:
-            m = load_json(os.path.join(out, "models", f"{o}.json"), "model")
-            r = m["responses"][0] if "responses" in m else {}
-            lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
-                         f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
-            figures.append(f"![fit of {o}](models/{o}_fit.png)")
-    lines += [""] + figures + ["", "## Inversion", "",
-              f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
-              f"{solution['evaluations']} evaluations, status **{solution['status']}**"
-              + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "") + ".", "",
-              "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+    lines += ["", "Fixed: " + ", ".join(f"{k} = {v}" for k, v in space.get("fixed", {}).items()), ""]
+    lines += screening_section(study, out)
+    loop = study.get("strategy", "surrogate") == "dem_in_the_loop"
+    if loop:
+        dem = solution.get("dem", {})
+        lines += ["## DEM in the loop", "",
+                  f"No surrogate: every evaluation of {solution['algorithm']} was a DEM run of `{study['scene']}` "
+                  f"({dem.get('seeds_per_point', 1)} specimen(s) per point, {dem.get('jobs', 1)} at once). "
+                  f"{solution['evaluations']} evaluations asked for {dem.get('points', 0)} distinct points: "
+                  f"**{dem.get('runs', 0)} DEM runs** ({dem.get('runs_failed', 0)} failed), "
+                  f"{dem.get('dem_wall_s', 0) / 60:.1f} min of DEM wall time"
+                  + (f"; {dem['runs_reused']} of them were made by an interrupted earlier attempt and reused"
+                     if dem.get("runs_reused") else "") + ".", ""]
+        history = os.path.join(out, "inversion_history.csv")
+        if os.path.exists(history) and convergence_png(history, os.path.join(out, "convergence.png"),
+                                                       solution.get("objective_kind", "")) is None:
+            lines += ["![best objective against DEM evaluations](convergence.png)", ""]
+        lines += ["## Inversion", "",
+                  f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} run(s), "
+                  f"status **{solution['status']}**" + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "")
+                  + ".", "", "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+    else:
+        lines += ["## Surrogates", "",
+                  "| output | model | runs | R^2 | adjusted R^2 | predicted R^2 |", "|---|---|---|---|---|---|"]
+        figures = []
+        for surface in study["surfaces"]:
+            for o in surface["outputs"]:
+                m = load_json(os.path.join(out, "models", f"{o}.json"), "model")
+                r = m["responses"][0] if "responses" in m else {}
+                lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
+                             f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
+                figures.append(f"![fit of {o}](models/{o}_fit.png)")
+        lines += [""] + figures + ["", "## Inversion", "",
+                  f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
+                  f"{solution['evaluations']} evaluations, status **{solution['status']}**"
+                  + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "") + ".", "",
+                  "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
     if refined["rounds"]:
         lines.insert(len(lines) - 3, f"(The solution of the last refinement round, {len(refined['rounds'])}; its surrogates "
                                      "were refitted with the verification runs added.)")
@@ -501,10 +743,13 @@ def report(out):
         spread = f"{s['min']:.4g} - {s['max']:.4g}" if s else ""
         ident = ("yes" if s["identified"] else "no") if s else ""
         lines.append(f"| {name} | {value:.4g} | {spread} | {ident} |")
-    lines += ["", "| output | target | surrogate at the solution | attainable range |", "|---|---|---|---|"]
+    source = "DEM run at the solution" if loop else "surrogate at the solution"
+    lines += ["", f"| output | target | {source} | attainable range |", "|---|---|---|---|"]
     for o, t in solution["targets"].items():
-        a = solution["attainable"].get(o, {})
-        lines.append(f"| {o} | {t} | {solution['predicted'].get(o, float('nan')):.4g} | {a.get('min', 0):.4g} - {a.get('max', 0):.4g} |")
+        a = solution["attainable"].get(o)
+        attainable = f"{a['min']:.4g} - {a['max']:.4g}" if a else "not assessed"
+        predicted = solution["predicted"].get(o)
+        lines.append(f"| {o} | {t} | {number(predicted, 4) if predicted is None else f'{predicted:.4g}'} | {attainable} |")
     if solution.get("unidentified"):
         lines += ["", "Not identified by these targets (restarts that meet them spread over more than half the range): "
                   + ", ".join(solution["unidentified"]) + "."]
@@ -530,7 +775,7 @@ def report(out):
 
 
 def main():
-    if len(sys.argv) < 3 or sys.argv[1] not in ("plan", "design", "refine", "report"):
+    if len(sys.argv) < 3 or sys.argv[1] not in ("plan", "design", "screen", "refine", "report"):
         print(__doc__, file=sys.stderr)
         sys.exit(2)
     command = sys.argv[1]
@@ -538,6 +783,8 @@ def main():
         plan(sys.argv[2], sys.argv[3])
     elif command == "design" and len(sys.argv) == 4:
         design(sys.argv[2], sys.argv[3])
+    elif command == "screen" and len(sys.argv) == 3:
+        screen(sys.argv[2])
     elif command == "refine" and len(sys.argv) == 3:
         refine(sys.argv[2])
     elif command == "report" and len(sys.argv) == 3:

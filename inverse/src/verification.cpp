@@ -67,7 +67,7 @@ std::string verification_markdown(const Verification& v) {
   std::ostringstream md;
   int ok = 0;
   for (const SeedRun& s : v.seeds) ok += s.ok;
-  md << "| output | target | surrogate | DEM mean | SD | CV % | relative error % | within " << fixed(100 * v.tolerance, 1)
+  md << "| output | target | predicted | DEM mean | SD | CV % | relative error % | within " << fixed(100 * v.tolerance, 1)
      << " % |\n|---|---|---|---|---|---|---|---|\n";
   for (const VerificationRow& r : v.rows)
     md << "| " << r.output << " | " << significant(r.target) << " | " << significant(r.predicted) << " | "

@@ -102,7 +102,7 @@ TEST(UcsScene, AStrongBrittleSpecimenThatBurstsAfterItsPeakIsAResultNotAFailure)
   double peak = 0;
   for (const CurvePoint& p : r.curve) peak = std::max(peak, p.stress_pa);
   EXPECT_DOUBLE_EQ(r.macro.at("sigma_u_MPa"), peak / 1e6);
-  EXPECT_LE(r.curve.back().stress_pa, 0.98 * peak);
+  EXPECT_LT(r.curve.back().stress_pa, peak);
   EXPECT_GT(r.macro.at("E_GPa"), 1.0);
 
   // The default (weaker) sandstone ends the ordinary way.
