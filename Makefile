@@ -28,11 +28,8 @@ demo: build
 
 # One study file, every stage a file target under build/studies/NAME (resumable; make -j2 works).
 STUDY ?= data/studies/demo.json
-STUDY_DIR = $(BUILD)/studies/$(basename $(notdir $(STUDY)))
 study: build
-	@/usr/bin/python3 scripts/study.py plan $(STUDY) $(STUDY_DIR) > /dev/null
-	@$(MAKE) --no-print-directory -f $(STUDY_DIR)/plan.mk BIN=$(BUILD)/bin CACHE=$(BUILD)/cache JOBS=$(JOBS) all
-	@echo "report: $(STUDY_DIR)/report.md and report.html"
+	@scripts/run_study.sh $(STUDY) $(BUILD) $(JOBS)
 
 bench: build
 	@scripts/bench.sh $(BUILD)

@@ -61,9 +61,4 @@ scripts/demo_inversion.sh "$build"
 
 echo
 echo "demcal demo: the whole chain on our DEM, data/studies/demo.json (design -> DEM -> surfaces -> inversion -> verification -> report)"
-/usr/bin/python3 scripts/study.py plan data/studies/demo.json "$build/studies/demo" > /dev/null
-make --no-print-directory -f "$build/studies/demo/plan.mk" BIN="$bin" CACHE="$build/cache" JOBS="$(nproc)" all 2>&1 \
-  | grep -v '^build/bin/\|^/usr/bin/python3 \|^mv \|^\$' || true
-[ -f "$build/studies/demo/report.md" ] || { echo "demo: the study did not finish (rerun make demo to resume)" >&2; exit 1; }
-echo
-echo "Report: $build/studies/demo/report.md and report.html"
+scripts/run_study.sh data/studies/demo.json "$build" "$(nproc)" quiet

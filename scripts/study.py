@@ -4,6 +4,7 @@
     study.py plan STUDY.json OUT_DIR     validate and write OUT_DIR/plan.mk with its stage configs
     study.py design CONFIG.json OUT.csv  a surface's design in natural units, fixed values added
     study.py screen OUT_DIR              range analysis and ANOVA of the screening, main-effects and Pareto plots
+    study.py stability OUT_DIR           other optimiser seeds, a target near the edge, too-small designs (each verified)
     study.py refine OUT_DIR              while verification fails: add its DEM runs to the data, refit,
                                          re-invert, re-verify (up to refinement.rounds rounds)
     study.py report OUT_DIR              OUT_DIR/report.md and a self-contained report.html
@@ -25,7 +26,7 @@ import subprocess
 import sys
 
 KNOWN = {"name", "description", "strategy", "scene", "space", "targets", "fixed", "screening", "surfaces", "factors",
-         "surrogate", "inversion", "verification", "refinement", "seeds_per_point"}
+         "surrogate", "inversion", "verification", "refinement", "seeds_per_point", "stability", "compare_with"}
 SCREENING_FIELDS = {"design", "outputs", "seeds", "p_threshold", "max_factors"}
 STRATEGIES = {"surrogate", "dem_in_the_loop"}
 INVERSION_FIELDS = {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget", "stop_below", "settings"}
@@ -203,6 +204,18 @@ def validate(study, path):
     ref = study.get("refinement", {"rounds": 0})
     if not isinstance(ref, dict) or set(ref) - {"rounds"} or not isinstance(ref.get("rounds", 0), int) or ref.get("rounds", 0) < 0:
         fail(f"{where}: refinement must be {{\"rounds\": N}} with N >= 0")
+    stab = study.get("stability")
+    if stab is not None:
+        if loop:
+            fail(f"{where}: stability repeats the calibration with 5 seeds; with the DEM in the loop that is 5 whole "
+                 "calibrations: run the study with other inversion.seed values instead")
+        if not isinstance(stab, dict) or set(stab) - {"seeds", "edge_fraction", "small_design_runs"}:
+            fail(f"{where}: stability must be an object with seeds, edge_fraction, small_design_runs")
+        if int(stab.get("seeds", 5)) < 2:
+            fail(f"{where}: stability.seeds must be at least 2")
+    for other in study.get("compare_with", []):
+        if not isinstance(other, str) or not os.path.exists(other):
+            fail(f"{where}: compare_with: {other} is not a study file")
     if int(inv.get("budget", 1)) < 1:
         fail(f"{where}: inversion.budget must be at least 1 evaluation")
     if int(study.get("seeds_per_point", 1)) < 1:
@@ -427,10 +440,20 @@ def plan(study_path, out):
         f"--seeds {verification['seeds']} --tolerance {verification['tolerance']} --jobs $(JOBS) --cache $(CACHE) "
         f"--work $(D)/verification --md $(D)/verification.md --csv $(D)/verification.csv --out $@", ""]
     write_if_changed(os.path.join(cfg, "refinement.json"), json.dumps(study.get("refinement", {"rounds": 0})) + "\n")
+    report_inputs = "$(D)/refined.json $(D)/config/study.json scripts/study.py"
+    if "stability" in study:
+        write_if_changed(os.path.join(cfg, "stability.json"), json.dumps(study["stability"]) + "\n")
+        rules += ["$(D)/stability.json: $(D)/verification.json $(D)/config/stability.json",
+                  "\t$(PY) scripts/study.py stability $(D)", ""]
+        report_inputs += " $(D)/stability.json"
+    # Other strategies' results, when they have been run, join the speed-versus-accuracy chart.
+    for other in study.get("compare_with", []):
+        other_dir = os.path.join(os.path.dirname(out), os.path.splitext(os.path.basename(other))[0])
+        report_inputs += f" $(wildcard {os.path.join(other_dir, 'refined.json')})"
     rules += [
         "$(D)/refined.json: $(D)/verification.json $(D)/config/refinement.json",
         "\t$(PY) scripts/study.py refine $(D)", "",
-        "$(D)/report.md: $(D)/refined.json $(D)/config/study.json scripts/study.py",
+        f"$(D)/report.md: {report_inputs}",
         "\t$(PY) scripts/study.py report $(D)", "",
         "all: $(D)/report.md", ".PHONY: all", ".DEFAULT_GOAL := all", ""]
     write_if_changed(os.path.join(out, "plan.mk"), "\n".join(rules))
@@ -471,6 +494,250 @@ def merged_rows(paths):
                 row["run"] = str(int(row["run"]) + run_offset + int(row.get("seed", 1)))
                 rows.append(row)
     return rows
+
+
+def run_quiet(cmd):
+    """Runs a stage tool; returns (exit code, its last error line)."""
+    r = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    lines = [x for x in r.stderr.splitlines() if ": error: " in x]
+    return r.returncode, (lines[-1].split(": error: ", 1)[1] if lines else "")
+
+
+def invert_and_verify(out, name, models, targets, seed, where):
+    """One inversion on the study's models with its settings (other seed or targets), verified in DEM."""
+    study = load_json(os.path.join(out, "config", "study.json"), "study")
+    inversion = load_json(os.path.join(out, "config", "inversion.json"), "inversion")
+    verification = load_json(os.path.join(out, "config", "verification.json"), "verification")
+    bin_dir = os.environ.get("BIN", "build/bin")
+    os.makedirs(where, exist_ok=True)
+    solution = os.path.join(where, f"{name}_solution.json")
+    cmd = [os.path.join(bin_dir, "demcal-invert")] + models
+    for t, v in targets.items():
+        cmd += ["--target", f"{t}={v}"]
+    cmd += ["--space", os.path.join(out, "config", "space_inversion.json"), "--algo", inversion["algorithm"],
+            "--objective", inversion["objective"], "--restarts", str(inversion["restarts"]), "--seed", str(seed),
+            "--out", solution] + (["--polish"] if inversion["polish"] else []) + inversion.get("extra", [])
+    code, message = run_quiet(cmd)
+    case = {"case": name, "seed": seed, "targets": targets, "invert_exit": code, "message": message}
+    if code not in (0, 3, 4):
+        return case
+    sol = load_json(solution, "solution")
+    case.update({"status": sol["status"], "x": sol["x"], "predicted": sol["predicted"]})
+    if code == 3:
+        return case  # unreachable: nothing to verify
+    ver = os.path.join(where, f"{name}_verification.json")
+    code, message = run_quiet([os.path.join(bin_dir, "demcal-verify"), "--solution", solution, "--scene", study["scene"],
+                               "--space", os.path.join(out, "config", "space_inversion.json"), "--seeds",
+                               str(verification["seeds"]), "--tolerance", str(verification["tolerance"]), "--jobs",
+                               os.environ.get("JOBS", "2"), "--cache", os.environ.get("CACHE", "build/cache"), "--work",
+                               os.path.join(where, f"{name}_runs"), "--out", ver, "--quiet"])
+    if os.path.exists(ver):
+        v = load_json(ver, "verification")
+        case.update({"verified": {o: r["relative_error_pct"] for o, r in v["outputs"].items()}, "passed": v["passed"]})
+    else:
+        case["verify_message"] = message
+    return case
+
+
+def stability(out):
+    """The same calibration with other optimiser seeds, a target near the edge of what the
+    surrogates reach, and a deliberately too-small design: where each breaks, and what the
+    program says."""
+    study = load_json(os.path.join(out, "config", "study.json"), "study")
+    stab = study["stability"]
+    bin_dir = os.environ.get("BIN", "build/bin")
+    where = os.path.join(out, "stability")
+    models = []
+    for surface in study["surfaces"]:
+        for o in surface["outputs"]:
+            models += ["--model", os.path.join(out, "models", f"{o}.json")]
+    record = {"seeds": [], "edge": None, "small_design": []}
+    for seed in range(1, int(stab.get("seeds", 5)) + 1):
+        record["seeds"].append(invert_and_verify(out, f"seed{seed}", models, study["targets"], 100 + seed, where))
+        print(f"stability: seed {100 + seed} done", flush=True)
+
+    # A target near (fraction < 1) or beyond (> 1) the top of the first output's attainable range.
+    solution = load_json(os.path.join(out, "solution.json"), "solution")
+    first = next(iter(study["targets"]))
+    reach = solution["attainable"].get(first)
+    if reach:
+        fraction = float(stab.get("edge_fraction", 0.98))
+        edge = dict(study["targets"])
+        edge[first] = round(reach["min"] + fraction * (reach["max"] - reach["min"]), 6)
+        record["edge"] = invert_and_verify(out, "edge", models, edge, 1, where)
+        record["edge"].update({"output": first, "attainable": [reach["min"], reach["max"]], "fraction": fraction})
+
+    # The first surface refitted on the first n runs of its design.
+    surface = study["surfaces"][0]
+    factors = factors_of(out, 1, surface)
+    with open(os.path.join(out, "g1", "responses.csv")) as f:
+        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    k = len(factors)
+    terms = (k + 1) * (k + 2) // 2 if study.get("surrogate", "quadratic") == "quadratic" else None
+    sizes = stab.get("small_design_runs") or ([terms - 1, terms + 2] if terms else [max(4, len(rows) // 4)])
+    for n in sizes:
+        n = min(int(n), len(rows))
+        data = os.path.join(where, f"small{n}_data.csv")
+        with open(data, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+            w.writeheader()
+            w.writerows(rows[:n])
+        small_models = []
+        case = {"case": f"first {n} of {len(rows)} design runs", "runs": n, "terms": terms}
+        ok = True
+        for o in surface["outputs"]:
+            model = os.path.join(where, f"small{n}_{o}.json")
+            kind = study.get("surrogate", "quadratic")
+            coding = ["--seed", "1"] if kind == "gabp" else ["--space", os.path.join(out, "config", "space_g1.json")]
+            code, message = run_quiet([os.path.join(bin_dir, "demcal-fit"), kind, "--data", data, "--x", ",".join(factors),
+                                       "--y", o] + coding + ["--out", model, "--quiet"])
+            if code != 0:
+                case.update({"fit_exit": code, "message": message})
+                ok = False
+                break
+            m = load_json(model, "model")
+            case.setdefault("r2_pred", {})[o] = m.get("r2_pred")
+            small_models += ["--model", model]
+        if ok:
+            others = [m for s2 in study["surfaces"][1:] for o in s2["outputs"]
+                      for m in ("--model", os.path.join(out, "models", f"{o}.json"))]
+            case.update(invert_and_verify(out, f"small{n}", small_models + others, study["targets"], 1, where))
+            case["case"] = f"first {n} of {len(rows)} design runs"
+        record["small_design"].append(case)
+        print(f"stability: design of {n} runs done", flush=True)
+    write_if_changed(os.path.join(out, "stability.json"), json.dumps(record, indent=1) + "\n")
+
+
+def count_rows(path):
+    if not os.path.exists(path):
+        return 0
+    with open(path) as f:
+        return sum(1 for _ in csv.DictReader(f))
+
+
+def study_cost(out):
+    """What a calibration cost and gave: DEM runs (screening, designs, DEM in the loop,
+    verification, refinement; not the stability checks), wall time of make study, and the
+    largest verified relative error of the final solution."""
+    study = load_json(os.path.join(out, "config", "study.json"), "study")
+    refined = load_json(os.path.join(out, "refined.json"), "refinement record")
+    solution = load_json(refined["final"]["solution"], "solution")
+    runs = count_rows(os.path.join(out, "screening", "responses.csv"))
+    for k in range(1, len(study.get("surfaces", [])) + 1):
+        runs += count_rows(os.path.join(out, f"g{k}", "responses.csv"))
+    first_solution = load_json(os.path.join(out, "solution.json"), "solution")
+    runs += first_solution.get("dem", {}).get("runs", 0)
+    runs += len(load_json(os.path.join(out, "verification.json"), "verification")["seeds"])
+    runs += sum(r["dem_runs"] for r in refined["rounds"])
+    final = load_json(refined["final"]["verification"], "verification")
+    errors = [abs(r["relative_error_pct"]) for r in final["outputs"].values()]
+    wall = None
+    timings = os.path.join(out, "make_wall_s.csv")
+    if os.path.exists(timings):
+        with open(timings) as f:
+            wall = sum(float(r["wall_s"]) for r in csv.DictReader(f))
+    if study.get("strategy") == "dem_in_the_loop":
+        label = f"DEM in the loop ({solution['algorithm']})"
+    else:
+        label = {"quadratic": "response surface", "linear": "linear surface", "gabp": "GA-BP network"}[
+            study.get("surrogate", "quadratic")] + f" + {solution['algorithm']}"
+    return {"name": study["name"], "strategy": label, "dem_runs": runs, "wall_s": wall,
+            "max_error_pct": max(errors) if errors else None, "passed": final["passed"],
+            "tolerance_pct": 100 * final.get("tolerance", 0)}
+
+
+def comparison_png(rows, out_png):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError as e:
+        return f"(no chart: {e})"
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for r in rows:
+        if r["max_error_pct"] is None:
+            continue
+        axes[0].scatter(r["dem_runs"], r["max_error_pct"], s=40)
+        axes[0].annotate(r["strategy"], (r["dem_runs"], r["max_error_pct"]), fontsize=8, xytext=(4, 4),
+                         textcoords="offset points")
+        if r["wall_s"] is not None:
+            axes[1].scatter(r["wall_s"] / 60, r["max_error_pct"], s=40)
+            axes[1].annotate(r["strategy"], (r["wall_s"] / 60, r["max_error_pct"]), fontsize=8, xytext=(4, 4),
+                             textcoords="offset points")
+    tol = rows[0]["tolerance_pct"]
+    for ax, xlabel in zip(axes, ("DEM runs", "wall time of make study (min)")):
+        ax.axhline(tol, color="grey", linestyle="--", linewidth=1, label=f"tolerance {tol:g} %")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("largest verified relative error (%)")
+        ax.set_xlim(left=0)
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Speed versus accuracy of the calibration strategies")
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=150)
+    plt.close(fig)
+    return None
+
+
+def comparison_section(study, out):
+    rows = [study_cost(out)]
+    missing = []
+    for other in study.get("compare_with", []):
+        d = os.path.join(os.path.dirname(out), os.path.splitext(os.path.basename(other))[0])
+        if os.path.exists(os.path.join(d, "refined.json")):
+            rows.append(study_cost(d))
+        else:
+            missing.append(other)
+    lines = ["## Cost and accuracy", "",
+             "DEM runs of the calibration (screening, designs, DEM in the loop, verification and refinement; not the "
+             "stability checks), wall time of `make study` summed over its runs, and the largest relative error of the "
+             "final verification:", "",
+             "| study | strategy | DEM runs | wall time (min) | largest verified error (%) | passed |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        wall = f"{r['wall_s'] / 60:.1f}" if r["wall_s"] is not None else "not recorded"
+        lines.append(f"| {r['name']} | {r['strategy']} | {r['dem_runs']} | {wall} | {number(r['max_error_pct'], 2)} | "
+                     f"{'yes' if r['passed'] else 'no'} |")
+    if len(rows) > 1 and comparison_png(rows, os.path.join(out, "speed_accuracy.png")) is None:
+        lines += ["", "![DEM runs and wall time against the verified error](speed_accuracy.png)"]
+    if missing:
+        lines += ["", "Not run yet (run `make study STUDY=...` on them for the comparison): " + ", ".join(missing) + "."]
+    return lines + [""]
+
+
+def stability_section(out):
+    path = os.path.join(out, "stability.json")
+    if not os.path.exists(path):
+        return []
+    st = load_json(path, "stability record")
+
+    def errors(case):
+        if "verified" in case:
+            return ", ".join(f"{o} {e:+.1f} %" for o, e in case["verified"].items())
+        return case.get("verify_message", "not verified")
+
+    lines = ["## Stability", "",
+             "The same calibration repeated with other optimiser seeds (same surrogates, each solution verified in DEM):",
+             "", "| seed | status | solution | verified relative errors | passed |", "|---|---|---|---|---|"]
+    for c in st["seeds"]:
+        x = ", ".join(f"{k} {v:.4g}" for k, v in c.get("x", {}).items())
+        lines.append(f"| {c['seed']} | {c.get('status', c['message'])} | {x} | {errors(c)} | "
+                     f"{'yes' if c.get('passed') else 'no'} |")
+    e = st.get("edge")
+    if e:
+        lines += ["", f"A target near the edge: {e['output']} = {e['targets'][e['output']]:.4g}, at {100 * e['fraction']:.0f} % "
+                  f"of its attainable range [{e['attainable'][0]:.4g}, {e['attainable'][1]:.4g}] (the other targets "
+                  f"unchanged): inversion status **{e.get('status', '-')}**"
+                  + (f" ({e['message']})" if e.get("message") else "") + "; verified: " + errors(e) + "."]
+    lines += ["", "Deliberately small designs (the first runs of the first surface's design, refitted):", "",
+              "| design | fit | predicted R^2 | inversion | verified relative errors |", "|---|---|---|---|---|"]
+    for c in st["small_design"]:
+        if "fit_exit" in c:
+            lines.append(f"| {c['case']} | refused: {c['message']} | - | - | - |")
+            continue
+        r2 = ", ".join(f"{o} {number(v, 3)}" for o, v in c.get("r2_pred", {}).items())
+        lines.append(f"| {c['case']} | ok | {r2} | {c.get('status', c.get('message', '-'))} | {errors(c)} |")
+    return lines + [""]
 
 
 def factors_of(out, g, surface):
@@ -767,6 +1034,7 @@ def report(out):
     runs = os.path.join(os.path.dirname(final["verification"]), "verification", "runs.h5")
     if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png")) is None:
         lines += ["", "![stress-strain curves](verification_curves.png)"]
+    lines += [""] + stability_section(out) + comparison_section(study, out)
     text = "\n".join(lines) + "\n"
     write_if_changed(os.path.join(out, "report.md"), text)
     write_if_changed(os.path.join(out, "report.html"), md_to_html(text, out))
@@ -775,7 +1043,7 @@ def report(out):
 
 
 def main():
-    if len(sys.argv) < 3 or sys.argv[1] not in ("plan", "design", "screen", "refine", "report"):
+    if len(sys.argv) < 3 or sys.argv[1] not in ("plan", "design", "screen", "refine", "stability", "report"):
         print(__doc__, file=sys.stderr)
         sys.exit(2)
     command = sys.argv[1]
@@ -785,6 +1053,8 @@ def main():
         design(sys.argv[2], sys.argv[3])
     elif command == "screen" and len(sys.argv) == 3:
         screen(sys.argv[2])
+    elif command == "stability" and len(sys.argv) == 3:
+        stability(sys.argv[2])
     elif command == "refine" and len(sys.argv) == 3:
         refine(sys.argv[2])
     elif command == "report" and len(sys.argv) == 3:
