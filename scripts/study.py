@@ -27,7 +27,7 @@ import sys
 
 KNOWN = {"name", "description", "strategy", "scene", "space", "targets", "fixed", "screening", "surfaces", "factors",
          "surrogate", "inversion", "verification", "refinement", "seeds_per_point", "stability", "compare_with"}
-SCREENING_FIELDS = {"design", "outputs", "seeds", "p_threshold", "max_factors"}
+SCREENING_FIELDS = {"design", "factors", "outputs", "seeds", "p_threshold", "max_factors"}
 STRATEGIES = {"surrogate", "dem_in_the_loop"}
 INVERSION_FIELDS = {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget", "stop_below", "settings"}
 SURROGATES = {"quadratic", "linear", "gabp"}
@@ -128,7 +128,9 @@ def validate(study, path):
         for o in screening["outputs"]:
             if o not in MACROS:
                 fail(f"{w}: output {o} is not a DEM output")
-        for name in space_params:
+        for name in screening.get("factors", list(space_params)):
+            if name not in space_params:
+                fail(f"{w}: factor {name} is not a parameter of {study['space']}")
             if name not in scene_params:
                 fail(f"{w}: the space's parameter {name} is not a parameter of {study['scene']}")
         p = screening.get("p_threshold", 0.05)
@@ -251,16 +253,22 @@ MIN_FACTORS = {"bbd": 3, "ccd": 2, "lhs": 1}
 def screening_rules(study, scene, space, cfg):
     """The screening stages: the orthogonal plan over the whole space, its DEM batch, its analysis."""
     screening = study["screening"]
-    varied = [p["name"] for p in space["parameters"]]
+    # The listed factors, or every parameter of the space except those the study fixes.
+    study_fixed = study.get("fixed") if isinstance(study.get("fixed"), dict) else {}
+    varied = screening.get("factors") or [p["name"] for p in space["parameters"] if p["name"] not in study_fixed]
+    # The screening's own fixed values: a factor it varies is not fixed here, even if later stages fix it.
+    study = dict(study, fixed={k: v for k, v in study_fixed.items() if k not in varied})
     fixed = fixed_values(study, scene, space, varied)
+    screening_space = os.path.join(cfg, "screening_space.json")
+    write_if_changed(screening_space, json.dumps(subspace(space, varied, fixed), indent=1) + "\n")
     write_if_changed(os.path.join(cfg, "screening_design.json"), json.dumps(
-        {"space": study["space"], "design": screening["design"], "fixed": fixed}, indent=1) + "\n")
+        {"space": screening_space, "design": screening["design"], "fixed": fixed}, indent=1) + "\n")
     seeds = int(screening.get("seeds", 1))
     write_if_changed(os.path.join(cfg, "screening_batch.json"), json.dumps({"scene": study["scene"], "seeds": seeds}) + "\n")
     write_if_changed(os.path.join(cfg, "screening.json"), json.dumps(
-        {"space": study["space"], "outputs": screening["outputs"], "p_threshold": screening.get("p_threshold", 0.05)}) + "\n")
+        {"space": screening_space, "outputs": screening["outputs"], "p_threshold": screening.get("p_threshold", 0.05)}) + "\n")
     return [
-        "$(D)/screening/design.csv: $(D)/config/screening_design.json scripts/study.py",
+        "$(D)/screening/design.csv: $(D)/config/screening_design.json $(D)/config/screening_space.json scripts/study.py",
         "\t$(PY) scripts/study.py design $< $@",
         f"$(D)/screening/responses.csv: $(D)/screening/design.csv $(D)/config/screening_batch.json {study['scene']}",
         f"\t$(BIN)/demcal-dem batch --scene {study['scene']} --design $< --out $(D)/screening/responses.h5 "
