@@ -15,9 +15,12 @@ report="$dir/report.md"
 before=$(stat -c %Y "$report" 2>/dev/null || echo none)
 start=$(date +%s.%N)
 if [ "$filter" = quiet ]; then
+  set +e
   make --no-print-directory -f "$dir/plan.mk" BIN="$build/bin" CACHE="$build/cache" JOBS="$jobs" all 2>&1 \
-    | grep -v '^build/bin/\|^/usr/bin/python3 \|^mv \|^\$' || true
-  [ -f "$report" ] || { echo "$name: the study did not finish (run it again to resume)" >&2; exit 1; }
+    | grep -v '^build/bin/\|^/usr/bin/python3 \|^mv \|^\$'
+  code=${PIPESTATUS[0]}
+  set -e
+  [ "$code" -eq 0 ] || { echo "$name: the study stopped (make exit $code); run it again to resume" >&2; exit 1; }
 else
   make --no-print-directory -f "$dir/plan.mk" BIN="$build/bin" CACHE="$build/cache" JOBS="$jobs" all
 fi

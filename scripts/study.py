@@ -63,6 +63,14 @@ def write_if_changed(path, text):
     os.replace(tmp, path)
 
 
+def write_target(path, text):
+    """A make target: always rewritten, so it is newer than what it was made from."""
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
 def validate(study, path):
     where = path
     unknown = sorted(set(study) - KNOWN)
@@ -293,8 +301,8 @@ def choose_factors(study, space, anova):
         best = {}
         for o in surface["outputs"]:
             for name, row in anova.get(o, {}).items():
-                if name in names and isinstance(row.get("F"), (int, float)):
-                    f, p = row["F"], row.get("p", 1.0)
+                if name in names and isinstance(row.get("F"), (int, float)) and isinstance(row.get("p"), (int, float)):
+                    f, p = row["F"], row["p"]
                     if name not in best or f > best[name][0]:
                         best[name] = (f, p)
         ranked = sorted(best, key=lambda n: -best[n][0])
@@ -309,6 +317,12 @@ def choose_factors(study, space, anova):
             note = (f"only {len(factors)} parameter(s) pass p < {threshold}; a {surface['design']['kind']} needs {need}, "
                     f"so {', '.join(added)} (the next strongest) joined")
             factors += added
+        if len(factors) < need:
+            fail(f"surfaces[{k}]: the screening ANOVA ranks only {len(factors)} parameter(s) for "
+                 f"{', '.join(surface['outputs'])}; a {surface['design']['kind']} needs {need}")
+        if surface["design"]["kind"] == "bbd" and len(factors) > 7:
+            factors = factors[:7]
+            note += "; a Box-Behnken design takes at most 7: the 7 strongest are kept"
         chosen[f"g{k + 1}"] = {"outputs": surface["outputs"], "factors": factors, "threshold": threshold,
                                "p": {n: best[n][1] for n in ranked}, "F": {n: best[n][0] for n in ranked}, "note": note}
     return chosen
@@ -332,11 +346,17 @@ def screen(out):
             writer.writerow([row["run"], row["seed"], row["status"]] + [row[c] for c in factors] +
                             [design_rows[row["run"]][c] for c in blanks] + [row.get(x, "nan") for x in cfg["outputs"]])
     os.replace(table + ".tmp", table)
+    # Blank columns enter as terms and the error is the residual (Minitab's GLM), unless the plan is
+    # saturated (3 levels: 2 degrees of freedom a column): then the first blank column is the error.
+    runs = len(design_rows)
+    error = []
+    if blanks and runs - 1 - 2 * (len(factors) + len(blanks)) <= 0:
+        error = ["--error", f"column:{blanks[0]}"]
     for kind in ("range", "anova"):
         for fmt in ("md", "json"):
             code = subprocess.run([os.path.join(bin_dir, "demcal-analyze"), kind, "--data", table, "--factors",
                                    ",".join(factors + blanks), "--responses", ",".join(cfg["outputs"]), "--format", fmt,
-                                   "--out", os.path.join(d, f"{kind}.{fmt}")]).returncode
+                                   "--out", os.path.join(d, f"{kind}.{fmt}")] + (error if kind == "anova" else [])).returncode
             if code != 0:
                 fail(f"demcal-analyze {kind} failed on {table}")
     plot = ["/usr/bin/python3", "scripts/plot_analysis.py"]
@@ -358,14 +378,17 @@ def plan(study_path, out):
     write_if_changed(os.path.join(cfg, "study.json"), json.dumps(study, indent=1, sort_keys=True) + "\n")
     if "screening" in study:
         rules += screening_rules(study, scene, space, cfg)
-    if any(surface["factors"] == "auto" for surface in study.get("surfaces", [])):
+    two_phase = any(surface["factors"] == "auto" for surface in study.get("surfaces", []))
+    if two_phase:
+        # The factors come from the screening: make always brings the screening up to date,
+        # plans again with what its ANOVA says now, then runs the other stages.
+        rules += ["all: $(D)/screening/anova.json",
+                  f"\t@$(PY) scripts/study.py plan {study_path} $(D) > /dev/null",
+                  "\t@$(MAKE) --no-print-directory -f $(D)/plan.mk BIN=$(BIN) CACHE=$(CACHE) JOBS=$(JOBS) stages",
+                  ".PHONY: all stages", ".DEFAULT_GOAL := all", ""]
         anova = os.path.join(out, "screening", "anova.json")
         if not os.path.exists(anova):
-            # The factors come from the screening: run it, then plan again.
-            rules += ["all: $(D)/screening/anova.json",
-                      f"\t$(PY) scripts/study.py plan {study_path} $(D) > /dev/null",
-                      "\t$(MAKE) --no-print-directory -f $(D)/plan.mk BIN=$(BIN) CACHE=$(CACHE) JOBS=$(JOBS) all",
-                      ".PHONY: all", ".DEFAULT_GOAL := all", ""]
+            rules += ["stages: ;", ""]
             write_if_changed(os.path.join(out, "plan.mk"), "\n".join(rules))
             print(os.path.join(out, "plan.mk"))
             return
@@ -449,6 +472,8 @@ def plan(study_path, out):
         f"--work $(D)/verification --md $(D)/verification.md --csv $(D)/verification.csv --out $@", ""]
     write_if_changed(os.path.join(cfg, "refinement.json"), json.dumps(study.get("refinement", {"rounds": 0})) + "\n")
     report_inputs = "$(D)/refined.json $(D)/config/study.json scripts/study.py"
+    if "screening" in study:
+        report_inputs += " $(D)/screening/anova.json"
     if "stability" in study:
         write_if_changed(os.path.join(cfg, "stability.json"), json.dumps(study["stability"]) + "\n")
         rules += ["$(D)/stability.json: $(D)/verification.json $(D)/config/stability.json",
@@ -457,13 +482,13 @@ def plan(study_path, out):
     # Other strategies' results, when they have been run, join the speed-versus-accuracy chart.
     for other in study.get("compare_with", []):
         other_dir = os.path.join(os.path.dirname(out), os.path.splitext(os.path.basename(other))[0])
-        report_inputs += f" $(wildcard {os.path.join(other_dir, 'refined.json')})"
+        report_inputs += f" $(wildcard {os.path.join(other_dir, 'report.md')})"
     rules += [
         "$(D)/refined.json: $(D)/verification.json $(D)/config/refinement.json",
         "\t$(PY) scripts/study.py refine $(D)", "",
         f"$(D)/report.md: {report_inputs}",
         "\t$(PY) scripts/study.py report $(D)", "",
-        "all: $(D)/report.md", ".PHONY: all", ".DEFAULT_GOAL := all", ""]
+        ] + (["stages: $(D)/report.md", ""] if two_phase else ["all: $(D)/report.md", ".PHONY: all", ".DEFAULT_GOAL := all", ""])
     write_if_changed(os.path.join(out, "plan.mk"), "\n".join(rules))
     print(os.path.join(out, "plan.mk"))
 
@@ -519,6 +544,10 @@ def invert_and_verify(out, name, models, targets, seed, where):
     bin_dir = os.environ.get("BIN", "build/bin")
     os.makedirs(where, exist_ok=True)
     solution = os.path.join(where, f"{name}_solution.json")
+    ver = os.path.join(where, f"{name}_verification.json")
+    for stale in (solution, ver):  # never report an earlier run's file as this one's
+        if os.path.exists(stale):
+            os.remove(stale)
     cmd = [os.path.join(bin_dir, "demcal-invert")] + models
     for t, v in targets.items():
         cmd += ["--target", f"{t}={v}"]
@@ -533,13 +562,12 @@ def invert_and_verify(out, name, models, targets, seed, where):
     case.update({"status": sol["status"], "x": sol["x"], "predicted": sol["predicted"]})
     if code == 3:
         return case  # unreachable: nothing to verify
-    ver = os.path.join(where, f"{name}_verification.json")
     code, message = run_quiet([os.path.join(bin_dir, "demcal-verify"), "--solution", solution, "--scene", study["scene"],
                                "--space", os.path.join(out, "config", "space_inversion.json"), "--seeds",
                                str(verification["seeds"]), "--tolerance", str(verification["tolerance"]), "--jobs",
                                os.environ.get("JOBS", "2"), "--cache", os.environ.get("CACHE", "build/cache"), "--work",
                                os.path.join(where, f"{name}_runs"), "--out", ver, "--quiet"])
-    if os.path.exists(ver):
+    if code == 0 and os.path.exists(ver):
         v = load_json(ver, "verification")
         case.update({"verified": {o: r["relative_error_pct"] for o, r in v["outputs"].items()}, "passed": v["passed"]})
     else:
@@ -613,7 +641,7 @@ def stability(out):
             case["case"] = f"first {n} of {len(rows)} design runs"
         record["small_design"].append(case)
         print(f"stability: design of {n} runs done", flush=True)
-    write_if_changed(os.path.join(out, "stability.json"), json.dumps(record, indent=1) + "\n")
+    write_target(os.path.join(out, "stability.json"), json.dumps(record, indent=1) + "\n")
 
 
 def count_rows(path):
@@ -818,7 +846,7 @@ def refine(out):
               + (" - passed" if v["passed"] else ""), flush=True)
         current = {"solution": solution, "verification": ver, "runs": os.path.join(rd, "verification", "runs.csv")}
         record["final"] = current
-    write_if_changed(os.path.join(out, "refined.json"), json.dumps(record, indent=1) + "\n")
+    write_target(os.path.join(out, "refined.json"), json.dumps(record, indent=1) + "\n")
 
 
 def curves_png(runs_h5, out_png):
@@ -933,7 +961,7 @@ def screening_section(study, out):
     failed = [r for r in rows if r["status"] != "ok"]
     lines = ["## Screening", "",
              f"Orthogonal plan of {sc['design'].get('runs', '?')} runs over the whole space "
-             f"({sc['design'].get('blank', 0)} blank column(s) for the error), {sc.get('seeds', 1)} seed(s) per point: "
+             f"({sc['design'].get('blank', 0)} blank column(s)), {sc.get('seeds', 1)} seed(s) per point: "
              f"{len(rows)} DEM runs, {len(failed)} failed" + (" (left out of the analysis)" if failed else "") + ".", ""]
     lines += open(os.path.join(d, "range.md")).read().rstrip().split("\n")
     for o in sc["outputs"]:

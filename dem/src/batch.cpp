@@ -70,15 +70,23 @@ void parse_shard(const std::string& text, BatchOptions& options) {
   options.shard_count = count;
 }
 
+OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_total) {
+  OutputFiles files{options.out_path, options.csv_path, options.scene_path, options.design_path};
+  files.shard = std::to_string(options.shard_index) + "/" + std::to_string(options.shard_count);
+  files.design_points = design_total;
+  return files;
+}
+
 std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
-                                    std::vector<std::string>& design_columns) {
+                                    std::vector<std::string>& design_columns, std::size_t* design_total) {
   if (options.seeds < 1) throw Error("--seeds must be at least 1");
   Table design = Table::read(options.design_path, "/design");
   design_columns = design_parameter_columns(scene, design, options.design_path);
   const std::string points_dir = options.out_path + ".points";
   ::mkdir(points_dir.c_str(), 0755);
   if (!file_exists(points_dir)) throw Error(points_dir + ": cannot create the folder of point results");
-  std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir);
+  std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir, scene.fingerprint());
+  if (design_total) *design_total = all.size();
   if (options.shard_count == 1) return all;
   // Every N-th point (rows and seeds interleaved), so shards get alike mixes.
   std::vector<PointSpec> shard;
@@ -100,8 +108,8 @@ std::vector<json> run_points(const Scene& scene, const std::vector<PointSpec>& p
   }
   if (skipped) *skipped = points.size() - pending.size();
   if (stale > 0)
-    log::warn(std::to_string(stale) + " stored point(s) were made with other parameter values than the design now "
-              "gives them; running them again");
+    log::warn(std::to_string(stale) + " stored point(s) were made with other parameter values, another scene or an older engine; "
+              "running them again");
   if (pending.empty()) return results;
 
   std::vector<const PointSpec*> pending_points;
@@ -137,8 +145,9 @@ BatchSummary run_batch(const BatchOptions& options) {
   if (options.jobs < 1) throw Error("--jobs must be at least 1");
   Scene scene = Scene::load(options.scene_path);
   std::vector<std::string> design_columns;
-  std::vector<PointSpec> points = batch_points(scene, options, design_columns);
-  const OutputFiles files{options.out_path, options.csv_path, options.scene_path, options.design_path};
+  std::size_t design_total = 0;
+  std::vector<PointSpec> points = batch_points(scene, options, design_columns, &design_total);
+  const OutputFiles files = batch_output_files(options, design_total);
 
   // What is stored now, so the outputs can be rebuilt after every point.
   std::vector<json> known(points.size());

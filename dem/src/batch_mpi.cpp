@@ -1,10 +1,13 @@
 #include "demcal/dem/batch_mpi.hpp"
 
 #include <mpi.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <set>
 #include <thread>
@@ -32,10 +35,20 @@ std::string in_child(Work work, int& status) {
   if (::pipe(fds) != 0) throw Error("cannot create a pipe to a worker process");
   std::fflush(nullptr);
   pid_t pid = ::fork();
-  if (pid < 0) throw Error("cannot start a worker process");
-  if (pid == 0) {
+  if (pid < 0) {
     ::close(fds[0]);
-    const std::string text = work();
+    ::close(fds[1]);
+    throw Error("cannot start a worker process");
+  }
+  if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with its rank (MPI_Abort, a cancelled job)
+    ::close(fds[0]);
+    std::string text;
+    try {  // never unwind into the rank's code (MPI calls, its catch blocks)
+      text = work();
+    } catch (...) {
+      ::_exit(1);
+    }
     std::size_t written = 0;
     while (written < text.size()) {
       ssize_t n = ::write(fds[1], text.data() + written, text.size() - written);
@@ -57,7 +70,8 @@ std::string in_child(Work work, int& status) {
     }
   }
   ::close(fds[0]);
-  ::waitpid(pid, &status, 0);
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
   if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) text.clear();
   return text;
 }
@@ -93,12 +107,13 @@ struct Setup {
   std::vector<std::string> design_columns;
   std::vector<PointSpec> points;
   std::vector<SpecimenSpec> to_pack;
+  std::size_t design_total = 0;
 };
 
 Setup set_up(const BatchOptions& options, bool master) {
   Setup s{Scene::load(options.scene_path), {}, {}, {}};
   if (master) {
-    s.points = batch_points(s.scene, options, s.design_columns);
+    s.points = batch_points(s.scene, options, s.design_columns, &s.design_total);
   } else {
     // Same points, without creating folders: workers may not share rank 0's disk.
     Table design = Table::read(options.design_path, "/design");
@@ -106,7 +121,8 @@ Setup set_up(const BatchOptions& options, bool master) {
     log::set_level(log::Level::Quiet);
     s.design_columns = design_parameter_columns(s.scene, design, options.design_path);
     log::set_level(level);
-    std::vector<PointSpec> all = design_points(design, s.design_columns, options.seeds, options.out_path + ".points");
+    std::vector<PointSpec> all = design_points(design, s.design_columns, options.seeds, options.out_path + ".points",
+                                             s.scene.fingerprint());
     for (std::size_t i = 0; i < all.size(); ++i)
       if (static_cast<int>(i % options.shard_count) == options.shard_index - 1) s.points.push_back(all[i]);
   }
@@ -204,6 +220,7 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, b
     s = set_up(options, master);
   } catch (const std::exception& e) {
     setup_error = e.what();
+    if (!master) std::fprintf(stderr, "demcal-dem: rank %d: %s\n", mpi.rank(), e.what());
   }
   // Every rank learns whether any rank failed to set up, so none is left waiting.
   int local_ok = setup_error.empty() ? 1 : 0, all_ok = 0;
@@ -252,7 +269,7 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, b
       log::info("resuming: " + std::to_string(summary.skipped) + " of " + std::to_string(s.points.size()) +
                 " points already done");
     log::info(std::to_string(pending.size()) + " point(s) over " + std::to_string(workers) + " worker rank(s)");
-    const OutputFiles files{options.out_path, options.csv_path, options.scene_path, options.design_path};
+    const OutputFiles files = batch_output_files(options, s.design_total);
     auto write_outputs = [&]() {
       std::vector<json> done;
       for (std::size_t i = 0; i < s.points.size(); ++i)

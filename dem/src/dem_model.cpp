@@ -77,6 +77,7 @@ void DemModel::predict_batch(const std::vector<std::vector<double>>& xs, std::ve
       p.run = static_cast<int>(e.run);
       p.seed = static_cast<std::uint64_t>(s);
       p.design = design;
+      p.scene_fingerprint = scene_.fingerprint();
       p.file = options_.work_dir + "/points/run" + std::to_string(e.run) + "_seed" + std::to_string(s) + ".json";
       specs.push_back(p);
     }

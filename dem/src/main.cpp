@@ -122,6 +122,12 @@ int main(int argc, char** argv) {
       log::info("merged " + std::to_string(m.inputs) + " file(s): " + std::to_string(m.points) + " points (" +
                 std::to_string(m.failed) + " failed, " + std::to_string(m.duplicates) + " duplicate(s) dropped); wrote " +
                 merge_out);
+      if (m.points < m.design_points) {
+        log::warn(std::to_string(m.design_points - m.points) + " of the design's " + std::to_string(m.design_points) +
+                  " points are missing (a shard not given or not finished); a batch over the whole design into " +
+                  merge_out + " runs only those");
+        return 4;
+      }
       return 0;
     }
     dem::Scene scene = dem::Scene::load(scene_path);

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <map>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -19,21 +20,28 @@ MergeSummary merge_results(const std::vector<std::string>& inputs, const std::st
   MergeSummary summary;
   std::string scene, design;
   std::vector<std::string> columns;
+  std::size_t design_points = 0;
+  std::set<std::string> shards;
   std::map<std::pair<int, std::uint64_t>, std::pair<json, std::string>> merged;  // (run, seed) -> result, file
   for (const std::string& input : inputs) {
     if (input == out_path) throw Error("merge: " + input + " is both an input and the output");
-    std::string input_scene, input_design;
+    OutputFiles in;
     std::vector<std::string> input_columns;
-    std::vector<json> results = read_point_outputs(input, input_scene, input_design, input_columns);
+    std::vector<json> results = read_point_outputs(input, in, input_columns);
     if (summary.inputs == 0) {
-      scene = input_scene;
-      design = input_design;
+      scene = in.scene_path;
+      design = in.design_path;
       columns = input_columns;
-    } else if (input_scene != scene) {
-      throw Error("merge: " + input + " was run on scene " + input_scene + ", " + inputs.front() + " on " + scene);
+      design_points = in.design_points;
+    } else if (in.scene_path != scene) {
+      throw Error("merge: " + input + " was run on scene " + in.scene_path + ", " + inputs.front() + " on " + scene);
+    } else if (in.design_path != design || in.design_points != design_points) {
+      throw Error("merge: " + input + " was run on design " + in.design_path + " (" + std::to_string(in.design_points) +
+                  " points), " + inputs.front() + " on " + design + " (" + std::to_string(design_points) + ")");
     } else if (input_columns != columns) {
       throw Error("merge: " + input + " has other design columns than " + inputs.front());
     }
+    shards.insert(in.shard);
     ++summary.inputs;
     for (json& r : results) {
       const auto key = std::make_pair(r.at("run").get<int>(), r.at("seed").get<std::uint64_t>());
@@ -61,8 +69,11 @@ MergeSummary merge_results(const std::vector<std::string>& inputs, const std::st
     if (entry.first.at("status") != "ok") ++summary.failed;
     results.push_back(std::move(entry.first));
   }
-  write_point_outputs(results, columns, OutputFiles{out_path, csv_path, scene, design});
+  OutputFiles files{out_path, csv_path, scene, design};
+  files.design_points = design_points;
+  write_point_outputs(results, columns, files);
   summary.points = results.size();
+  summary.design_points = design_points;
   return summary;
 }
 

@@ -67,7 +67,7 @@ std::vector<std::string> design_parameter_columns(const Scene& scene, const Tabl
 }
 
 std::vector<PointSpec> design_points(const Table& design, const std::vector<std::string>& columns, int seeds,
-                                     const std::string& points_dir) {
+                                     const std::string& points_dir, const std::string& scene_fingerprint) {
   std::vector<PointSpec> points;
   for (std::size_t row = 0; row < design.rows(); ++row)
     for (int s = 1; s <= seeds; ++s) {
@@ -76,6 +76,7 @@ std::vector<PointSpec> design_points(const Table& design, const std::vector<std:
       p.seed = static_cast<std::uint64_t>(s);
       for (const std::string& c : columns) p.design[c] = design.at(row, c);
       p.file = points_dir + "/run" + std::to_string(p.run) + "_seed" + std::to_string(p.seed) + ".json";
+      p.scene_fingerprint = scene_fingerprint;
       points.push_back(p);
     }
   return points;
@@ -94,6 +95,7 @@ bool read_point_file(const std::string& path, json& out) {
 
 bool same_point(const json& stored, const PointSpec& p) {
   if (!stored.contains("seed") || stored.at("seed").get<std::uint64_t>() != p.seed) return false;
+  if (stored.value("scene_fingerprint", std::string()) != p.scene_fingerprint) return false;
   if (!stored.contains("parameters")) return false;
   const json& parameters = stored.at("parameters");
   for (const auto& [name, value] : p.design)
@@ -114,6 +116,7 @@ json failed_point(const PointSpec& p, const std::string& reason) {
   out["seed"] = p.seed;
   out["parameters"] = p.design;
   out["macro"] = json::object();
+  out["scene_fingerprint"] = p.scene_fingerprint;
   return out;
 }
 
@@ -126,6 +129,7 @@ json compute_point(const Scene& scene, const PointSpec& p, const std::string& ca
     TestResult r = run_test(scene, parameters, options);
     json out = result_json(r, parameters, p.seed);
     out["run"] = p.run;
+    out["scene_fingerprint"] = p.scene_fingerprint;
     out["curve"] = curve_json(r);
     return out;
   } catch (const std::exception& e) {
@@ -150,6 +154,8 @@ void write_point_outputs(const std::vector<json>& results, const std::vector<std
     root.set_attribute("scene", files.scene_path);
     root.set_attribute("design", files.design_path);
     root.set_attribute("design_columns", join(design_columns));
+    root.set_attribute("shard", files.shard);
+    root.set_attribute("design_points", static_cast<std::int64_t>(files.design_points));
     for (const json& r : results) {
       const std::string name = "/points/run" + std::to_string(r.at("run").get<int>()) + "_seed" +
                                std::to_string(r.at("seed").get<std::uint64_t>());
@@ -198,13 +204,17 @@ void write_point_outputs(const std::vector<json>& results, const std::vector<std
   write_file_atomically(files.csv_path, csv.str());
 }
 
-std::vector<json> read_point_outputs(const std::string& out_path, std::string& scene_path, std::string& design_path,
+std::vector<json> read_point_outputs(const std::string& out_path, OutputFiles& files,
                                      std::vector<std::string>& design_columns) {
   h5::File file(out_path, h5::Mode::ReadOnly);
   if (!file.exists("/points")) throw Error(out_path + ": no /points group (not a demcal-dem batch result)");
   h5::Group root = file.group("/points", false);
-  scene_path = root.has_attribute("scene") ? root.string_attribute("scene") : "";
-  design_path = root.has_attribute("design") ? root.string_attribute("design") : "";
+  files.out_path = out_path;
+  files.scene_path = root.has_attribute("scene") ? root.string_attribute("scene") : "";
+  files.design_path = root.has_attribute("design") ? root.string_attribute("design") : "";
+  files.shard = root.has_attribute("shard") ? root.string_attribute("shard") : "1/1";
+  files.design_points =
+      root.has_attribute("design_points") ? static_cast<std::size_t>(root.integer_attribute("design_points")) : 0;
   if (!root.has_attribute("design_columns"))
     throw Error(out_path + ": written by an older demcal-dem without the full point results; rerun its batch");
   design_columns = split(root.string_attribute("design_columns"));

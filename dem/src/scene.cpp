@@ -1,5 +1,8 @@
 #include "demcal/dem/scene.hpp"
 
+#include <cstdint>
+#include <cstdio>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -53,11 +56,34 @@ AggregateSpec aggregate_spec(const json& a, const std::string& where) {
 
 Scene Scene::load(const std::string& path) { return from_json(read_json_file(path, "scene file"), path); }
 
+namespace {
+
+// Raise when a change of the engine changes results (2: a burst past the peak
+// ends the test instead of failing it).
+constexpr int kResultsVersion = 2;
+
+// FNV-1a over the canonical dump (keys sorted): the same scene content gives
+// the same fingerprint, whatever the file's layout.
+std::string scene_fingerprint(const json& root) {
+  const std::string text = root.dump() + "|results-v" + std::to_string(kResultsVersion);
+  std::uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%016llx-v%d", static_cast<unsigned long long>(hash), kResultsVersion);
+  return buffer;
+}
+
+}  // namespace
+
 Scene Scene::from_json(const json& root, const std::string& origin) {
   require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
                        origin);
   Scene scene;
   scene.origin_ = origin;
+  scene.fingerprint_ = scene_fingerprint(root);
   scene.name_ = root.value("name", std::string("scene"));
   scene.test_ = root.value("test", std::string(""));
   if (scene.test_ != "ucs" && scene.test_ != "brazilian")

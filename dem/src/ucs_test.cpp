@@ -99,8 +99,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
       result.ok = false;
       result.reason = e.what();
     }
-    if (result.ok && result.curve.back().stress_pa >= loading.stop_fraction_of_peak * monitor.peak())
-      result.macro["reached_strain_limit"] = 1;
+    if (result.ok && result.ended_by == "strain_limit") result.macro["reached_strain_limit"] = 1;
   }
   return result;
 }

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <map>
@@ -28,13 +29,22 @@ void for_each_in_workers(std::size_t n, int jobs, Work work, Done done) {
       if (pid == 0) {
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
         log::set_level(log::Level::Quiet);
-        work(next);
+        // Never unwind into the parent's code (its destructors, its catch blocks).
+        try {
+          work(next);
+        } catch (...) {
+          ::_exit(1);
+        }
         ::_exit(0);
       }
       running[pid] = next++;
     }
     int status = 0;
     pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      throw Error("lost track of the worker processes (waitpid failed)");
+    }
     auto it = running.find(pid);
     if (it == running.end()) continue;
     std::size_t index = it->second;

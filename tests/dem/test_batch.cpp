@@ -137,3 +137,33 @@ TEST(DemcalDemBatch, AChangedDesignPointIsRunAgainNotReused) {
   EXPECT_NE(after.at("run2_seed1.json"), before.at("run2_seed1.json"));  // changed: run again
   EXPECT_NE(after.at("run2_seed1.json").find("\"pb_sigma_c_MPa\":14.0"), std::string::npos) << after.at("run2_seed1.json");
 }
+
+TEST(DemcalDemBatch, AnEditedSceneIsRunAgainNotReused) {
+  // A stored result carries the fingerprint of the scene it was made on.
+  const std::string out = temp("edited.h5"), cache = temp("cache_edited"), scene = temp("edited_scene.json");
+  std::string text;
+  {
+    std::ifstream in(kScene);
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  std::ofstream(scene) << text;
+  const std::string design = temp("edited_design.csv");
+  std::ofstream(design) << "run,pb_sigma_c_MPa\n1,9\n";
+  auto batch = [&]() {
+    return std::system((kBin + " batch --scene " + scene + " --design " + design + " --out " + out + " --cache " + cache +
+                        " --quiet 2>/dev/null")
+                           .c_str());
+  };
+  ASSERT_EQ(batch(), 0);
+  const std::string first = point_files(out + ".points").at("run1_seed1.json");
+  ASSERT_EQ(batch(), 0);
+  EXPECT_EQ(point_files(out + ".points").at("run1_seed1.json"), first);  // same scene: reused
+
+  const auto at = text.find("\"stop_fraction_of_peak\": 0.7");
+  ASSERT_NE(at, std::string::npos);
+  std::ofstream(scene) << text.replace(at, 28, "\"stop_fraction_of_peak\": 0.5");
+  ASSERT_EQ(batch(), 0);
+  EXPECT_NE(point_files(out + ".points").at("run1_seed1.json"), first);  // edited scene: run again
+}

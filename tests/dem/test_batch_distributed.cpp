@@ -101,6 +101,27 @@ TEST(DemcalDemShards, ShardsMergedGiveTheSerialResultAndTheMergeResumes) {
   EXPECT_NE(resume.err.find("8 points: 8 ok, 0 failed, 8 done before"), std::string::npos) << resume.err;
 }
 
+TEST(DemcalDemShards, AMissingShardIsReportedAndABatchFillsItIn) {
+  const std::string design = write_design("design.csv", 4);
+  const std::string& serial = serial_csv(design);
+  for (const std::string shard : {"1/2", "2/2"}) {
+    const std::string name = "half" + shard.substr(0, 1);
+    auto r = run_command(kBin + batch_args(design, name) + " --shard " + shard + " --quiet", name);
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  const std::string merged = temp_path("partial.h5");
+  auto m = run_command(kBin + " merge " + temp_path("half1.h5") + " --out " + merged + " --csv " + temp_path("partial.csv"),
+                       "partial_merge");
+  EXPECT_EQ(m.code, 4) << m.err;
+  EXPECT_NE(m.err.find("4 of the design's 8 points are missing"), std::string::npos) << m.err;
+  auto fill = run_command(kBin + " batch --scene " + kScene + " --design " + design + " --out " + merged + " --csv " +
+                              temp_path("filled.csv") + " --seeds 2 --cache " + temp_path("cache_fill"),
+                          "fill");
+  ASSERT_EQ(fill.code, 0) << fill.err;
+  EXPECT_NE(fill.err.find("resuming: 4 of 8 points already done"), std::string::npos) << fill.err;
+  EXPECT_EQ(slurp(temp_path("filled.csv")), serial);
+}
+
 TEST(DemcalDemShards, BadShardsAreOneLineErrors) {
   const std::string design = write_design("design_small.csv", 1);
   for (const std::string shard : {"0/2", "3/2", "2", "a/b", "1/2x"}) {
@@ -110,12 +131,13 @@ TEST(DemcalDemShards, BadShardsAreOneLineErrors) {
 }
 
 TEST(DemcalDemShards, MergingDifferentResultsForOneRunIsAnError) {
-  const std::string a = temp_path("conflict_a.csv"), b = temp_path("conflict_b.csv");
-  std::ofstream(a) << "run,pb_sigma_c_MPa\n1,9\n";
-  std::ofstream(b) << "run,pb_sigma_c_MPa\n1,12\n";  // run 1 again, other values
-  for (const std::string& name : {std::string("conflict_a"), std::string("conflict_b")}) {
-    auto r = run_command(kBin + " batch --scene " + kScene + " --design " + temp_path(name + ".csv") + " --out " +
-                             temp_path(name + ".h5") + " --cache " + temp_path("cache_conflict") + " --quiet",
+  // The same design file, edited between two batches: run 1 means two different points.
+  const std::string design = temp_path("conflict.csv");
+  for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{{"conflict_a", "9"},
+                                                                                             {"conflict_b", "12"}}) {
+    std::ofstream(design) << "run,pb_sigma_c_MPa\n1," << value << "\n";
+    auto r = run_command(kBin + " batch --scene " + kScene + " --design " + design + " --out " + temp_path(name + ".h5") +
+                             " --cache " + temp_path("cache_conflict") + " --quiet",
                          name);
     ASSERT_EQ(r.code, 0) << r.err;
   }
@@ -123,6 +145,18 @@ TEST(DemcalDemShards, MergingDifferentResultsForOneRunIsAnError) {
                            temp_path("conflict.h5"),
                        "conflict_merge");
   demcal::test::expect_one_line_error(m, "demcal-dem", "run 1 seed 1 differs between");
+
+  // Files of two different designs do not merge either.
+  const std::string other = temp_path("other_design.csv");
+  std::ofstream(other) << "run,pb_sigma_c_MPa\n2,10\n";
+  auto r = run_command(kBin + " batch --scene " + kScene + " --design " + other + " --out " + temp_path("other.h5") +
+                           " --cache " + temp_path("cache_conflict") + " --quiet",
+                       "other");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto mixed = run_command(kBin + " merge " + temp_path("conflict_a.h5") + " " + temp_path("other.h5") + " --out " +
+                               temp_path("mixed.h5"),
+                           "mixed_merge");
+  demcal::test::expect_one_line_error(mixed, "demcal-dem", "was run on design");
 }
 
 }  // namespace

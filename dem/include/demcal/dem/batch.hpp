@@ -43,8 +43,12 @@ struct BatchSummary {
 void parse_shard(const std::string& text, BatchOptions& options);
 
 // The points of the batch (this shard's only), with their result files.
+// `design_total` receives the point count of the whole design (all shards).
 std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
-                                    std::vector<std::string>& design_columns);
+                                    std::vector<std::string>& design_columns, std::size_t* design_total = nullptr);
+
+// The result files of a batch: its shard ("i/N") and the whole design's point count recorded.
+OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_total);
 
 BatchSummary run_batch(const BatchOptions& options);
 

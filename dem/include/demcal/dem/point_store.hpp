@@ -20,6 +20,7 @@ struct PointSpec {
   std::uint64_t seed = 1;
   std::map<std::string, double> design;  // the design's values of scene parameters
   std::string file;                      // its result file
+  std::string scene_fingerprint;         // Scene::fingerprint() of the scene it runs on
 };
 
 // The design's columns that are scene parameters; warns about the others
@@ -30,12 +31,13 @@ std::vector<std::string> design_parameter_columns(const Scene& scene, const Tabl
 // Every (row, seed 1..seeds) of the design, in row order then seed order,
 // with result files under points_dir.
 std::vector<PointSpec> design_points(const Table& design, const std::vector<std::string>& columns, int seeds,
-                                     const std::string& points_dir);
+                                     const std::string& points_dir, const std::string& scene_fingerprint);
 
 // Reads a stored result; false when the file is missing or not a result.
 bool read_point_file(const std::string& path, nlohmann::json& out);
-// A stored result belongs to a point only if it was made with the same seed
-// and the same design values: a changed design never reuses a stale result.
+// A stored result belongs to a point only if it was made with the same seed,
+// the same design values and the same scene (content and results version): a
+// changed design, an edited scene or a newer engine never reuses a stale result.
 bool same_point(const nlohmann::json& stored, const PointSpec& point);
 // The stored result of `point`, when there is one made with its values.
 bool stored_result(const PointSpec& point, nlohmann::json& out);
@@ -50,6 +52,8 @@ struct OutputFiles {
   std::string csv_path;     // flat CSV; empty: none
   std::string scene_path;   // recorded as attributes
   std::string design_path;
+  std::string shard = "1/1";        // which part of the design this file holds
+  std::size_t design_points = 0;    // points of the whole design (all shards)
 };
 
 // Rewrites the responses file and the CSV (atomically) from the results, in
@@ -60,7 +64,7 @@ void write_point_outputs(const std::vector<nlohmann::json>& results, const std::
                          const OutputFiles& files);
 
 // Reads the point results back from a responses file written above.
-std::vector<nlohmann::json> read_point_outputs(const std::string& out_path, std::string& scene_path,
-                                               std::string& design_path, std::vector<std::string>& design_columns);
+std::vector<nlohmann::json> read_point_outputs(const std::string& out_path, OutputFiles& files,
+                                               std::vector<std::string>& design_columns);
 
 }  // namespace demcal::dem

@@ -61,6 +61,10 @@ class Scene {
   // The aggregates of a concrete scene; empty for a one-phase specimen.
   const std::optional<AggregateSpec>& aggregates() const { return aggregates_; }
   const std::string& origin() const { return origin_; }
+  // Identifies what a stored result was made with: the scene's content and
+  // the version of the results (raised when the engine's physics change), so
+  // a batch never reuses a result of an edited scene or an older engine.
+  const std::string& fingerprint() const { return fingerprint_; }
 
   // Defaults with `overrides` applied; unknown names, non-finite values and
   // values outside [low, high] are errors naming the parameter.
@@ -74,7 +78,7 @@ class Scene {
   SpecimenSpec specimen(const std::map<std::string, double>& parameters, std::uint64_t seed) const;
 
  private:
-  std::string origin_, name_, test_;
+  std::string origin_, name_, test_, fingerprint_;
   nlohmann::json specimen_;
   std::map<std::string, SceneParameter> parameters_;
   std::map<std::string, ContactSpec> contacts_;
