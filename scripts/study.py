@@ -463,12 +463,15 @@ def plan(study_path, out):
         "--history $(D)/inversion_history.csv "
         "|| case $$? in 3|4) ;; *) exit 1 ;; esac", ""]
     ver = study.get("verification", {})
-    verification = {"seeds": int(ver.get("seeds", 5)), "tolerance": float(ver.get("tolerance", 0.05)), "scene": study["scene"]}
+    # In the loop the optimiser saw specimens 1..n: verify on others.
+    verification = {"seeds": int(ver.get("seeds", 5)), "tolerance": float(ver.get("tolerance", 0.05)), "scene": study["scene"],
+                    "first_seed": seeds + 1 if loop else 1}
     write_if_changed(os.path.join(cfg, "verification.json"), json.dumps(verification) + "\n")
     rules += [
         f"$(D)/verification.json: $(D)/solution.json $(D)/config/verification.json {study['scene']}",
         f"\t$(BIN)/demcal-verify --solution $< --scene {study['scene']} --space $(D)/config/space_inversion.json "
-        f"--seeds {verification['seeds']} --tolerance {verification['tolerance']} --jobs $(JOBS) --cache $(CACHE) "
+        f"--seeds {verification['seeds']} --first-seed {verification['first_seed']} --tolerance {verification['tolerance']} "
+        "--jobs $(JOBS) --cache $(CACHE) "
         f"--work $(D)/verification --md $(D)/verification.md --csv $(D)/verification.csv --out $@", ""]
     write_if_changed(os.path.join(cfg, "refinement.json"), json.dumps(study.get("refinement", {"rounds": 0})) + "\n")
     report_inputs = "$(D)/refined.json $(D)/config/study.json scripts/study.py"
@@ -564,7 +567,8 @@ def invert_and_verify(out, name, models, targets, seed, where):
         return case  # unreachable: nothing to verify
     code, message = run_quiet([os.path.join(bin_dir, "demcal-verify"), "--solution", solution, "--scene", study["scene"],
                                "--space", os.path.join(out, "config", "space_inversion.json"), "--seeds",
-                               str(verification["seeds"]), "--tolerance", str(verification["tolerance"]), "--jobs",
+                               str(verification["seeds"]), "--first-seed", str(verification.get("first_seed", 1)),
+                               "--tolerance", str(verification["tolerance"]), "--jobs",
                                os.environ.get("JOBS", "2"), "--cache", os.environ.get("CACHE", "build/cache"), "--work",
                                os.path.join(where, f"{name}_runs"), "--out", ver, "--quiet"])
     if code == 0 and os.path.exists(ver):
@@ -834,6 +838,7 @@ def refine(out):
         ver = os.path.join(rd, "verification.json")
         if subprocess.run([os.path.join(bin_dir, "demcal-verify"), "--solution", solution, "--scene", study["scene"], "--space",
                            os.path.join(out, "config", "space_inversion.json"), "--seeds", str(verification["seeds"]),
+                           "--first-seed", str(verification.get("first_seed", 1)),
                            "--tolerance", str(verification["tolerance"]), "--jobs", jobs, "--cache", cache, "--work",
                            os.path.join(rd, "verification"), "--md", os.path.join(rd, "verification.md"), "--out", ver,
                            "--quiet"]).returncode != 0:
@@ -1012,7 +1017,8 @@ def report(out):
                   f"**{dem.get('runs', 0)} DEM runs** ({dem.get('runs_failed', 0)} failed), "
                   f"{dem.get('dem_wall_s', 0) / 60:.1f} min of DEM wall time"
                   + (f"; {dem['runs_reused']} of them were made by an interrupted earlier attempt and reused"
-                     if dem.get("runs_reused") else "") + ".", ""]
+                     if dem.get("runs_reused") else "") + ". The verification below uses other specimens (seeds "
+                  f"{dem.get('seeds_per_point', 1) + 1} onwards) than the one(s) the optimiser saw.", ""]
         history = os.path.join(out, "inversion_history.csv")
         if os.path.exists(history) and convergence_png(history, os.path.join(out, "convergence.png"),
                                                        solution.get("objective_kind", "")) is None:

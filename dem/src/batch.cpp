@@ -80,12 +80,14 @@ OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_t
 std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
                                     std::vector<std::string>& design_columns, std::size_t* design_total) {
   if (options.seeds < 1) throw Error("--seeds must be at least 1");
+  if (options.first_seed < 1) throw Error("--first-seed must be at least 1");
   Table design = Table::read(options.design_path, "/design");
   design_columns = design_parameter_columns(scene, design, options.design_path);
   const std::string points_dir = options.out_path + ".points";
   ::mkdir(points_dir.c_str(), 0755);
   if (!file_exists(points_dir)) throw Error(points_dir + ": cannot create the folder of point results");
-  std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir, scene.fingerprint());
+  std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir, scene.fingerprint(),
+                                             options.first_seed);
   if (design_total) *design_total = all.size();
   if (options.shard_count == 1) return all;
   // Every N-th point (rows and seeds interleaved), so shards get alike mixes.

@@ -122,7 +122,7 @@ Setup set_up(const BatchOptions& options, bool master) {
     s.design_columns = design_parameter_columns(s.scene, design, options.design_path);
     log::set_level(level);
     std::vector<PointSpec> all = design_points(design, s.design_columns, options.seeds, options.out_path + ".points",
-                                             s.scene.fingerprint());
+                                             s.scene.fingerprint(), options.first_seed);
     for (std::size_t i = 0; i < all.size(); ++i)
       if (static_cast<int>(i % options.shard_count) == options.shard_index - 1) s.points.push_back(all[i]);
   }

@@ -77,7 +77,9 @@ int main(int argc, char** argv) {
   batch->add_option("--design", batch_options.design_path, "design .csv or .h5 (columns named after scene parameters)")
       ->required();
   batch->add_option("--out", batch_options.out_path, "responses .h5 (point results also under OUT.points/)")->required();
-  batch->add_option("--seeds", batch_options.seeds, "seeds per design point (1..K)")->capture_default_str();
+  batch->add_option("--seeds", batch_options.seeds, "seeds per design point (first seed .. first seed + K - 1)")
+      ->capture_default_str();
+  batch->add_option("--first-seed", batch_options.first_seed, "first seed of each point")->capture_default_str();
   batch->add_option("--jobs", batch_options.jobs, "points run at once")->capture_default_str();
   batch->add_option("--csv", batch_options.csv_path, "flat CSV export: design columns, seed, status, macro values");
   batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();

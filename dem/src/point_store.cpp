@@ -67,10 +67,11 @@ std::vector<std::string> design_parameter_columns(const Scene& scene, const Tabl
 }
 
 std::vector<PointSpec> design_points(const Table& design, const std::vector<std::string>& columns, int seeds,
-                                     const std::string& points_dir, const std::string& scene_fingerprint) {
+                                     const std::string& points_dir, const std::string& scene_fingerprint,
+                                     int first_seed) {
   std::vector<PointSpec> points;
   for (std::size_t row = 0; row < design.rows(); ++row)
-    for (int s = 1; s <= seeds; ++s) {
+    for (int s = first_seed; s < first_seed + seeds; ++s) {
       PointSpec p;
       p.run = design.run_ids()[row];
       p.seed = static_cast<std::uint64_t>(s);

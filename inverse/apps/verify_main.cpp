@@ -27,7 +27,7 @@ using nlohmann::json;
 struct Arguments {
   std::string solution, scene, space, out, csv, md, work, cache = "build/cache";
   std::vector<std::string> sets;
-  int seeds = 5, jobs = 2;
+  int seeds = 5, first_seed = 1, jobs = 2;
   double tolerance = 0.05;
   bool quiet = false;
 };
@@ -44,6 +44,7 @@ std::map<std::string, double> numbers(const json& object, const std::string& whe
 
 int run(const Arguments& a) {
   if (a.seeds < 1) throw Error("--seeds must be at least 1");
+  if (a.first_seed < 1) throw Error("--first-seed must be at least 1");
   if (!(a.tolerance > 0)) throw Error("--tolerance must be positive");
   const json solution = read_json_file(a.solution, "solution");
   if (!solution.contains("x") || !solution.contains("targets"))
@@ -84,12 +85,13 @@ int run(const Arguments& a) {
   batch.csv_path = work + "/runs.csv";
   batch.cache_dir = a.cache;
   batch.seeds = a.seeds;
+  batch.first_seed = a.first_seed;
   batch.jobs = a.jobs;
   batch.progress = !a.quiet;
   dem::BatchSummary summary = dem::run_batch(batch);
 
   std::vector<inverse::SeedRun> seeds;
-  for (int s = 1; s <= a.seeds; ++s) {
+  for (int s = a.first_seed; s < a.first_seed + a.seeds; ++s) {
     const json r = read_json_file(batch.out_path + ".points/run1_seed" + std::to_string(s) + ".json", "DEM result");
     inverse::SeedRun run;
     run.seed = static_cast<std::uint64_t>(s);
@@ -133,7 +135,10 @@ int main(int argc, char** argv) {
   app.add_option("--scene", a.scene, "the DEM scene the solution's parameters belong to")->required();
   app.add_option("--space", a.space, "parameter space whose fixed and tied values complete the point");
   app.add_option("--set", a.sets, "NAME=VALUE for another scene parameter (repeatable)");
-  app.add_option("--seeds", a.seeds, "DEM seeds 1..K")->capture_default_str();
+  app.add_option("--seeds", a.seeds, "DEM seeds S..S+K-1 (S: --first-seed)")->capture_default_str();
+  app.add_option("--first-seed", a.first_seed,
+                 "first DEM seed (after a calibration on specimens 1..n, verify on others: n + 1)")
+      ->capture_default_str();
   app.add_option("--jobs", a.jobs, "seeds run at once")->capture_default_str();
   app.add_option("--tolerance", a.tolerance, "largest relative error that passes")->capture_default_str();
   app.add_option("--out", a.out, "verification JSON")->required();

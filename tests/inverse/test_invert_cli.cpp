@@ -122,6 +122,17 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
   EXPECT_EQ(v["parameters"]["pb_sigma_c_MPa"], 12.0);
   EXPECT_NE(demcal::test::slurp(md).find("| E_GPa | 20 |"), std::string::npos);
 
+  // Other specimens (after a calibration on seed 1, say): seeds 3 and 4, not 1 and 2.
+  const std::string later = temp_path("verify_later.json");
+  auto l = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --first-seed 3 --jobs 2 " +
+                                            "--out " + later + " --cache " + temp_path("verify_cache") + " --quiet");
+  ASSERT_EQ(l.code, 0) << l.err;
+  nlohmann::json w = read_json(later);
+  ASSERT_EQ(w["seeds"].size(), 2u);
+  EXPECT_EQ(w["seeds"][0]["seed"], 3);
+  EXPECT_EQ(w["seeds"][1]["seed"], 4);
+  EXPECT_NE(w["outputs"]["sigma_u_MPa"]["mean"], v["outputs"]["sigma_u_MPa"]["mean"]);
+
   std::string bad = temp_path("verify_bad.json");
   {
     std::ofstream(bad) << R"({"x": {"density": 1}, "targets": {"E_GPa": 20}})";

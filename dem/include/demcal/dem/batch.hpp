@@ -27,7 +27,8 @@ struct BatchOptions {
   std::string out_path;         // responses, .h5
   std::string csv_path;         // flat export; empty: none
   std::string cache_dir;        // packed specimens
-  int seeds = 1;                // seeds per design point (1..K)
+  int seeds = 1;                // seeds per design point (first_seed .. first_seed + K - 1)
+  int first_seed = 1;
   int jobs = 1;                 // points at once (one process each)
   int shard_index = 1;          // this shard, 1..shard_count
   int shard_count = 1;

@@ -28,10 +28,11 @@ struct PointSpec {
 std::vector<std::string> design_parameter_columns(const Scene& scene, const Table& design,
                                                   const std::string& design_path);
 
-// Every (row, seed 1..seeds) of the design, in row order then seed order,
-// with result files under points_dir.
+// Every (row, seed first_seed .. first_seed + seeds - 1) of the design, in row
+// order then seed order, with result files under points_dir.
 std::vector<PointSpec> design_points(const Table& design, const std::vector<std::string>& columns, int seeds,
-                                     const std::string& points_dir, const std::string& scene_fingerprint);
+                                     const std::string& points_dir, const std::string& scene_fingerprint,
+                                     int first_seed = 1);
 
 // Reads a stored result; false when the file is missing or not a result.
 bool read_point_file(const std::string& path, nlohmann::json& out);
