@@ -479,7 +479,7 @@ def plan(study_path, out):
         report_inputs += " $(D)/screening/anova.json"
     if "stability" in study:
         write_if_changed(os.path.join(cfg, "stability.json"), json.dumps(study["stability"]) + "\n")
-        rules += ["$(D)/stability.json: $(D)/verification.json $(D)/config/stability.json",
+        rules += ["$(D)/stability.json: $(D)/refined.json $(D)/config/stability.json",
                   "\t$(PY) scripts/study.py stability $(D)", ""]
         report_inputs += " $(D)/stability.json"
     # Other strategies' results, when they have been run, join the speed-versus-accuracy chart.
@@ -587,17 +587,20 @@ def stability(out):
     stab = study["stability"]
     bin_dir = os.environ.get("BIN", "build/bin")
     where = os.path.join(out, "stability")
+    # The surrogates the calibration ended with (after its refinement rounds, if any).
+    refined = load_json(os.path.join(out, "refined.json"), "refinement record")
+    models_dir = os.path.join(os.path.dirname(refined["final"]["solution"]), "models")
     models = []
     for surface in study["surfaces"]:
         for o in surface["outputs"]:
-            models += ["--model", os.path.join(out, "models", f"{o}.json")]
+            models += ["--model", os.path.join(models_dir, f"{o}.json")]
     record = {"seeds": [], "edge": None, "small_design": []}
     for seed in range(1, int(stab.get("seeds", 5)) + 1):
         record["seeds"].append(invert_and_verify(out, f"seed{seed}", models, study["targets"], 100 + seed, where))
         print(f"stability: seed {100 + seed} done", flush=True)
 
     # A target near (fraction < 1) or beyond (> 1) the top of the first output's attainable range.
-    solution = load_json(os.path.join(out, "solution.json"), "solution")
+    solution = load_json(refined["final"]["solution"], "solution")
     first = next(iter(study["targets"]))
     reach = solution["attainable"].get(first)
     if reach:
@@ -640,7 +643,7 @@ def stability(out):
             small_models += ["--model", model]
         if ok:
             others = [m for s2 in study["surfaces"][1:] for o in s2["outputs"]
-                      for m in ("--model", os.path.join(out, "models", f"{o}.json"))]
+                      for m in ("--model", os.path.join(models_dir, f"{o}.json"))]
             case.update(invert_and_verify(out, f"small{n}", small_models + others, study["targets"], 1, where))
             case["case"] = f"first {n} of {len(rows)} design runs"
         record["small_design"].append(case)
@@ -757,7 +760,8 @@ def stability_section(out):
         return case.get("verify_message", "not verified")
 
     lines = ["## Stability", "",
-             "The same calibration repeated with other optimiser seeds (same surrogates, each solution verified in DEM):",
+             "The same calibration repeated with other optimiser seeds, on the surrogates it ended with (the design is "
+             "kept: another design seed would mean a new DEM batch), each solution verified in DEM:",
              "", "| seed | status | solution | verified relative errors | passed |", "|---|---|---|---|---|"]
     for c in st["seeds"]:
         x = ", ".join(f"{k} {v:.4g}" for k, v in c.get("x", {}).items())
