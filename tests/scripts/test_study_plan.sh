@@ -34,7 +34,11 @@ expect_error() {  # file fragment
 }
 sed 's/"surrogate"/"surogate"/' data/studies/demo.json > "$work/typo.json"
 expect_error "$work/typo.json" 'unknown field "surogate"'
-sed 's/"kn_ks_j"\]/"kn_ks_x"]/' data/studies/demo.json > "$work/factor.json"
+/usr/bin/python3 -c "
+import json
+d = json.load(open('data/studies/demo.json'))
+d['surfaces'][0]['factors'][-1] = 'kn_ks_x'
+print(json.dumps(d))" > "$work/factor.json"
 expect_error "$work/factor.json" 'factor kn_ks_x is not a parameter'
 sed 's/"nu": 0.2/"density": 2400/' data/studies/demo.json > "$work/target.json"
 expect_error "$work/target.json" 'targets.density: not a DEM output'
