@@ -43,4 +43,27 @@ expect_error "$work/factor.json" 'factor kn_ks_x is not a parameter'
 sed 's/"nu": 0.2/"density": 2400/' data/studies/demo.json > "$work/target.json"
 expect_error "$work/target.json" 'targets.density: not a DEM output'
 expect_error "$work/missing.json" 'cannot open study'
-echo "study plan: stages written, a target change leaves the design alone, 4 bad studies rejected"
+
+edit() {  # OUT SOURCE PYTHON: the study SOURCE edited by PYTHON (on d) into OUT
+  /usr/bin/python3 -c "
+import json
+d = json.load(open('$2'))
+$3
+print(json.dumps(d))" > "$1"
+}
+edit "$work/auto.json" data/studies/demo.json "d['surfaces'][0]['factors'] = 'auto'"
+expect_error "$work/auto.json" 'add a "screening" stage'
+edit "$work/loop_surfaces.json" data/studies/rock_dem_in_the_loop.json "d['surfaces'] = []"
+expect_error "$work/loop_surfaces.json" '"surfaces" does not apply to strategy dem_in_the_loop'
+edit "$work/loop_polish.json" data/studies/rock_dem_in_the_loop.json "d['inversion']['polish'] = True"
+expect_error "$work/loop_polish.json" 'polish needs a smooth surrogate'
+edit "$work/screen_kind.json" data/studies/rock_response_surface.json "d['screening']['design']['kind'] = 'lhs'"
+expect_error "$work/screen_kind.json" 'screening: design.kind must be "oa"'
+edit "$work/strategy.json" data/studies/demo.json "d['strategy'] = 'dem-in-loop'"
+expect_error "$work/strategy.json" 'strategy must be one of'
+
+# A study whose factors come from its screening plans the screening first, then plans again.
+/usr/bin/python3 scripts/study.py plan data/studies/rock_response_surface.json "$work/rrs" > /dev/null
+grep -q '^\$(D)/screening/anova.json:' "$work/rrs/plan.mk" || { echo "FAIL: no screening stage"; exit 1; }
+grep -q 'scripts/study.py plan data/studies/rock_response_surface.json' "$work/rrs/plan.mk" || { echo "FAIL: no re-plan after the screening"; exit 1; }
+echo "study plan: stages written, a target change leaves the design alone, 9 bad studies rejected, auto factors re-plan"
