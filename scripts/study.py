@@ -1038,6 +1038,12 @@ def report(out):
         for surface in study["surfaces"]:
             for o in surface["outputs"]:
                 m = load_json(os.path.join(out, "models", f"{o}.json"), "model")
+                if m["kind"] == "gabp":
+                    # Training R^2 and the hold-out R^2 of the rows it never trained on.
+                    t, v = m.get("training", {}), m.get("validation", {})
+                    lines.append(f"| {o} | gabp | {t.get('rows', 0) + v.get('rows', 0)} | {number(t.get('r2', {}).get(o))} | "
+                                 f"- | {number(v.get('r2', {}).get(o))} (hold-out, {v.get('rows', 0)} rows) |")
+                    continue
                 r = m["responses"][0] if "responses" in m else {}
                 lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
                              f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
