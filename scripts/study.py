@@ -708,12 +708,15 @@ def comparison_png(rows, out_png):
             axes[1].annotate(r["strategy"], (r["wall_s"] / 60, r["max_error_pct"]), fontsize=8, xytext=(4, 4),
                              textcoords="offset points")
     tol = rows[0]["tolerance_pct"]
-    for ax, xlabel in zip(axes, ("DEM runs", "wall time of make study (min)")):
+    largest = [max([r["dem_runs"] for r in rows] + [1]),
+               max([r["wall_s"] / 60 for r in rows if r["wall_s"] is not None] + [1])]
+    top = max([r["max_error_pct"] for r in rows if r["max_error_pct"] is not None] + [tol])
+    for ax, xlabel, right in zip(axes, ("DEM runs", "wall time of make study (min)"), largest):
         ax.axhline(tol, color="grey", linestyle="--", linewidth=1, label=f"tolerance {tol:g} %")
         ax.set_xlabel(xlabel)
         ax.set_ylabel("largest verified relative error (%)")
-        ax.set_xlim(left=0)
-        ax.set_ylim(bottom=0)
+        ax.set_xlim(0, 1.45 * right)  # room for the labels
+        ax.set_ylim(0, 1.15 * top)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle("Speed versus accuracy of the calibration strategies")
