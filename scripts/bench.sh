@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# `make bench`: timings of the stages that exist so far, with the machine they
-# ran on. The DEM benchmark (particle-steps per second) joins with the engine.
+# `make bench`: timings of the stages, with the machine they ran on: designs,
+# the DEM hot path (particle-steps per second), batches (processes and MPI
+# ranks) and the inversion algorithms.
 set -euo pipefail
 build=${1:-build}
 bin="$build/bin"
@@ -41,6 +42,21 @@ PY
 }
 dem_bench "dem: UCS parallel bond, 25 x 50 mm" data/scenes/ucs_rock_pb.json
 dem_bench "dem: UCS parallel bond, 50 x 100 mm" data/scenes/bench/ucs_pb_9k.json
+
+# Batches: the same 16 design points one at a time, two processes at once, and
+# over MPI ranks (rank 0 hands out, 2 worker ranks run); specimens cached first.
+echo
+printf 'run,pb_sigma_c_MPa\n' > "$tmp/batch_design.csv"
+for r in $(seq 1 16); do printf '%d,%d\n' "$r" $((10 + r)) >> "$tmp/batch_design.csv"; done
+"$bin/demcal-dem" batch --scene data/scenes/ucs_rock_pb.json --design "$tmp/batch_design.csv" --out "$tmp/warm.h5" \
+  --seeds 1 --jobs 2 --cache "$build/cache" --quiet > /dev/null 2>&1 || true
+batch_args=(batch --scene data/scenes/ucs_rock_pb.json --design "$tmp/batch_design.csv" --cache "$build/cache" --quiet)
+time_it "dem batch: 16 points of the 25 x 50 mm UCS, --jobs 1" "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b1.h5" --jobs 1
+time_it "dem batch: the same, --jobs 2" "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b2.h5" --jobs 2
+if command -v mpirun > /dev/null; then
+  time_it "dem batch: the same, mpirun -np 3 (2 worker ranks)" \
+    mpirun -np 3 --oversubscribe --allow-run-as-root "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b3.h5"
+fi
 
 # The inversion stage: five algorithms x 20 seeds on one problem (medians).
 echo
