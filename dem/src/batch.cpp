@@ -25,16 +25,7 @@ bool file_exists(const std::string& path) {
 // Packs each distinct specimen of the points once (in parallel), before the
 // points share it through the cache.
 void pack_specimens(const Scene& scene, const std::vector<const PointSpec*>& pending, const PointRunOptions& options) {
-  std::vector<SpecimenSpec> to_pack;
-  std::set<std::string> keys;
-  for (const PointSpec* p : pending) {
-    try {
-      SpecimenSpec spec = scene.specimen(scene.resolve(p->design), p->seed);
-      if (keys.insert(spec.cache_key()).second) to_pack.push_back(spec);
-    } catch (const Error&) {
-      // The point itself will record why it cannot run.
-    }
-  }
+  const std::vector<SpecimenSpec> to_pack = distinct_specimens(scene, pending);
   if (to_pack.empty() || options.cache_dir.empty()) return;
   if (options.progress)
     log::info("packing " + std::to_string(to_pack.size()) + " specimen(s) (cached in " + options.cache_dir + ")");
@@ -51,6 +42,20 @@ void pack_specimens(const Scene& scene, const std::vector<const PointSpec*>& pen
 }
 
 }  // namespace
+
+std::vector<SpecimenSpec> distinct_specimens(const Scene& scene, const std::vector<const PointSpec*>& points) {
+  std::vector<SpecimenSpec> specimens;
+  std::set<std::string> keys;
+  for (const PointSpec* p : points) {
+    try {
+      SpecimenSpec spec = scene.specimen(scene.resolve(p->design), p->seed);
+      if (keys.insert(spec.cache_key()).second) specimens.push_back(spec);
+    } catch (const Error&) {
+      // The point itself will record why it cannot run.
+    }
+  }
+  return specimens;
+}
 
 void parse_shard(const std::string& text, BatchOptions& options) {
   const auto slash = text.find('/');
@@ -78,14 +83,17 @@ OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_t
 }
 
 std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
-                                    std::vector<std::string>& design_columns, std::size_t* design_total) {
+                                    std::vector<std::string>& design_columns, std::size_t* design_total,
+                                    bool make_folder) {
   if (options.seeds < 1) throw Error("--seeds must be at least 1");
   if (options.first_seed < 1) throw Error("--first-seed must be at least 1");
   Table design = Table::read(options.design_path, "/design");
   design_columns = design_parameter_columns(scene, design, options.design_path);
   const std::string points_dir = options.out_path + ".points";
-  ::mkdir(points_dir.c_str(), 0755);
-  if (!file_exists(points_dir)) throw Error(points_dir + ": cannot create the folder of point results");
+  if (make_folder) {
+    ::mkdir(points_dir.c_str(), 0755);
+    if (!file_exists(points_dir)) throw Error(points_dir + ": cannot create the folder of point results");
+  }
   std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir, scene.fingerprint(),
                                              options.first_seed);
   if (design_total) *design_total = all.size();
@@ -155,12 +163,7 @@ BatchSummary run_batch(const BatchOptions& options) {
   std::vector<json> known(points.size());
   std::vector<bool> have(points.size(), false);
   for (std::size_t i = 0; i < points.size(); ++i) have[i] = stored_result(points[i], known[i]);
-  auto write_outputs = [&]() {
-    std::vector<json> done;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (have[i]) done.push_back(known[i]);
-    write_point_outputs(done, design_columns, files);
-  };
+  auto write_outputs = [&]() { write_known_outputs(known, have, design_columns, files); };
 
   BatchSummary summary;
   summary.points = points.size();

@@ -112,20 +112,8 @@ struct Setup {
 
 Setup set_up(const BatchOptions& options, bool master) {
   Setup s{Scene::load(options.scene_path), {}, {}, {}};
-  if (master) {
-    s.points = batch_points(s.scene, options, s.design_columns, &s.design_total);
-  } else {
-    // Same points, without creating folders: workers may not share rank 0's disk.
-    Table design = Table::read(options.design_path, "/design");
-    const log::Level level = log::level();
-    log::set_level(log::Level::Quiet);
-    s.design_columns = design_parameter_columns(s.scene, design, options.design_path);
-    log::set_level(level);
-    std::vector<PointSpec> all = design_points(design, s.design_columns, options.seeds, options.out_path + ".points",
-                                             s.scene.fingerprint(), options.first_seed);
-    for (std::size_t i = 0; i < all.size(); ++i)
-      if (static_cast<int>(i % options.shard_count) == options.shard_index - 1) s.points.push_back(all[i]);
-  }
+  // The same points on every rank; only rank 0 writes, so only it makes the folder.
+  s.points = batch_points(s.scene, options, s.design_columns, &s.design_total, master);
   return s;
 }
 
@@ -155,20 +143,6 @@ void worker(const BatchOptions& options, const Setup& s) {
     if (text.empty()) text = failed_point(p, worker_end_reason(status)).dump();
     send_result(text);
   }
-}
-
-// The distinct specimens of the points, in a fixed order every rank agrees on.
-std::vector<SpecimenSpec> specimens_of(const Setup& s, const std::vector<std::size_t>& indices) {
-  std::vector<SpecimenSpec> out;
-  std::set<std::string> keys;
-  for (std::size_t i : indices) {
-    try {
-      SpecimenSpec spec = s.scene.specimen(s.scene.resolve(s.points[i].design), s.points[i].seed);
-      if (keys.insert(spec.cache_key()).second) out.push_back(spec);
-    } catch (const Error&) {
-    }
-  }
-  return out;
 }
 
 // Hands out `count` tasks of one kind to the workers, one each at a time.
@@ -247,7 +221,10 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, b
   pending_wire.resize(pending_count);
   MPI_Bcast(pending_wire.data(), static_cast<int>(pending_count), MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
   pending.assign(pending_wire.begin(), pending_wire.end());
-  s.to_pack = specimens_of(s, pending);
+  // The distinct specimens in an order every rank agrees on (pack tasks are indices into it).
+  std::vector<const PointSpec*> pending_points;
+  for (std::size_t i : pending) pending_points.push_back(&s.points[i]);
+  s.to_pack = distinct_specimens(s.scene, pending_points);
 
   if (!master) {
     try {
@@ -270,12 +247,7 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, b
                 " points already done");
     log::info(std::to_string(pending.size()) + " point(s) over " + std::to_string(workers) + " worker rank(s)");
     const OutputFiles files = batch_output_files(options, s.design_total);
-    auto write_outputs = [&]() {
-      std::vector<json> done;
-      for (std::size_t i = 0; i < s.points.size(); ++i)
-        if (have[i]) done.push_back(known[i]);
-      write_point_outputs(done, s.design_columns, files);
-    };
+    auto write_outputs = [&]() { write_known_outputs(known, have, s.design_columns, files); };
 
     if (!s.to_pack.empty() && !options.cache_dir.empty()) {
       if (options.progress)

@@ -205,6 +205,14 @@ void write_point_outputs(const std::vector<json>& results, const std::vector<std
   write_file_atomically(files.csv_path, csv.str());
 }
 
+void write_known_outputs(const std::vector<json>& results, const std::vector<bool>& known,
+                         const std::vector<std::string>& design_columns, const OutputFiles& files) {
+  std::vector<json> done;
+  for (std::size_t i = 0; i < results.size(); ++i)
+    if (known[i]) done.push_back(results[i]);
+  write_point_outputs(done, design_columns, files);
+}
+
 std::vector<json> read_point_outputs(const std::string& out_path, OutputFiles& files,
                                      std::vector<std::string>& design_columns) {
   h5::File file(out_path, h5::Mode::ReadOnly);

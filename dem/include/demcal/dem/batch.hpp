@@ -45,8 +45,14 @@ void parse_shard(const std::string& text, BatchOptions& options);
 
 // The points of the batch (this shard's only), with their result files.
 // `design_total` receives the point count of the whole design (all shards).
+// `make_folder` false: do not create OUT.points/ (an MPI worker may not share rank 0's disk).
 std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
-                                    std::vector<std::string>& design_columns, std::size_t* design_total = nullptr);
+                                    std::vector<std::string>& design_columns, std::size_t* design_total = nullptr,
+                                    bool make_folder = true);
+
+// The distinct specimens the points need, in the points' order (points that
+// cannot run are skipped: they record why themselves).
+std::vector<SpecimenSpec> distinct_specimens(const Scene& scene, const std::vector<const PointSpec*>& points);
 
 // The result files of a batch: its shard ("i/N") and the whole design's point count recorded.
 OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_total);

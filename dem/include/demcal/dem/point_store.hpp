@@ -64,6 +64,11 @@ struct OutputFiles {
 void write_point_outputs(const std::vector<nlohmann::json>& results, const std::vector<std::string>& design_columns,
                          const OutputFiles& files);
 
+// The same from the results known so far: results[i] where known[i] (a batch
+// calls it after every point, the rest still running or to come).
+void write_known_outputs(const std::vector<nlohmann::json>& results, const std::vector<bool>& known,
+                         const std::vector<std::string>& design_columns, const OutputFiles& files);
+
 // Reads the point results back from a responses file written above.
 std::vector<nlohmann::json> read_point_outputs(const std::string& out_path, OutputFiles& files,
                                                std::vector<std::string>& design_columns);
