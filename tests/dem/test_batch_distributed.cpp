@@ -16,7 +16,10 @@ using demcal::test::temp_path;
 
 const std::string kBin = std::string(DEMCAL_BIN_DIR) + "/demcal-dem";
 const std::string kScene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
-const std::string kMpirun = "mpirun --oversubscribe --allow-run-as-root";
+// Open MPI's runtime leaks at MPI_Finalize (in plugins it has unloaded before
+// LeakSanitizer reports, so no suppression can name them): under `make
+// sanitize` the ranks run without leak checking; every other ASan check stays.
+const std::string kMpirun = "mpirun --oversubscribe --allow-run-as-root -x ASAN_OPTIONS=detect_leaks=0";
 
 std::string write_design(const std::string& name, int runs) {
   std::string path = temp_path(name);
