@@ -194,14 +194,19 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, b
     s = set_up(options, master);
   } catch (const std::exception& e) {
     setup_error = e.what();
-    if (!master) std::fprintf(stderr, "demcal-dem: rank %d: %s\n", mpi.rank(), e.what());
   }
-  // Every rank learns whether any rank failed to set up, so none is left waiting.
-  int local_ok = setup_error.empty() ? 1 : 0, all_ok = 0;
+  // Every rank learns whether any rank failed to set up, so none is left
+  // waiting, and whether rank 0 did: then rank 0 alone says why (one line);
+  // a worker prints its own error only when rank 0 had none (e.g. a file
+  // missing on that worker's node). Workers then end normally so that the
+  // launcher does not abort the job before rank 0 has printed.
+  int local_ok = setup_error.empty() ? 1 : 0, all_ok = 0, master_ok = local_ok;
   MPI_Allreduce(&local_ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Bcast(&master_ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (!all_ok) {
     failed = true;
     if (master) throw Error(setup_error.empty() ? "a worker rank could not read the scene or the design" : setup_error);
+    if (master_ok && !setup_error.empty()) std::fprintf(stderr, "demcal-dem: rank %d: %s\n", mpi.rank(), setup_error.c_str());
     return {};
   }
 
