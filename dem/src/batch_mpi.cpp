@@ -184,10 +184,9 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() { MPI_Finalize(); }
 
-BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, bool& failed) {
+BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi) {
   const auto start = std::chrono::steady_clock::now();
   const bool master = mpi.rank() == 0;
-  failed = false;
   Setup s;
   std::string setup_error;
   try {
@@ -204,7 +203,6 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, b
   MPI_Allreduce(&local_ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   MPI_Bcast(&master_ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (!all_ok) {
-    failed = true;
     if (master) throw Error(setup_error.empty() ? "a worker rank could not read the scene or the design" : setup_error);
     if (master_ok && !setup_error.empty()) std::fprintf(stderr, "demcal-dem: rank %d: %s\n", mpi.rank(), setup_error.c_str());
     return {};

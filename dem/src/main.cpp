@@ -104,8 +104,7 @@ int main(int argc, char** argv) {
         dem::MpiSession mpi;
         if (mpi.size() > 1) {
           if (mpi.rank() > 0) log::set_level(log::Level::Quiet);
-          bool failed = false;
-          s = dem::run_batch_mpi(batch_options, mpi, failed);
+          s = dem::run_batch_mpi(batch_options, mpi);
           if (mpi.rank() > 0) return 0;  // rank 0's exit status carries a failure (and says why)
         } else {
           s = dem::run_batch(batch_options);

@@ -32,9 +32,9 @@ class MpiSession {
 
 // Call on every rank (size >= 2). Rank 0 returns the batch summary; the
 // other ranks return an empty one. A setup error (bad scene, design, ...)
-// is thrown on rank 0 only; the other ranks then return with `failed` set
-// and must exit with status 0 (rank 0's exit carries the failure), so the
-// launcher does not abort the job before rank 0 has said why.
-BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi, bool& failed);
+// is thrown on rank 0 only; the other ranks then return, and must exit with
+// status 0 (rank 0's exit carries the failure), so the launcher does not
+// abort the job before rank 0 has said why.
+BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi);
 
 }  // namespace demcal::dem
