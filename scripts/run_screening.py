@@ -9,12 +9,13 @@ results the study names (CSV of design + responses, Markdown tables, PNGs, summa
 its "results" folder.
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
 import sys
 import time
+
+from study import analyze_screening
 
 
 def fail(message):
@@ -78,40 +79,17 @@ batch_wall = sum(times)
 if code not in (0, 4):
     fail(f"the DEM batch stopped (exit code {code}); rerun to resume")
 
-# The blank columns live in the design, not in the responses: join them by run.
-design_rows = {row["run"]: row for row in csv.DictReader(open(design))}
-blanks = [c for c in next(iter(design_rows.values())) if c.startswith("blank")]
+# The analysis a study's screening stage makes (scripts/study.py), with every DEM output in the table.
+os.environ["BIN"] = bin_dir
 factors = [p["name"] for p in json.load(open(study["space"]))["parameters"]]
-table = os.path.join(results, "screening.csv")
-failed = []
-with open(responses_csv) as f, open(table, "w", newline="") as out:
-    reader = csv.DictReader(f)
-    # Every DEM output the batch wrote (responses first), after the design columns.
-    skip = set(factors) | {"run", "seed", "status"}
-    outputs = list(study["responses"]) + [c for c in reader.fieldnames if c not in skip and c not in study["responses"]]
-    writer = csv.writer(out)
-    writer.writerow(["run", "seed", "status"] + factors + blanks + outputs)
-    for row in reader:
-        if row["status"] != "ok":
-            failed.append((row["run"], row["status"]))
-        writer.writerow([row["run"], row["seed"], row["status"]] + [row[c] for c in factors] +
-                        [design_rows[row["run"]][c] for c in blanks] + [row.get(o, "nan") for o in outputs])
-
-terms = ",".join(factors + blanks)
-analyze = os.path.join(bin_dir, "demcal-analyze")
-plot = ["/usr/bin/python3", "scripts/plot_analysis.py"]
-for kind in ("range", "anova"):
-    for fmt in ("md", "json"):
-        if run([analyze, kind, "--data", table, "--factors", terms, "--responses", ",".join(study["responses"]),
-                "--format", fmt, "--out", os.path.join(results, f"{kind}.{fmt}")]) != 0:
-            fail(f"demcal-analyze {kind} failed")
-run(plot + ["main-effects", os.path.join(results, "range.json"), "--out", os.path.join(results, "main_effects.png")])
-run(plot + ["pareto", os.path.join(results, "anova.json"), "--out", os.path.join(results, "pareto.png")])
+failed = analyze_screening(design, responses_csv, factors, list(study["responses"]), results, extra_outputs=True)
+with open(design) as f:
+    design_points = sum(1 for _ in f) - 1
 
 anova = json.load(open(os.path.join(results, "anova.json")))
 with open(os.path.join(results, "summary.md"), "w") as f:
     f.write(f"# {study['name']}\n\n{study.get('description', '')}\n\n")
-    f.write(f"Study file `{args.study}`; scene `{study['scene']}`; {len(design_rows)} design points x "
+    f.write(f"Study file `{args.study}`; scene `{study['scene']}`; {design_points} design points x "
             f"{study.get('seeds', 1)} seed(s).\n\n")
     f.write(f"DEM batch wall time: {batch_wall:.0f} s ({batch_wall / 60:.1f} min) on {args.jobs} parallel jobs, "
             f"summed over the {len(times)} run(s) of the batch that computed points (a resumed batch repeats none).\n\n")

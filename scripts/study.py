@@ -327,42 +327,55 @@ def choose_factors(study, space, anova):
     return chosen
 
 
-def screen(out):
-    """Range analysis and ANOVA of the screening (blank columns joined from the design), with plots."""
-    cfg = load_json(os.path.join(out, "config", "screening.json"), "screening config")
+def analyze_screening(design_csv, responses_csv, factors, outputs, folder, extra_outputs=False):
+    """Range analysis and ANOVA of a screening batch, with main-effects and Pareto plots, into
+    folder/: screening.csv (design, blank columns joined from the design by run, responses; with
+    extra_outputs every other DEM output after them), range and anova as md and json. Returns the
+    (run, status) of the points that failed."""
     bin_dir = os.environ.get("BIN", "build/bin")
-    d = os.path.join(out, "screening")
-    with open(os.path.join(d, "design.csv")) as f:
+    with open(design_csv) as f:
         design_rows = {row["run"]: row for row in csv.DictReader(f)}
     blanks = [c for c in next(iter(design_rows.values())) if c.startswith("blank")]
-    factors = [p["name"] for p in load_json(cfg["space"], "space")["parameters"]]
-    table = os.path.join(d, "screening.csv")
-    with open(os.path.join(d, "responses.csv")) as f, open(table + ".tmp", "w", newline="") as o:
+    table = os.path.join(folder, "screening.csv")
+    failed = []
+    with open(responses_csv) as f, open(table + ".tmp", "w", newline="") as o:
         reader = csv.DictReader(f)
+        skip = set(factors) | set(outputs) | {"run", "seed", "status"}
+        columns = list(outputs) + ([c for c in reader.fieldnames if c not in skip] if extra_outputs else [])
         writer = csv.writer(o)
-        writer.writerow(["run", "seed", "status"] + factors + blanks + cfg["outputs"])
+        writer.writerow(["run", "seed", "status"] + factors + blanks + columns)
         for row in reader:
+            if row["status"] != "ok":
+                failed.append((row["run"], row["status"]))
             writer.writerow([row["run"], row["seed"], row["status"]] + [row[c] for c in factors] +
-                            [design_rows[row["run"]][c] for c in blanks] + [row.get(x, "nan") for x in cfg["outputs"]])
+                            [design_rows[row["run"]][c] for c in blanks] + [row.get(x, "nan") for x in columns])
     os.replace(table + ".tmp", table)
     # Blank columns enter as terms and the error is the residual (Minitab's GLM), unless the plan is
     # saturated (3 levels: 2 degrees of freedom a column): then the first blank column is the error.
-    runs = len(design_rows)
     error = []
-    if blanks and runs - 1 - 2 * (len(factors) + len(blanks)) <= 0:
+    if blanks and len(design_rows) - 1 - 2 * (len(factors) + len(blanks)) <= 0:
         error = ["--error", f"column:{blanks[0]}"]
     for kind in ("range", "anova"):
         for fmt in ("md", "json"):
             code = subprocess.run([os.path.join(bin_dir, "demcal-analyze"), kind, "--data", table, "--factors",
-                                   ",".join(factors + blanks), "--responses", ",".join(cfg["outputs"]), "--format", fmt,
-                                   "--out", os.path.join(d, f"{kind}.{fmt}")] + (error if kind == "anova" else [])).returncode
+                                   ",".join(factors + blanks), "--responses", ",".join(outputs), "--format", fmt,
+                                   "--out", os.path.join(folder, f"{kind}.{fmt}")] + (error if kind == "anova" else [])).returncode
             if code != 0:
                 fail(f"demcal-analyze {kind} failed on {table}")
     plot = ["/usr/bin/python3", "scripts/plot_analysis.py"]
-    subprocess.run(plot + ["main-effects", os.path.join(d, "range.json"), "--out", os.path.join(d, "main_effects.png")],
+    subprocess.run(plot + ["main-effects", os.path.join(folder, "range.json"), "--out",
+                           os.path.join(folder, "main_effects.png")], stdout=subprocess.DEVNULL)
+    subprocess.run(plot + ["pareto", os.path.join(folder, "anova.json"), "--out", os.path.join(folder, "pareto.png")],
                    stdout=subprocess.DEVNULL)
-    subprocess.run(plot + ["pareto", os.path.join(d, "anova.json"), "--out", os.path.join(d, "pareto.png")],
-                   stdout=subprocess.DEVNULL)
+    return failed
+
+
+def screen(out):
+    """The screening stage of a study: analyze_screening on its batch."""
+    cfg = load_json(os.path.join(out, "config", "screening.json"), "screening config")
+    d = os.path.join(out, "screening")
+    factors = [p["name"] for p in load_json(cfg["space"], "space")["parameters"]]
+    analyze_screening(os.path.join(d, "design.csv"), os.path.join(d, "responses.csv"), factors, cfg["outputs"], d)
 
 
 def plan(study_path, out):
