@@ -12,6 +12,8 @@ import statistics
 import subprocess
 import time
 
+from seed_statistics import macro_mean_cv
+
 parser = argparse.ArgumentParser()
 parser.add_argument("--build", default="build")
 parser.add_argument("--jobs", default="2")
@@ -64,11 +66,7 @@ for r_mean in [float(r) for r in args.radii_mm.split(",")]:
            "wall_s_per_run": statistics.mean(p["wall_s"] for p in ok) if ok else float("nan"),
            "mps_per_s": statistics.mean(p["particle_steps_per_s"] for p in ok) / 1e6 if ok else float("nan"),
            "batch_wall_s": batch_wall}
-    for key in ("sigma_u_MPa", "E_GPa", "nu"):
-        values = [p["macro"][key] for p in ok]
-        mean = statistics.mean(values) if values else float("nan")
-        row[key + "_mean"] = mean
-        row[key + "_cv_pct"] = 100 * statistics.stdev(values) / abs(mean) if len(values) > 1 else float("nan")
+    row.update(macro_mean_cv(ok))
     rows.append(row)
     print("R %.1f mm  %6.0f disks  sigma_u %.2f (CV %.1f %%)  E %.2f (CV %.1f %%)  nu %.3f (CV %.1f %%)  %.1f s/run" % (
         r_mean, row["disks"], row["sigma_u_MPa_mean"], row["sigma_u_MPa_cv_pct"], row["E_GPa_mean"], row["E_GPa_cv_pct"],

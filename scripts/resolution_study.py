@@ -7,6 +7,8 @@ time of each run. Writes docs/resolution_study.md and .csv.
 """
 import argparse, json, math, os, statistics, subprocess, sys, time
 
+from seed_statistics import macro_mean_cv
+
 parser = argparse.ArgumentParser()
 parser.add_argument("--build", default="build")
 parser.add_argument("--jobs", default="2")
@@ -51,11 +53,7 @@ for disks, velocity in cases:
            "disks": statistics.mean(p["particles"] for p in ok) if ok else float("nan"),
            "wall_s_per_run": statistics.mean(p["wall_s"] for p in ok) if ok else float("nan"),
            "mps_per_s": statistics.mean(p["particle_steps_per_s"] for p in ok) / 1e6 if ok else float("nan")}
-    for key in ("sigma_u_MPa", "E_GPa", "nu"):
-        values = [p["macro"][key] for p in ok]
-        mean = statistics.mean(values) if values else float("nan")
-        row[key + "_mean"] = mean
-        row[key + "_cv_pct"] = 100 * statistics.stdev(values) / abs(mean) if len(values) > 1 else float("nan")
+    row.update(macro_mean_cv(ok))
     rows.append(row)
     print("%6d disks  v %.3f m/s  sigma_u %.2f (CV %.1f %%)  E %.2f (CV %.1f %%)  nu %.3f (CV %.1f %%)  %.1f s/run" % (
         row["disks"], velocity, row["sigma_u_MPa_mean"], row["sigma_u_MPa_cv_pct"], row["E_GPa_mean"],
