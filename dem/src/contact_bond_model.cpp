@@ -9,6 +9,8 @@
 // with R_mean = (R_i + R_j) / 2, drawn per bond from a normal distribution
 // truncated at zero. A bond installed across a small gap (or overlap) is
 // force-free there: while bonded, F_n = kn (overlap - overlap at installation).
+//   state: the linear columns, then the bond's normal and shear strengths
+//   (forces, N) and the overlap at installation (m).
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -16,10 +18,17 @@
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/linear_base.hpp"
 #include "demcal/dem/bond_law.hpp"
+#include "demcal/dem/linear_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
 namespace {
+
+enum BondColumn : std::size_t {
+  kNormalStrength = kLinearColumns,  // N
+  kShearStrength,                    // N
+  kInstalledOverlap,                 // m
+};
 
 class ContactBondModel : public LinearBase {
  public:
@@ -35,29 +44,40 @@ class ContactBondModel : public LinearBase {
   }
   std::string name() const override { return "contact_bond"; }
 
-  bool install_bond(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
+  std::vector<std::string> state_columns() const override {
+    std::vector<std::string> columns = LinearBase::state_columns();
+    for (const char* c : {"bond_normal_strength_n", "bond_shear_strength_n", "bond_overlap_m"}) columns.emplace_back(c);
+    return columns;
+  }
+
+  bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
     if (pair.wall) return false;
     const double width = (pair.radius_i + pair.radius_j) * thickness_m;  // 2 R_mean t
-    c.strength_n[k] = draw_strength(sigma_c_, sigma_c_std_, rng) * width;
-    c.strength_s[k] = draw_strength(tau_c_, tau_c_std_, rng) * width;
-    c.bond_overlap[k] = pair.overlap;  // glued as it lies: no force at installation
+    c.column[kNormalStrength][k] = draw_strength(sigma_c_, sigma_c_std_, rng) * width;
+    c.column[kShearStrength][k] = draw_strength(tau_c_, tau_c_std_, rng) * width;
+    c.column[kInstalledOverlap][k] = pair.overlap;  // glued as it lies: no force at installation
     c.flags[k] |= kBonded;
     return true;
   }
 
-  void disk_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b,
-                   const StepContext& step) const override {
+  void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
     const double dt = step.dt_s;
+    double* kn = c.column[kNormalStiffness];
+    double* ks = c.column[kShearStiffness];
+    double* fs = c.column[kShearForce];
+    double* strength_n = c.column[kNormalStrength];
+    double* strength_s = c.column[kShearStrength];
+    double* installed_overlap = c.column[kInstalledOverlap];
     for_disk_pairs(
-        c, begin, end, b,
+        c, b,
         [&](std::size_t k, const Geometry& g) {
           if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
           PairForce f;
-          f.fn = c.kn[k] * (g.overlap - c.bond_overlap[k]);  // negative in tension
-          c.fs[k] -= c.ks[k] * g.vs * dt;
-          f.fs = c.fs[k];
-          const bool tension = -f.fn >= c.strength_n[k];
-          if (tension || std::abs(f.fs) >= c.strength_s[k]) {
+          f.fn = kn[k] * (g.overlap - installed_overlap[k]);  // negative in tension
+          fs[k] -= ks[k] * g.vs * dt;
+          f.fs = fs[k];
+          const bool tension = -f.fn >= strength_n[k];
+          if (tension || std::abs(f.fs) >= strength_s[k]) {
             break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
             return linear_force(c, k, g, dt);
           }

@@ -7,13 +7,7 @@
 
 namespace demcal::dem {
 
-bool ContactModel::install_bond(ContactSet&, std::size_t, const PairInfo&, double, Rng&) const { return false; }
-
-void ContactModel::stiffness(const ContactSet& c, std::size_t k, double arm_m, double& translational_n_m,
-                             double& rotational_nm_rad) const {
-  translational_n_m = c.kn[k] + c.bond_kn[k] * c.bond_area[k];
-  rotational_nm_rad = c.ks[k] * arm_m * arm_m + c.bond_kn[k] * c.bond_inertia[k];
-}
+bool ContactModel::install_bond(PairBlock&, std::size_t, const PairInfo&, double, Rng&) const { return false; }
 
 ContactModelRegistry& ContactModelRegistry::instance() {
   static ContactModelRegistry registry = [] {

@@ -1,25 +1,31 @@
 #include "demcal/dem/contacts.hpp"
 
+#include <string>
+
+#include "demcal/core/error.hpp"
+
 namespace demcal::dem {
-namespace {
 
-// Every per-pair double column, so that adding one is a one-line change here.
-using Column = std::vector<double> ContactSet::*;
-constexpr Column kStateColumns[] = {
-    &ContactSet::kn,          &ContactSet::ks,          &ContactSet::mu,          &ContactSet::fs,
-    &ContactSet::bond_kn,     &ContactSet::bond_ks,     &ContactSet::bond_area,   &ContactSet::bond_inertia,
-    &ContactSet::bond_radius, &ContactSet::bond_fn,     &ContactSet::bond_fs,     &ContactSet::bond_m,
-    &ContactSet::strength_n,  &ContactSet::strength_s,  &ContactSet::bond_overlap,
-};
-
-}  // namespace
+void ContactSet::set_layout(const std::vector<std::size_t>& columns_per_model) {
+  clear();
+  blocks_.assign(columns_per_model.size(), ModelBlock{});
+  for (std::size_t m = 0; m < columns_per_model.size(); ++m) {
+    if (columns_per_model[m] > kMaxStateColumns)
+      throw Error("contact model " + std::to_string(m) + " declares " + std::to_string(columns_per_model[m]) +
+                  " state columns (at most " + std::to_string(kMaxStateColumns) + ")");
+    blocks_[m].columns.resize(columns_per_model[m]);
+  }
+}
 
 void ContactSet::clear() {
   i.clear();
   j.clear();
   model.clear();
   flags.clear();
-  for (Column c : kStateColumns) (this->*c).clear();
+  for (ModelBlock& b : blocks_) {
+    b.begin = b.count = 0;
+    for (auto& column : b.columns) column.clear();
+  }
 }
 
 void ContactSet::reserve(std::size_t n) {
@@ -27,21 +33,66 @@ void ContactSet::reserve(std::size_t n) {
   j.reserve(n);
   model.reserve(n);
   flags.reserve(n);
-  for (Column c : kStateColumns) (this->*c).reserve(n);
 }
 
 std::size_t ContactSet::add(std::int32_t a, std::int32_t b, std::uint8_t model_index) {
+  if (model_index >= blocks_.size())
+    throw Error("contact set: model " + std::to_string(model_index) + " has no state layout");
+  if (!model.empty() && model.back() > model_index) throw Error("contact set: pairs must be added in model order");
+  ModelBlock& block = blocks_[model_index];
+  if (block.count == 0) block.begin = i.size();
+  ++block.count;
+  for (auto& column : block.columns) column.push_back(0.0);
   i.push_back(a);
   j.push_back(b);
   model.push_back(model_index);
   flags.push_back(0);
-  for (Column c : kStateColumns) (this->*c).push_back(0.0);
   return i.size() - 1;
 }
 
 void ContactSet::copy_state(std::size_t to, const ContactSet& other, std::size_t from) {
   flags[to] = other.flags[from];
-  for (Column c : kStateColumns) (this->*c)[to] = (other.*c)[from];
+  const ModelBlock& source = other.blocks_[other.model[from]];
+  ModelBlock& target = blocks_[model[to]];
+  for (std::size_t c = 0; c < target.columns.size(); ++c)
+    target.columns[c][to - target.begin] = source.columns[c][from - source.begin];
 }
+
+std::size_t ContactSet::begin(std::uint8_t m) const { return m < blocks_.size() ? blocks_[m].begin : 0; }
+
+std::size_t ContactSet::end(std::uint8_t m) const {
+  return m < blocks_.size() ? blocks_[m].begin + blocks_[m].count : 0;
+}
+
+double ContactSet::state(std::size_t k, std::size_t c) const {
+  const ModelBlock& b = blocks_[model[k]];
+  return b.columns[c][k - b.begin];
+}
+
+double& ContactSet::state(std::size_t k, std::size_t c) {
+  ModelBlock& b = blocks_[model[k]];
+  return b.columns[c][k - b.begin];
+}
+
+namespace {
+
+template <typename Block, typename Set, typename Blocks>
+Block make_block(Set& set, Blocks& blocks, std::uint8_t m) {
+  Block out;
+  if (m >= blocks.size()) return out;
+  auto& b = blocks[m];
+  out.size = b.count;
+  out.i = set.i.data() + b.begin;
+  out.j = set.j.data() + b.begin;
+  out.flags = set.flags.data() + b.begin;
+  for (std::size_t c = 0; c < b.columns.size(); ++c) out.column[c] = b.columns[c].data();
+  return out;
+}
+
+}  // namespace
+
+PairBlock ContactSet::block(std::uint8_t m) { return make_block<PairBlock>(*this, blocks_, m); }
+
+ConstPairBlock ContactSet::block(std::uint8_t m) const { return make_block<ConstPairBlock>(*this, blocks_, m); }
 
 }  // namespace demcal::dem

@@ -24,13 +24,17 @@ double force_ratio(const World& world) {
   for (std::size_t i = 0; i < b.size(); ++i) unbalanced += std::hypot(b.fx[i], b.fy[i]);
   double contact = 0;
   std::size_t touching = 0;
-  const ContactSet& c = world.pairs();
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    const std::size_t i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
-    if (overlap > 0) {
-      contact += c.kn[k] * overlap;
-      ++touching;
+  const ContactSet& pairs = world.pairs();
+  for (std::size_t k = 0; k < pairs.size();) {
+    const std::uint8_t m = pairs.model[k];
+    const ConstPairBlock c = pairs.block(m);
+    for (std::size_t local = 0; local < c.size; ++local, ++k) {
+      const std::size_t i = static_cast<std::size_t>(c.i[local]), j = static_cast<std::size_t>(c.j[local]);
+      const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
+      if (overlap > 0) {
+        contact += world.model(m).normal_force_n(c, local, overlap);
+        ++touching;
+      }
     }
   }
   if (touching == 0 || b.size() == 0) return 0.0;

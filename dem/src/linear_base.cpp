@@ -12,16 +12,30 @@ LinearBase::LinearBase(const nlohmann::json& p, const std::string& where)
       kn_ks_(positive(p, "kn_ks", where)),
       friction_(non_negative(p, "friction", where)) {}
 
-void LinearBase::initialise(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m) const {
-  c.kn[k] = deformability_kn(modulus_pa_, pair.radius_i, pair.radius_j, pair.wall, thickness_m);
-  c.ks[k] = c.kn[k] / kn_ks_;
-  c.mu[k] = friction_;
+std::vector<std::string> LinearBase::state_columns() const {
+  return {"kn_n_m", "ks_n_m", "friction", "shear_force_n"};
 }
 
-void LinearBase::wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
-                             const StepContext& step) const {
-  for_wall_pairs(c, begin, end, b, walls, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
+void LinearBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const {
+  const double kn = deformability_kn(modulus_pa_, pair.radius_i, pair.radius_j, pair.wall, thickness_m);
+  c.column[kNormalStiffness][k] = kn;
+  c.column[kShearStiffness][k] = kn / kn_ks_;
+  c.column[kFriction][k] = friction_;
+}
+
+void LinearBase::wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, const StepContext& step) const {
+  for_wall_pairs(c, b, walls, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
                  [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
+}
+
+void LinearBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                           double& rotational_nm_rad) const {
+  translational_n_m = c.column[kNormalStiffness][k];
+  rotational_nm_rad = c.column[kShearStiffness][k] * arm_m * arm_m;
+}
+
+double LinearBase::normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const {
+  return c.column[kNormalStiffness][k] * overlap_m;
 }
 
 double LinearBase::normal_stiffness_estimate(double radius_m, double thickness_m) const {

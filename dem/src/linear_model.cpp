@@ -1,5 +1,6 @@
 // Linear contact model: stiffness by the deformability method, Coulomb friction.
 //   parameters: {"modulus_pa": E_c, "kn_ks": kn/ks, "friction": mu}
+//   state: the linear columns only (kn_n_m, ks_n_m, friction, shear_force_n).
 #include <nlohmann/json.hpp>
 
 #include "demcal/dem/builtin_models.hpp"
@@ -17,9 +18,8 @@ class LinearModel : public LinearBase {
   }
   std::string name() const override { return "linear"; }
 
-  void disk_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b,
-                   const StepContext& step) const override {
-    for_disk_pairs(c, begin, end, b, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
+  void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
+    for_disk_pairs(c, b, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
                    [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
   }
 };

@@ -123,6 +123,8 @@ void World::build_wall_pairs(ContactSet& fresh) {
 // Pairs already known keep their state; new ones get their model's constants.
 void World::merge_into(ContactSet& fresh, ContactSet& old, bool wall) {
   std::size_t o = 0;
+  PairBlock block;
+  std::uint8_t block_model = kNoModel;
   for (std::size_t k = 0; k < fresh.size(); ++k) {
     const std::uint64_t key = key_of(fresh, k);
     while (o < old.size() && key_of(old, o) < key) ++o;
@@ -137,7 +139,11 @@ void World::merge_into(ContactSet& fresh, ContactSet& old, bool wall) {
     info.wall = wall;
     info.radius_j = wall ? 0.0 : bodies.radius[j];
     info.group_j = wall ? walls[j].group : bodies.group[j];
-    models_[fresh.model[k]]->initialise(fresh, k, info, settings_.thickness_m);
+    if (fresh.model[k] != block_model) {
+      block_model = fresh.model[k];
+      block = fresh.block(block_model);
+    }
+    models_[block_model]->initialise(block, k - fresh.begin(block_model), info, settings_.thickness_m);
   }
 }
 
@@ -152,6 +158,8 @@ void World::rebuild() {
     }
   }
   ContactSet fresh_pairs, fresh_walls;
+  fresh_pairs.set_layout(layout_);
+  fresh_walls.set_layout(layout_);
   build_disk_pairs(fresh_pairs);
   build_wall_pairs(fresh_walls);
   merge_into(fresh_pairs, pairs_, false);
@@ -159,20 +167,14 @@ void World::rebuild() {
   pairs_ = std::move(fresh_pairs);
   wall_pairs_ = std::move(fresh_walls);
 
-  auto runs = [](const ContactSet& c, std::vector<std::pair<std::size_t, std::size_t>>& out,
-                 std::vector<std::uint8_t>& models) {
-    out.clear();
+  // The models that have pairs, in pair order (each model's pairs are one block).
+  auto runs = [](const ContactSet& c, std::vector<std::uint8_t>& models) {
     models.clear();
-    for (std::size_t k = 0; k < c.size();) {
-      std::size_t end = k;
-      while (end < c.size() && c.model[end] == c.model[k]) ++end;
-      out.emplace_back(k, end);
-      models.push_back(c.model[k]);
-      k = end;
-    }
+    for (std::size_t k = 0; k < c.size(); ++k)
+      if (models.empty() || models.back() != c.model[k]) models.push_back(c.model[k]);
   };
-  runs(pairs_, pair_runs_, run_models_);
-  runs(wall_pairs_, wall_runs_, wall_run_models_);
+  runs(pairs_, run_models_);
+  runs(wall_pairs_, wall_run_models_);
 
   x_built_ = bodies.x;
   y_built_ = bodies.y;

@@ -7,6 +7,8 @@
 // kn_b = E_b / (R_i + R_j), ks_b = kn_b / (kn/ks)_b; forces and moment grow
 // incrementally; it breaks in tension when -F_n/A + |M| R_b / I >= sigma_c,
 // else in shear when |F_s| / A >= tau_c.
+//   state: the linear columns, then the bond's stiffness per area, geometry,
+//   force, shear force, moment and the strengths drawn for it.
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +20,19 @@
 
 namespace demcal::dem {
 namespace {
+
+enum BondColumn : std::size_t {
+  kBondKn = kLinearColumns,  // normal stiffness per area, Pa/m
+  kBondKs,                   // shear stiffness per area, Pa/m
+  kBondArea,                 // m^2
+  kBondInertia,              // m^4
+  kBondRadius,               // m
+  kBondFn,                   // normal force (compression > 0), N
+  kBondFs,                   // shear force, N
+  kBondM,                    // moment, N m
+  kTensileStrength,          // Pa
+  kShearStrength,            // Pa
+};
 
 class ParallelBondModel : public LinearBase {
  public:
@@ -36,45 +51,73 @@ class ParallelBondModel : public LinearBase {
   }
   std::string name() const override { return "parallel_bond"; }
 
-  bool install_bond(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
+  std::vector<std::string> state_columns() const override {
+    std::vector<std::string> columns = LinearBase::state_columns();
+    for (const char* c : {"bond_kn_pa_m", "bond_ks_pa_m", "bond_area_m2", "bond_inertia_m4", "bond_radius_m",
+                          "bond_normal_force_n", "bond_shear_force_n", "bond_moment_nm", "bond_tensile_strength_pa",
+                          "bond_shear_strength_pa"})
+      columns.emplace_back(c);
+    return columns;
+  }
+
+  bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
     if (pair.wall) return false;
     const double rb = lambda_ * std::min(pair.radius_i, pair.radius_j);
-    c.bond_radius[k] = rb;
-    c.bond_area[k] = 2.0 * rb * thickness_m;
-    c.bond_inertia[k] = 2.0 / 3.0 * rb * rb * rb * thickness_m;
-    c.bond_kn[k] = bond_modulus_pa_ / (pair.radius_i + pair.radius_j);
-    c.bond_ks[k] = c.bond_kn[k] / bond_kn_ks_;
-    c.bond_fn[k] = c.bond_fs[k] = c.bond_m[k] = 0.0;
-    c.strength_n[k] = draw_strength(sigma_c_, sigma_c_std_, rng);
-    c.strength_s[k] = draw_strength(tau_c_, tau_c_std_, rng);
+    c.column[kBondRadius][k] = rb;
+    c.column[kBondArea][k] = 2.0 * rb * thickness_m;
+    c.column[kBondInertia][k] = 2.0 / 3.0 * rb * rb * rb * thickness_m;
+    c.column[kBondKn][k] = bond_modulus_pa_ / (pair.radius_i + pair.radius_j);
+    c.column[kBondKs][k] = c.column[kBondKn][k] / bond_kn_ks_;
+    c.column[kBondFn][k] = c.column[kBondFs][k] = c.column[kBondM][k] = 0.0;
+    c.column[kTensileStrength][k] = draw_strength(sigma_c_, sigma_c_std_, rng);
+    c.column[kShearStrength][k] = draw_strength(tau_c_, tau_c_std_, rng);
     c.flags[k] |= kBonded;
     return true;
   }
 
-  void disk_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b,
-                   const StepContext& step) const override {
+  void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
     const double dt = step.dt_s;
+    double* bond_kn = c.column[kBondKn];
+    double* bond_ks = c.column[kBondKs];
+    double* bond_area = c.column[kBondArea];
+    double* bond_inertia = c.column[kBondInertia];
+    double* bond_radius = c.column[kBondRadius];
+    double* bond_fn = c.column[kBondFn];
+    double* bond_fs = c.column[kBondFs];
+    double* bond_m = c.column[kBondM];
+    double* strength_n = c.column[kTensileStrength];
+    double* strength_s = c.column[kShearStrength];
     for_disk_pairs(
-        c, begin, end, b,
+        c, b,
         [&](std::size_t k, const Geometry& g) {
           PairForce f = linear_force(c, k, g, dt);
           if (!(c.flags[k] & kBonded)) return f;
-          const double area = c.bond_area[k], inertia = c.bond_inertia[k];
-          c.bond_fn[k] -= c.bond_kn[k] * area * g.vn * dt;
-          c.bond_fs[k] -= c.bond_ks[k] * area * g.vs * dt;
-          c.bond_m[k] -= c.bond_kn[k] * inertia * g.relative_w * dt;
-          const double sigma = -c.bond_fn[k] / area + std::abs(c.bond_m[k]) * c.bond_radius[k] / inertia;
-          const double tau = std::abs(c.bond_fs[k]) / area;
-          if (sigma >= c.strength_n[k] || tau >= c.strength_s[k]) {
-            break_bond(c, k, g, b, step, sigma >= c.strength_n[k] ? BreakMode::Tension : BreakMode::Shear);
+          const double area = bond_area[k], inertia = bond_inertia[k];
+          bond_fn[k] -= bond_kn[k] * area * g.vn * dt;
+          bond_fs[k] -= bond_ks[k] * area * g.vs * dt;
+          bond_m[k] -= bond_kn[k] * inertia * g.relative_w * dt;
+          const double sigma = -bond_fn[k] / area + std::abs(bond_m[k]) * bond_radius[k] / inertia;
+          const double tau = std::abs(bond_fs[k]) / area;
+          if (sigma >= strength_n[k] || tau >= strength_s[k]) {
+            break_bond(c, k, g, b, step, sigma >= strength_n[k] ? BreakMode::Tension : BreakMode::Shear);
+            bond_fn[k] = bond_fs[k] = bond_m[k] = 0.0;
             return f;
           }
-          f.fn += c.bond_fn[k];
-          f.fs += c.bond_fs[k];
-          f.moment = c.bond_m[k];
+          f.fn += bond_fn[k];
+          f.fs += bond_fs[k];
+          f.moment = bond_m[k];
           return f;
         },
         [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
+  }
+
+  // The bond adds its stiffness in parallel with the contact's (kept after a
+  // break, as a bound on the step).
+  void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                 double& rotational_nm_rad) const override {
+    translational_n_m = c.column[kNormalStiffness][k] + c.column[kBondKn][k] * c.column[kBondArea][k];
+    rotational_nm_rad =
+        c.column[kShearStiffness][k] * arm_m * arm_m + c.column[kBondKn][k] * c.column[kBondInertia][k];
   }
 
   double normal_stiffness_estimate(double radius_m, double thickness_m) const override {

@@ -18,7 +18,14 @@ World::World(WorldSettings settings) : settings_(settings) {
 
 std::uint8_t World::add_model(std::unique_ptr<ContactModel> model) {
   if (models_.size() >= kNoModel) throw Error("too many contact models (at most 254)");
+  const std::vector<std::string> columns = model->state_columns();
+  if (columns.size() > kMaxStateColumns)
+    throw Error("contact model " + model->name() + " declares " + std::to_string(columns.size()) +
+                " state columns (at most " + std::to_string(kMaxStateColumns) + ")");
+  layout_.push_back(columns.size());
+  column_names_.push_back(columns);
   models_.push_back(std::move(model));
+  built_ = false;
   return static_cast<std::uint8_t>(models_.size() - 1);
 }
 
@@ -58,15 +65,27 @@ std::size_t World::add_clump(const std::vector<std::size_t>& members, double mas
 std::size_t World::install_bonds(double tolerance_m, Rng& rng) {
   rebuild();
   std::size_t installed = 0;
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const std::size_t i = static_cast<std::size_t>(pairs_.i[k]), j = static_cast<std::size_t>(pairs_.j[k]);
-    const double gap = std::hypot(bodies.x[j] - bodies.x[i], bodies.y[j] - bodies.y[i]) - bodies.radius[i] - bodies.radius[j];
-    if (gap > tolerance_m) continue;
-    PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false, -gap};
-    installed += models_[pairs_.model[k]]->install_bond(pairs_, k, info, settings_.thickness_m, rng) ? 1 : 0;
+  for (std::uint8_t m : run_models_) {
+    PairBlock block = pairs_.block(m);
+    for (std::size_t k = 0; k < block.size; ++k) {
+      const std::size_t i = static_cast<std::size_t>(block.i[k]), j = static_cast<std::size_t>(block.j[k]);
+      const double gap =
+          std::hypot(bodies.x[j] - bodies.x[i], bodies.y[j] - bodies.y[i]) - bodies.radius[i] - bodies.radius[j];
+      if (gap > tolerance_m) continue;
+      PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false, -gap};
+      installed += models_[m]->install_bond(block, k, info, settings_.thickness_m, rng) ? 1 : 0;
+    }
   }
   update_time_step();  // bonds stiffen the disks
   return installed;
+}
+
+double World::pair_state(std::size_t k, const std::string& column) const {
+  if (k >= pairs_.size()) throw Error("pair_state: no pair " + std::to_string(k));
+  const std::vector<std::string>& names = column_names_[pairs_.model[k]];
+  for (std::size_t c = 0; c < names.size(); ++c)
+    if (names[c] == column) return pairs_.state(k, c);
+  throw Error("contact model " + models_[pairs_.model[k]]->name() + " keeps no state column \"" + column + "\"");
 }
 
 void World::update_time_step() {
@@ -76,23 +95,26 @@ void World::update_time_step() {
   }
   const std::size_t n = bodies.size();
   std::vector<double> kt(n, 0.0), kr(n, 0.0);
-  auto add = [&](const ContactSet& c, bool wall) {
-    for (std::size_t k = 0; k < c.size(); ++k) {
-      const std::size_t i = static_cast<std::size_t>(c.i[k]);
-      double t = 0, r = 0;
-      models_[c.model[k]]->stiffness(c, k, bodies.radius[i], t, r);
-      kt[i] += t;
-      kr[i] += r;
-      if (!wall) {
-        const std::size_t j = static_cast<std::size_t>(c.j[k]);
-        models_[c.model[k]]->stiffness(c, k, bodies.radius[j], t, r);
-        kt[j] += t;
-        kr[j] += r;
+  auto add = [&](const ContactSet& set, const std::vector<std::uint8_t>& models, bool wall) {
+    for (std::uint8_t m : models) {
+      const ConstPairBlock c = set.block(m);
+      for (std::size_t k = 0; k < c.size; ++k) {
+        const std::size_t i = static_cast<std::size_t>(c.i[k]);
+        double t = 0, r = 0;
+        models_[m]->stiffness(c, k, bodies.radius[i], t, r);
+        kt[i] += t;
+        kr[i] += r;
+        if (!wall) {
+          const std::size_t j = static_cast<std::size_t>(c.j[k]);
+          models_[m]->stiffness(c, k, bodies.radius[j], t, r);
+          kt[j] += t;
+          kr[j] += r;
+        }
       }
     }
   };
-  add(pairs_, false);
-  add(wall_pairs_, true);
+  add(pairs_, run_models_, false);
+  add(wall_pairs_, wall_run_models_, true);
   double dt = std::numeric_limits<double>::infinity();
   // Critical step each disk must reach under density scaling.
   const double scaled_step = settings_.density_scaling_dt_s / settings_.safety_factor;
@@ -131,11 +153,14 @@ void World::compute_forces() {
   bodies.clear_forces();
   for (Wall& wall : walls) wall.fx = wall.fy = 0;
   StepContext context{dt_s_, time_s_, settings_.thickness_m, &breaks_};
-  for (std::size_t r = 0; r < pair_runs_.size(); ++r)
-    models_[run_models_[r]]->disk_forces(pairs_, pair_runs_[r].first, pair_runs_[r].second, bodies, context);
-  for (std::size_t r = 0; r < wall_runs_.size(); ++r)
-    models_[wall_run_models_[r]]->wall_forces(wall_pairs_, wall_runs_[r].first, wall_runs_[r].second, bodies, walls,
-                                              context);
+  for (std::uint8_t m : run_models_) {
+    PairBlock block = pairs_.block(m);
+    models_[m]->disk_forces(block, bodies, context);
+  }
+  for (std::uint8_t m : wall_run_models_) {
+    PairBlock block = wall_pairs_.block(m);
+    models_[m]->wall_forces(block, bodies, walls, context);
+  }
 }
 
 void World::integrate() {

@@ -80,7 +80,7 @@ TEST(BondedChain, UndampedEnergyIsConservedToRoundOff) {
   auto energy_after_step = [&](const std::vector<double>& v_before) {
     double e = 0;
     for (int i = 0; i < n; ++i) e += 0.5 * m * v_before[i] * world.bodies.vx[i];
-    for (std::size_t b = 0; b < world.pairs().size(); ++b) e += 0.5 * std::pow(world.pairs().bond_fn[b], 2) / k;
+    for (std::size_t b = 0; b < world.pairs().size(); ++b) e += 0.5 * std::pow(world.pair_state(b, "bond_normal_force_n"), 2) / k;
     return e;
   };
   std::vector<double> before = world.bodies.vx;

@@ -77,7 +77,7 @@ TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
   EXPECT_NEAR(ks * v * kDt * steps, tau_c * kWidth, 1.01 * ks * v * kDt);
   // After the break the shear force is capped at mu * Fn.
   imposed_step(world, 0, v, 0);
-  EXPECT_NEAR(std::abs(world.pairs().fs[0]), 0.3 * kKn * 1e-6, 1e-3 * 0.3 * kKn * 1e-6);
+  EXPECT_NEAR(std::abs(world.pair_state(0, "shear_force_n")), 0.3 * kKn * 1e-6, 1e-3 * 0.3 * kKn * 1e-6);
 }
 
 TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <set>
 
 #include "demcal/core/error.hpp"
@@ -61,19 +62,33 @@ TEST(NeighbourList, FindsExactlyTheBruteForcePairs) {
   }
 }
 
-TEST(NeighbourList, StateSurvivesARebuild) {
+TEST(NeighbourList, EveryDeclaredStateColumnSurvivesARebuild) {
   World world = random_world(300, 4, 2e-4);
   world.refresh();
   ContactSet& pairs = world.pairs();
-  for (std::size_t k = 0; k < pairs.size(); ++k) pairs.fs[k] = 1.0 + static_cast<double>(pairs.i[k]) * 1e-3 + pairs.j[k];
-  auto before = pairs.fs;
+  // A distinct value in every column each pair's model declares.
+  auto value = [&](std::size_t k, std::size_t c) {
+    return 1.0 + static_cast<double>(pairs.i[k]) * 1e-3 + pairs.j[k] + 1e4 * static_cast<double>(c);
+  };
+  std::size_t columns_seen = 0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::size_t columns = world.model(pairs.model[k]).state_columns().size();
+    for (std::size_t c = 0; c < columns; ++c) pairs.state(k, c) = value(k, c);
+    columns_seen = std::max(columns_seen, columns);
+  }
+  ASSERT_GE(columns_seen, 4u);
   auto i_before = pairs.i, j_before = pairs.j;
   world.refresh();
-  ASSERT_EQ(world.pairs().size(), before.size());
-  for (std::size_t k = 0; k < before.size(); ++k) {
+  ASSERT_EQ(world.pairs().size(), i_before.size());
+  for (std::size_t k = 0; k < i_before.size(); ++k) {
     EXPECT_EQ(world.pairs().i[k], i_before[k]);
-    EXPECT_EQ(world.pairs().fs[k], before[k]);
+    EXPECT_EQ(world.pairs().j[k], j_before[k]);
+    const std::size_t columns = world.model(pairs.model[k]).state_columns().size();
+    for (std::size_t c = 0; c < columns; ++c) EXPECT_EQ(world.pairs().state(k, c), value(k, c)) << "column " << c;
   }
+  // By name, through the world: the linear model's shear force is column 3.
+  EXPECT_EQ(world.pair_state(0, "shear_force_n"), value(0, 3));
+  EXPECT_THROW(world.pair_state(0, "bond_moment_nm"), demcal::Error);
 }
 
 TEST(NeighbourList, RebuildsOnlyAfterHalfTheSkinIsUsed) {

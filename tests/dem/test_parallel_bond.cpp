@@ -80,7 +80,7 @@ TEST(ParallelBond, ShearForceIsKsADeltaAndBreaksAtTheShearStrength) {
     imposed_step(world, 0, v, 0);
     ++steps;
     if (world.breaks().empty()) {
-      last_shear = std::abs(world.pairs().bond_fs[0]);
+      last_shear = std::abs(world.pair_state(0, "bond_shear_force_n"));
       const double delta = v * kDt * steps;
       // The normal turns by delta / 2R (< 2e-3 rad here): agreement to 1e-5.
       ASSERT_NEAR(last_shear, kKsBond * kArea * delta, 1e-5 * kKsBond * kArea * delta);

@@ -30,17 +30,17 @@ struct PairForce {
   double fn = 0, fs = 0, moment = 0;
 };
 
-// Law: PairForce law(std::size_t k, const Geometry& g) for a pair in range;
+// Law: PairForce law(std::size_t k, const Geometry& g) for the block's pair k;
 // Skip: bool skip(std::size_t k, double gap) true when the pair can be
 // ignored this step at separation `gap` (> 0 apart).
 template <typename Law, typename Skip>
-inline void for_disk_pairs(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, Law law, Skip skip) {
-  const std::int32_t* ci = c.i.data();
-  const std::int32_t* cj = c.j.data();
+inline void for_disk_pairs(const PairBlock& c, Bodies& b, Law law, Skip skip) {
+  const std::int32_t* ci = c.i;
+  const std::int32_t* cj = c.j;
   const double* x = b.x.data();
   const double* y = b.y.data();
   const double* r = b.radius.data();
-  for (std::size_t k = begin; k < end; ++k) {
+  for (std::size_t k = 0; k < c.size; ++k) {
     const std::int32_t i = ci[k], j = cj[k];
     const double dx = x[j] - x[i], dy = y[j] - y[i];
     const double distance = std::sqrt(dx * dx + dy * dy);
@@ -73,9 +73,8 @@ inline void for_disk_pairs(ContactSet& c, std::size_t begin, std::size_t end, Bo
 
 // Disk-wall pairs: c.i is the disk, c.j the wall.
 template <typename Law, typename Skip>
-inline void for_wall_pairs(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
-                           Law law, Skip skip) {
-  for (std::size_t k = begin; k < end; ++k) {
+inline void for_wall_pairs(const PairBlock& c, Bodies& b, std::vector<Wall>& walls, Law law, Skip skip) {
+  for (std::size_t k = 0; k < c.size; ++k) {
     const std::int32_t i = c.i[k];
     Wall& wall = walls[static_cast<std::size_t>(c.j[k])];
     if (!wall.active) continue;

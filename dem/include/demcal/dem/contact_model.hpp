@@ -4,8 +4,9 @@
 // src/builtin_models.cpp. The world assigns a model to each pair of material
 // groups (mortar-mortar, mortar-aggregate, disk-wall ...).
 //
-// A model computes the forces of a contiguous range of pairs in one call, so
-// the virtual call happens once per model and step, not once per contact.
+// A model computes the forces of its whole block of pairs in one call, so the
+// virtual call happens once per model and step, not once per contact, and it
+// owns the per-pair state it declares (see contacts.hpp).
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,22 +44,29 @@ class ContactModel {
   virtual ~ContactModel() = default;
   virtual std::string name() const = 0;
 
-  // Sets the constants of pair k (stiffness, friction) when it enters the list.
-  virtual void initialise(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m) const = 0;
-  // Installs a bond on pair k (material genesis); false when the model has none.
-  virtual bool install_bond(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const;
+  // The state the model keeps per pair, one name per column with its unit in
+  // the name ("kn_n_m", "shear_force_n"); the contact set stores these
+  // columns for this model's pairs only and carries them across neighbour-list
+  // rebuilds. Column c is PairBlock::column[c].
+  virtual std::vector<std::string> state_columns() const = 0;
 
-  // Adds the forces of disk pairs [begin, end) to the bodies.
-  virtual void disk_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b,
-                           const StepContext& step) const = 0;
-  // Adds the forces of disk-wall pairs [begin, end) to the disks and walls.
-  virtual void wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
-                           const StepContext& step) const = 0;
+  // Sets the constants of the block's pair k (stiffness, friction) when it enters the list.
+  virtual void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const = 0;
+  // Installs a bond on the block's pair k (material genesis); false when the model has none.
+  virtual bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const;
 
-  // Translational and rotational stiffness pair k adds to a disk whose
-  // contact lies `arm_m` from its centre (for the critical time step).
-  virtual void stiffness(const ContactSet& c, std::size_t k, double arm_m, double& translational_n_m,
-                         double& rotational_nm_rad) const;
+  // Adds the forces of a block of disk pairs to the bodies.
+  virtual void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const = 0;
+  // Adds the forces of a block of disk-wall pairs to the disks and walls.
+  virtual void wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, const StepContext& step) const = 0;
+
+  // Translational and rotational stiffness the block's pair k adds to a disk
+  // whose contact lies `arm_m` from its centre (for the critical time step).
+  virtual void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                         double& rotational_nm_rad) const = 0;
+  // Normal force the block's pair k carries at `overlap_m` (for the
+  // equilibrium measure of material genesis), N.
+  virtual double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const = 0;
   // Normal stiffness of a contact between two disks of radius r, for a disk
   // that has no neighbour yet (time step bound).
   virtual double normal_stiffness_estimate(double radius_m, double thickness_m) const = 0;

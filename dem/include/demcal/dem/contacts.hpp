@@ -1,11 +1,20 @@
 #pragma once
-// Pairs that may touch (within the neighbour-list skin) and the state their
-// contact model keeps, as contiguous arrays. A pair in the list is not
-// necessarily touching: its model decides from the overlap each step.
+// Pairs that may touch (within the neighbour-list skin) as contiguous arrays,
+// and each contact model's own per-pair state.
+//
+// Pairs are kept sorted by model, so the pairs of one model form one block
+// [begin(m), end(m)). A model declares the state columns it keeps per pair
+// (ContactModel::state_columns, as LAMMPS pair styles declare their history);
+// the set stores exactly those columns for exactly that model's pairs. No
+// model sees another's state, and a new model with its own history needs no
+// change here.
 //
 // Disk-disk pairs: j is a disk index. Disk-wall pairs live in a second set
-// where j is a wall index.
+// where j is a wall index. A pair in the list is not necessarily touching:
+// its model decides from the overlap each step.
+#include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace demcal::dem {
@@ -24,28 +33,57 @@ struct BreakEvent {
   std::uint8_t group_i, group_j;
 };
 
-struct ContactSet {
+// Most state columns one model may declare.
+constexpr std::size_t kMaxStateColumns = 24;
+
+// One model's pairs seen with local indices 0..size-1: what a model's force
+// loop works on. column[c][k] is state column c of the block's pair k.
+template <typename T>
+struct BasicPairBlock {
+  using Flag = std::conditional_t<std::is_const_v<T>, const std::uint8_t, std::uint8_t>;
+  std::size_t size = 0;
+  const std::int32_t* i = nullptr;
+  const std::int32_t* j = nullptr;
+  Flag* flags = nullptr;
+  std::array<T*, kMaxStateColumns> column{};
+};
+using PairBlock = BasicPairBlock<double>;
+using ConstPairBlock = BasicPairBlock<const double>;
+
+class ContactSet {
+ public:
   std::vector<std::int32_t> i, j;
   std::vector<std::uint8_t> model;   // index into the world's model table
   std::vector<std::uint8_t> flags;
-  // Linear part
-  std::vector<double> kn, ks;        // N/m
-  std::vector<double> mu;            // friction coefficient
-  std::vector<double> fs;            // shear force along t = (-n_y, n_x), N
-  // Bond part (contact bond: strengths as forces; parallel bond: as stresses)
-  std::vector<double> bond_kn, bond_ks;    // parallel bond stiffness per area, Pa/m
-  std::vector<double> bond_area, bond_inertia, bond_radius;  // m^2, m^4, m
-  std::vector<double> bond_fn, bond_fs, bond_m;  // bond force (compression > 0), shear force, moment
-  std::vector<double> strength_n, strength_s;    // tensile and shear strength (N or Pa, per model)
-  std::vector<double> bond_overlap;              // overlap when the bond was installed (force-free there), m
 
+  // The number of state columns of each model index; the set is emptied.
+  void set_layout(const std::vector<std::size_t>& columns_per_model);
   std::size_t size() const { return i.size(); }
   void clear();
-  // Appends a pair with every state value zero.
-  std::size_t add(std::int32_t a, std::int32_t b, std::uint8_t model_index);
-  // Copies the state of pair `from` of `other` into pair `to` of this set.
-  void copy_state(std::size_t to, const ContactSet& other, std::size_t from);
   void reserve(std::size_t n);
+  // Appends a pair with every state value zero. Pairs must come in
+  // non-decreasing model order (the neighbour list's sort order).
+  std::size_t add(std::int32_t a, std::int32_t b, std::uint8_t model_index);
+  // Copies flags and state of pair `from` of `other` (same model) into pair `to`.
+  void copy_state(std::size_t to, const ContactSet& other, std::size_t from);
+
+  // The pairs of model m are [begin(m), end(m)).
+  std::size_t begin(std::uint8_t m) const;
+  std::size_t end(std::uint8_t m) const;
+  // State column c of pair k (a column of pair k's own model).
+  double state(std::size_t k, std::size_t c) const;
+  double& state(std::size_t k, std::size_t c);
+
+  // Model m's pairs with local indices (pair begin(m) + k is the block's k).
+  PairBlock block(std::uint8_t m);
+  ConstPairBlock block(std::uint8_t m) const;
+
+ private:
+  struct ModelBlock {
+    std::size_t begin = 0, count = 0;
+    std::vector<std::vector<double>> columns;
+  };
+  std::vector<ModelBlock> blocks_;
 };
 
 }  // namespace demcal::dem

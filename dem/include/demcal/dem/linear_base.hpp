@@ -1,8 +1,10 @@
 #pragma once
 // The linear part every built-in model shares: stiffness by the deformability
 // method (E_c, kn/ks), Coulomb friction, and linear contacts with the platens.
-// Models derive from it and add their bond.
+// Models derive from it, append their own state columns after its
+// kLinearColumns (linear_law.hpp) and add their bond.
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -15,10 +17,14 @@ class LinearBase : public ContactModel {
   // Reads "modulus_pa", "kn_ks" and "friction" from `p`.
   LinearBase(const nlohmann::json& p, const std::string& where);
 
-  void initialise(ContactSet& c, std::size_t k, const PairInfo& pair, double thickness_m) const override;
+  // kn_n_m, ks_n_m, friction, shear_force_n.
+  std::vector<std::string> state_columns() const override;
+  void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const override;
   // Disk-wall pairs are linear contacts in every built-in model.
-  void wall_forces(ContactSet& c, std::size_t begin, std::size_t end, Bodies& b, std::vector<Wall>& walls,
-                   const StepContext& step) const override;
+  void wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, const StepContext& step) const override;
+  void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                 double& rotational_nm_rad) const override;
+  double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const override;
   double normal_stiffness_estimate(double radius_m, double thickness_m) const override;
 
  protected:

@@ -1,11 +1,20 @@
 #pragma once
 // The linear contact law with Coulomb friction, shared by every model that
-// falls back to it (a broken bond behaves as a linear contact).
+// falls back to it (a broken bond behaves as a linear contact). Its state
+// columns come first in every model built on it (LinearBase).
 #include <cmath>
 
 #include "demcal/dem/contact_geometry.hpp"
 
 namespace demcal::dem {
+
+enum LinearColumn : std::size_t {
+  kNormalStiffness = 0,  // kn, N/m
+  kShearStiffness,       // ks, N/m
+  kFriction,             // mu
+  kShearForce,           // along t = (-n_y, n_x), N
+  kLinearColumns
+};
 
 // Deformability method (PFC): kn = A E_c / L with A = 2 r t, r the smaller
 // radius and L = r_i + r_j for two disks; r = L = the disk radius for a wall.
@@ -15,13 +24,13 @@ inline double deformability_kn(double modulus_pa, double radius_i_m, double radi
   return 2.0 * r * thickness_m * modulus_pa / length;
 }
 
-inline void release(ContactSet& c, std::size_t k) {
-  c.fs[k] = 0.0;
+inline void release(const PairBlock& c, std::size_t k) {
+  c.column[kShearForce][k] = 0.0;
   c.flags[k] &= static_cast<std::uint8_t>(~kTouching);
 }
 
 // Skip rule of unbonded contacts: a pair apart carries nothing this step.
-inline bool skip_apart(ContactSet& c, std::size_t k, double gap) {
+inline bool skip_apart(const PairBlock& c, std::size_t k, double gap) {
   if (gap < 0) return false;
   release(c, k);
   return true;
@@ -29,18 +38,18 @@ inline bool skip_apart(ContactSet& c, std::size_t k, double gap) {
 
 // Normal force kn * overlap, shear force updated incrementally and capped at
 // mu * fn. Pairs that do not overlap carry no force and forget their shear.
-inline PairForce linear_force(ContactSet& c, std::size_t k, const Geometry& g, double dt) {
+inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt) {
   PairForce f;
   if (g.overlap <= 0) {
     release(c, k);
     return f;
   }
   c.flags[k] |= kTouching;
-  f.fn = c.kn[k] * g.overlap;
-  double fs = c.fs[k] - c.ks[k] * g.vs * dt;
-  const double limit = c.mu[k] * f.fn;
+  f.fn = c.column[kNormalStiffness][k] * g.overlap;
+  double fs = c.column[kShearForce][k] - c.column[kShearStiffness][k] * g.vs * dt;
+  const double limit = c.column[kFriction][k] * f.fn;
   if (std::abs(fs) > limit) fs = std::copysign(limit, fs);
-  c.fs[k] = fs;
+  c.column[kShearForce][k] = fs;
   f.fs = fs;
   return f;
 }

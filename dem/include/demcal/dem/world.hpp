@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "demcal/dem/bodies.hpp"
@@ -75,6 +76,8 @@ class World {
   const ContactSet& pairs() const { return pairs_; }
   ContactSet& pairs() { return pairs_; }
   const ContactSet& wall_pairs() const { return wall_pairs_; }
+  // State column `column` (a name the pair's model declares) of disk pair k.
+  double pair_state(std::size_t k, const std::string& column) const;
   const std::vector<BreakEvent>& breaks() const { return breaks_; }
 
   // Kinetic energy (translational + rotational) from the current velocities, J.
@@ -98,8 +101,9 @@ class World {
   std::vector<std::unique_ptr<ContactModel>> models_;
   std::array<std::array<std::uint8_t, 256>, 256> table_;
   ContactSet pairs_, wall_pairs_;
-  std::vector<std::pair<std::size_t, std::size_t>> pair_runs_, wall_runs_;  // [begin, end) per model
-  std::vector<std::uint8_t> run_models_, wall_run_models_;
+  std::vector<std::size_t> layout_;                      // state columns per model
+  std::vector<std::vector<std::string>> column_names_;    // their names per model
+  std::vector<std::uint8_t> run_models_, wall_run_models_;  // models with pairs, in pair order
   std::vector<BreakEvent> breaks_;
   std::vector<Clump> clumps_;
   // Positions at the last rebuild, for the skin criterion.
