@@ -33,7 +33,6 @@ SURROGATES = {"quadratic", "linear", "gabp"}
 ALGORITHMS = {"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "search"}
 OBJECTIVES = {"sum-rel", "max-rel", "sse-rel"}
 DESIGNS = {"ccd", "bbd", "lhs"}
-MACROS = {"sigma_u_MPa", "E_GPa", "E50_GPa", "nu", "peak_strain", "sigma_t_MPa"}
 
 
 def fail(message):
@@ -49,6 +48,27 @@ def load_json(path, what):
         fail(f"{path}: cannot open {what} ({e.strerror})")
     except ValueError as e:
         fail(f"{path}: not valid JSON ({e})")
+
+
+_DESCRIBED = {}
+
+
+def describe(scene_path, space_path=None):
+    """What the scene has (parameters, outputs, ...), from `demcal-dem describe`: the executable is the one
+    source of truth. With a space, the executable also checks that the space narrows the scene."""
+    key = (scene_path, space_path)
+    if key not in _DESCRIBED:
+        cmd = [os.path.join(os.environ.get("BIN", "build/bin"), "demcal-dem"), "describe", "--scene", scene_path]
+        if space_path:
+            cmd += ["--space", space_path]
+        try:
+            done = subprocess.run(cmd, capture_output=True, text=True)
+        except OSError as e:
+            fail(f"cannot run {cmd[0]} ({e.strerror}): build first (make build) or set BIN")
+        if done.returncode != 0:
+            fail(done.stderr.strip().splitlines()[-1] if done.stderr.strip() else f"{' '.join(cmd)} failed")
+        _DESCRIBED[key] = json.loads(done.stdout)
+    return _DESCRIBED[key]
 
 
 def write_if_changed(path, text):
@@ -87,16 +107,17 @@ def validate(study, path):
             fail(f"{where}: \"{key}\" does not apply to strategy {strategy}")
     if not re.fullmatch(r"[A-Za-z0-9_.-]+", study["name"]):
         fail(f"{where}: name \"{study['name']}\" must be letters, digits, '_', '-' or '.'")
-    scene = load_json(study["scene"], "scene")
+    scene = describe(study["scene"], study["space"])
     space = load_json(study["space"], "parameter space")
-    scene_params = set(scene.get("parameters", {}))
+    scene_params = set(scene["parameters"])
+    scene_outputs = set(scene["outputs"])
     space_params = {p["name"]: p for p in space.get("parameters", [])}
     targets = study["targets"]
     if not isinstance(targets, dict) or not targets:
         fail(f"{where}: targets must be an object of output: value")
     for name, value in targets.items():
-        if name not in MACROS:
-            fail(f"{where}: targets.{name}: not a DEM output (outputs: {', '.join(sorted(MACROS))})")
+        if name not in scene_outputs:
+            fail(f"{where}: targets.{name}: not a DEM output (outputs of {study['scene']}: {', '.join(sorted(scene_outputs))})")
         if not isinstance(value, (int, float)) or value == 0:
             fail(f"{where}: targets.{name} must be a non-zero number")
     fixed = study.get("fixed", "reference")
@@ -133,7 +154,7 @@ def validate(study, path):
         if extra:
             fail(f"{w}: design: unknown field \"{extra[0]}\" (allowed: kind, runs, blank, levels)")
         for o in screening["outputs"]:
-            if o not in MACROS:
+            if o not in scene_outputs:
                 fail(f"{w}: output {o} is not a DEM output")
         for name in screening.get("factors", list(space_params)):
             if name not in space_params:
@@ -155,7 +176,7 @@ def validate(study, path):
             if key not in surface:
                 fail(f"{w}: missing \"{key}\"")
         for o in surface["outputs"]:
-            if o not in MACROS:
+            if o not in scene_outputs:
                 fail(f"{w}: output {o} is not a DEM output")
             if o in covered:
                 fail(f"{w}: output {o} has a surface already")

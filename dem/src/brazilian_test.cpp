@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "demcal/core/error.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/ucs_test.hpp"
 
@@ -60,10 +61,31 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
   return result;
 }
 
-TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
-  if (scene.test() == "ucs") return run_ucs(scene, parameters, options);
-  if (scene.test() == "brazilian") return run_brazilian(scene, parameters, options);
-  throw Error(scene.origin() + ": no runner for test \"" + scene.test() + "\"");
-}
+namespace {
+
+class BrazilianTest : public LabTest {
+ public:
+  std::string name() const override { return "brazilian"; }
+  std::string description() const override {
+    return "Brazilian disc: a disc cut from the packing, flattened where the platens bear, split across its diameter";
+  }
+  std::vector<BoundaryRole> boundary_roles() const override { return {platen_role()}; }
+  std::vector<OutputSpec> outputs(const Scene& scene) const override {
+    std::vector<OutputSpec> out = {
+        {"sigma_t_MPa", "MPa", "tensile strength 2 F_max / (pi D t)"},
+        {"peak_approach_over_D", "1", "platen approach at the peak force over the diameter"},
+    };
+    for (OutputSpec& o : platen_crack_outputs(scene)) out.push_back(o);
+    return out;
+  }
+  TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                 const RunOptions& options) const override {
+    return run_brazilian(scene, parameters, options);
+  }
+};
+
+}  // namespace
+
+void register_brazilian_test(LabTestRegistry& registry) { registry.add(std::make_unique<BrazilianTest>()); }
 
 }  // namespace demcal::dem

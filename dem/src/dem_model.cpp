@@ -45,9 +45,7 @@ DemModel::DemModel(const std::string& scene_path, const ParameterSpace& space, s
   if (options_.seeds < 1) throw Error("DEM in the loop: seeds must be at least 1");
   if (options_.jobs < 1) throw Error("DEM in the loop: jobs must be at least 1");
   if (this->outputs().empty()) throw Error("DEM in the loop: no output to predict");
-  for (const auto& [name, value] : space_.complete(std::vector<double>(space_.size(), 0.0)))
-    if (!scene_.parameters().count(name))
-      throw Error(scene_path + ": the space's parameter " + name + " is not a parameter of this scene");
+  scene_.check_space(space_, options_.space_path);
   make_folder(options_.work_dir);
   make_folder(options_.work_dir + "/points");
 }

@@ -12,10 +12,12 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/parameter_space.hpp"
 #include "demcal/core/table.hpp"
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/batch.hpp"
 #include "demcal/dem/batch_mpi.hpp"
+#include "demcal/dem/describe.hpp"
 #include "demcal/dem/merge.hpp"
 #include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene.hpp"
@@ -55,7 +57,7 @@ void write_curve(const dem::TestResult& r, const std::string& path) {
 
 int main(int argc, char** argv) {
   log::set_program("demcal-dem");
-  CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (uniaxial compression): one run, or a resumable batch over a design.", "demcal-dem"};
+  CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (its lab test): one run, a resumable batch over a design, the merge of shards, or a description of the scene.", "demcal-dem"};
   app.require_subcommand(1);
   std::string scene_path, out, curve, cache_dir = "build/cache";
   std::vector<std::string> sets;
@@ -86,6 +88,12 @@ int main(int argc, char** argv) {
   std::string shard;
   batch->add_option("--shard", shard, "I/N: run only every N-th point, starting at the I-th (job arrays; join with merge)");
   batch->add_flag("--quiet", quiet, "no progress on stderr");
+  std::string describe_scene, describe_space;
+  bool describe_registries = false;
+  CLI::App* describe = app.add_subcommand("describe", "print what a scene has (JSON): test, parameters, outputs, contacts");
+  describe->add_option("--scene", describe_scene, "scene JSON");
+  describe->add_option("--space", describe_space, "also check that this parameter space narrows the scene");
+  describe->add_flag("--registries", describe_registries, "list the registered lab tests and contact models instead");
   std::vector<std::string> merge_inputs;
   std::string merge_out, merge_csv;
   CLI::App* merge = app.add_subcommand("merge", "join the result files of batch shards into one (resumable by batch)");
@@ -116,6 +124,17 @@ int main(int argc, char** argv) {
                 " failed, " + std::to_string(s.skipped) + " done before; " + format_duration(s.wall_s) + "; wrote " +
                 batch_options.out_path);
       return s.failed > 0 ? 4 : 0;
+    }
+    if (describe->parsed()) {
+      if (describe_registries) {
+        std::cout << dem::describe_registries().dump(2) << "\n";
+        return 0;
+      }
+      if (describe_scene.empty()) throw Error("describe: --scene is required (or --registries)");
+      dem::Scene scene = dem::Scene::load(describe_scene);
+      if (!describe_space.empty()) scene.check_space(ParameterSpace::load(describe_space), describe_space);
+      std::cout << dem::describe_scene(scene).dump(2) << "\n";
+      return 0;
     }
     if (merge->parsed()) {
       if (!is_hdf5_path(merge_out)) throw Error("--out must be an .h5 file (the merged responses)");

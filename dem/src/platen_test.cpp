@@ -13,6 +13,20 @@
 
 namespace demcal::dem {
 
+BoundaryRole platen_role() { return {"disk-platen", kPlatenGroup, "the specimen's disks against the loading platens"}; }
+
+std::vector<OutputSpec> platen_crack_outputs(const Scene& scene) {
+  std::vector<OutputSpec> out = {{"cracks_tension", "1", "bonds broken in tension"},
+                                 {"cracks_shear", "1", "bonds broken in shear"}};
+  if (scene.aggregates()) {
+    out.push_back({"cracks_mortar_tension", "1", "bonds broken in tension in the mortar"});
+    out.push_back({"cracks_mortar_shear", "1", "bonds broken in shear in the mortar"});
+    out.push_back({"cracks_itz_tension", "1", "bonds broken in tension in the interfacial transition zone"});
+    out.push_back({"cracks_itz_shear", "1", "bonds broken in shear in the interfacial transition zone"});
+  }
+  return out;
+}
+
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep,
                         std::map<std::string, double>* info) {
@@ -20,23 +34,7 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   settings.thickness_m = specimen.thickness_m;
   settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
   World world(settings);
-  const std::string where = scene.origin() + ": contacts.";
-  auto create = [&](const char* pair) {
-    const ContactSpec& c = scene.contacts().at(pair);
-    return world.add_model(
-        ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where + pair), where + pair));
-  };
-  if (scene.aggregates()) {
-    world.assign(kSpecimenGroup, kSpecimenGroup, create("mortar-mortar"));
-    world.assign(kSpecimenGroup, kAggregateGroup, create("mortar-aggregate"));
-    world.assign(kAggregateGroup, kAggregateGroup, create("aggregate-aggregate"));
-    const std::uint8_t platen = create("disk-platen");
-    world.assign(kSpecimenGroup, kPlatenGroup, platen);
-    world.assign(kAggregateGroup, kPlatenGroup, platen);
-  } else {
-    world.assign(kSpecimenGroup, kSpecimenGroup, create("disk-disk"));
-    world.assign(kSpecimenGroup, kPlatenGroup, create("disk-platen"));
-  }
+  bind_contact_models(world, scene, parameters);
   world.bodies.reserve(specimen.size());
   double bottom_y = INFINITY, top_y = -INFINITY, r_min = INFINITY;
   for (std::size_t i = 0; i < specimen.size(); ++i) {

@@ -48,21 +48,30 @@ std::string status_text(const json& r) {
 
 }  // namespace
 
+// A design column is a scene parameter, the coded copy of one (NAME_coded), or
+// a declared blank column (blank*, null_column); anything else is a typo or a
+// design made for another scene, and running it would silently use defaults.
 std::vector<std::string> design_parameter_columns(const Scene& scene, const Table& design,
                                                   const std::string& design_path) {
   std::vector<std::string> columns;
+  auto list = [&]() {
+    std::string out;
+    for (const auto& [name, p] : scene.parameters()) out += (out.empty() ? "" : ", ") + name;
+    return out;
+  };
   for (const std::string& name : design.names()) {
     if (scene.parameters().count(name)) {
       columns.push_back(name);
-    } else if (!ends_with(name, "_coded") && name.rfind("blank", 0) != 0) {
-      log::warn(design_path + ": column \"" + name + "\" is not a parameter of the scene; ignored");
+      continue;
     }
+    const bool coded = ends_with(name, "_coded") && scene.parameters().count(name.substr(0, name.size() - 6));
+    const bool blank = name.rfind("blank", 0) == 0 || name == "null_column";
+    if (!coded && !blank)
+      throw Error(design_path + ": column \"" + name + "\" is not a parameter of the scene " + scene.origin() +
+                  " (its parameters: " + list() + "; also allowed: run, NAME_coded, blank*, null_column)");
   }
-  if (columns.empty()) {
-    std::string list;
-    for (const auto& [name, p] : scene.parameters()) list += (list.empty() ? "" : ", ") + name;
-    throw Error(design_path + ": no column is named after a scene parameter (scene parameters: " + list + ")");
-  }
+  if (columns.empty())
+    throw Error(design_path + ": no column is named after a scene parameter (scene parameters: " + list() + ")");
   return columns;
 }
 

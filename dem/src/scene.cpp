@@ -10,6 +10,10 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/parameter_space.hpp"
+#include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
 namespace {
@@ -54,7 +58,37 @@ AggregateSpec aggregate_spec(const json& a, const std::string& where) {
 
 }  // namespace
 
-Scene Scene::load(const std::string& path) { return from_json(read_json_file(path, "scene file"), path); }
+namespace {
+
+// Follows "extends" (relative to the extending file), at most this deep, so a cycle is an error.
+constexpr int kMaxExtends = 16;
+
+json resolve_extends(const std::string& path, int depth) {
+  json root = read_json_file(path, "scene file");
+  if (!root.is_object()) throw Error(path + ": a scene must be a JSON object");
+  if (!root.contains("extends")) return root;
+  const json& base_name = root.at("extends");
+  if (!base_name.is_string() || base_name.get<std::string>().empty())
+    throw Error(path + ": \"extends\" must be the path of another scene file");
+  if (depth >= kMaxExtends)
+    throw Error(path + ": \"extends\" chain deeper than " + std::to_string(kMaxExtends) + " (a cycle?)");
+  std::string base_path = base_name.get<std::string>();
+  if (base_path[0] != '/') {
+    const std::size_t slash = path.find_last_of('/');
+    if (slash != std::string::npos) base_path = path.substr(0, slash + 1) + base_path;
+  }
+  json merged = resolve_extends(base_path, depth + 1);
+  json patch = root;
+  patch.erase("extends");
+  merged.merge_patch(patch);  // RFC 7386
+  return merged;
+}
+
+}  // namespace
+
+json Scene::resolved_json(const std::string& path) { return resolve_extends(path, 0); }
+
+Scene Scene::load(const std::string& path) { return from_json(resolved_json(path), path); }
 
 namespace {
 
@@ -62,10 +96,26 @@ namespace {
 // ends the test instead of failing it).
 constexpr int kResultsVersion = 2;
 
-// FNV-1a over the canonical dump (keys sorted): the same scene content gives
-// the same fingerprint, whatever the file's layout.
+void drop_notes(json& value) {
+  if (!value.is_object()) return;
+  value.erase("note");
+  for (auto& [key, child] : value.items()) drop_notes(child);
+}
+
+// FNV-1a over the canonical dump (keys sorted) of what changes results: the
+// same physics gives the same fingerprint, whatever the file's layout, name,
+// descriptions, notes, units or parameter bounds.
 std::string scene_fingerprint(const json& root) {
-  const std::string text = root.dump() + "|results-v" + std::to_string(kResultsVersion);
+  json physics = root;
+  for (const char* key : {"name", "description", "extends"}) physics.erase(key);
+  if (physics.contains("parameters") && physics.at("parameters").is_object()) {
+    json defaults = json::object();
+    for (auto& [name, p] : physics.at("parameters").items()) defaults[name] = p.value("value", json());
+    physics["parameters"] = defaults;
+  }
+  for (const char* key : {"specimen", "aggregates", "contacts", "loading"})
+    if (physics.contains(key)) drop_notes(physics[key]);
+  const std::string text = physics.dump() + "|results-v" + std::to_string(kResultsVersion);
   std::uint64_t hash = 1469598103934665603ull;
   for (unsigned char c : text) {
     hash ^= c;
@@ -85,9 +135,10 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   scene.origin_ = origin;
   scene.fingerprint_ = scene_fingerprint(root);
   scene.name_ = root.value("name", std::string("scene"));
-  scene.test_ = root.value("test", std::string(""));
-  if (scene.test_ != "ucs" && scene.test_ != "brazilian")
-    throw Error(origin + ": \"test\" must be \"ucs\" or \"brazilian\" (got \"" + scene.test_ + "\")");
+  if (root.contains("name") && !root.at("name").is_string()) throw Error(origin + ": \"name\" must be a string");
+  if (!root.contains("test") || !root.at("test").is_string()) throw Error(origin + ": missing \"test\" (a string)");
+  scene.test_ = root.at("test").get<std::string>();
+  scene.lab_test_ = &LabTestRegistry::instance().find(scene.test_, origin);
 
   if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
   scene.specimen_ = root.at("specimen");
@@ -103,6 +154,14 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
       require_known_fields(it.value(), {"value", "low", "high", "unit", "note"}, where);
       SceneParameter p;
       if (!it.value().contains("value")) throw Error(where + ": missing \"value\" (the default)");
+      if (!it.value().contains("unit") || !it.value().at("unit").is_string())
+        throw Error(where + ": missing \"unit\" (a string such as \"MPa\", \"m\", or \"1\" for dimensionless)");
+      p.unit = it.value().at("unit").get<std::string>();
+      p.quantity = quantity_of_unit(p.unit, where + ".unit");
+      if (it.value().contains("note")) {
+        if (!it.value().at("note").is_string()) throw Error(where + ": \"note\" must be a string");
+        p.note = it.value().at("note").get<std::string>();
+      }
       p.value = number_field(it.value(), "value", 0, where);
       p.low = number_field(it.value(), "low", p.low, where);
       p.high = number_field(it.value(), "high", p.high, where);
@@ -113,24 +172,37 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   }
 
   if (root.contains("aggregates")) scene.aggregates_ = aggregate_spec(root.at("aggregates"), origin + ": aggregates");
-  if (!root.contains("contacts")) throw Error(origin + ": missing \"contacts\"");
-  const std::vector<const char*> pairs =
-      scene.aggregates_ ? std::vector<const char*>{"mortar-mortar", "mortar-aggregate", "aggregate-aggregate", "disk-platen"}
-                        : std::vector<const char*>{"disk-disk", "disk-platen"};
-  if (scene.aggregates_)
-    require_known_fields(root.at("contacts"), {"mortar-mortar", "mortar-aggregate", "aggregate-aggregate", "disk-platen"},
-                         origin + ": contacts (a scene with aggregates)");
-  else
-    require_known_fields(root.at("contacts"), {"disk-disk", "disk-platen"}, origin + ": contacts");
-  for (const char* pair : pairs) {
-    const std::string where = origin + ": contacts." + pair;
-    if (!root.at("contacts").contains(pair)) throw Error(where + ": missing");
-    const json& c = root.at("contacts").at(pair);
+  // The contact roles: the specimen's own, then the test's boundaries (each
+  // against every group of the specimen).
+  scene.roles_ = specimen_contact_roles(scene.aggregates_.has_value());
+  for (const BoundaryRole& b : scene.lab_test_->boundary_roles()) {
+    ContactRole role{b.name, {}, b.description};
+    for (std::uint8_t g : specimen_groups(scene.aggregates_.has_value())) role.groups.emplace_back(g, b.group);
+    scene.roles_.push_back(role);
+  }
+  std::string role_list;
+  for (const ContactRole& r : scene.roles_) role_list += (role_list.empty() ? "" : ", ") + r.name;
+  if (!root.contains("contacts") || !root.at("contacts").is_object())
+    throw Error(origin + ": missing \"contacts\" (an object binding a model to each of: " + role_list + ")");
+  for (auto it = root.at("contacts").begin(); it != root.at("contacts").end(); ++it) {
+    bool known = false;
+    for (const ContactRole& r : scene.roles_) known = known || r.name == it.key();
+    if (!known)
+      throw Error(origin + ": contacts: unknown contact role \"" + it.key() + "\" (" +
+                  (scene.aggregates_ ? "the roles of a scene with aggregates: " : "this scene's roles: ") + role_list + ")");
+  }
+  for (const ContactRole& role : scene.roles_) {
+    const std::string where = origin + ": contacts." + role.name;
+    if (!root.at("contacts").contains(role.name)) throw Error(where + ": missing");
+    const json& c = root.at("contacts").at(role.name);
     require_known_fields(c, {"model", "parameters"}, where);
+    if (!c.contains("model") || !c.at("model").is_string()) throw Error(where + ": missing \"model\" (a string)");
+    if (c.contains("parameters") && !c.at("parameters").is_object())
+      throw Error(where + ": \"parameters\" must be an object of name: number or expression");
     ContactSpec spec;
-    spec.model = c.value("model", std::string(""));
+    spec.model = c.at("model").get<std::string>();
     spec.parameters = c.value("parameters", json::object());
-    scene.contacts_[pair] = spec;
+    scene.contacts_[role.name] = spec;
   }
 
   if (root.contains("loading")) {
@@ -157,8 +229,50 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   // Evaluate everything once with the defaults, so a bad expression fails at load.
   std::map<std::string, double> defaults = scene.resolve({});
   scene.specimen(defaults, 1).validate();
-  for (const auto& [pair, contact] : scene.contacts_) scene.bind(contact, defaults, origin + ": contacts." + pair);
+  for (const auto& [pair, contact] : scene.contacts_) {
+    // Building the model checks its parameters (names, signs) at load, not at the first run.
+    const std::string where = origin + ": contacts." + pair;
+    ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
+  }
   return scene;
+}
+
+void Scene::check_space(const ParameterSpace& space, const std::string& space_path) const {
+  auto scene_parameter = [&](const std::string& name, const std::string& what) -> const SceneParameter& {
+    auto it = parameters_.find(name);
+    if (it == parameters_.end()) {
+      std::string list;
+      for (const auto& [known, p] : parameters_) list += (list.empty() ? "" : ", ") + known;
+      throw Error(space_path + ": " + what + " \"" + name + "\" is not a parameter of the scene " + origin_ +
+                  " (its parameters: " + list + ")");
+    }
+    return it->second;
+  };
+  auto inside = [&](const std::string& name, const SceneParameter& p, double value, const std::string& what) {
+    if (value < p.low || value > p.high)
+      throw Error(space_path + ": " + name + " " + what + " " + format_double(value) + " lies outside the bounds [" +
+                  format_double(p.low) + ", " + format_double(p.high) + "] the scene " + origin_ + " declares");
+  };
+  for (const Parameter& q : space.parameters()) {
+    const SceneParameter& p = scene_parameter(q.name, "parameter");
+    if (!q.unit.empty() && q.unit != p.unit)
+      throw Error(space_path + ": " + q.name + " has unit \"" + q.unit + "\" but the scene " + origin_ + " declares \"" +
+                  p.unit + "\"");
+    inside(q.name, p, q.low, "low");
+    inside(q.name, p, q.high, "high");
+  }
+  for (const auto& [name, value] : space.fixed()) inside(name, scene_parameter(name, "fixed parameter"), value, "fixed at");
+  for (const TiedParameter& t : space.tied()) scene_parameter(t.name, "tied parameter");
+}
+
+void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters) {
+  for (const ContactRole& role : scene.contact_roles()) {
+    const ContactSpec& c = scene.contacts().at(role.name);
+    const std::string where = scene.origin() + ": contacts." + role.name;
+    const std::uint8_t model =
+        world.add_model(ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where), where));
+    for (const auto& [a, b] : role.groups) world.assign(a, b, model);
+  }
 }
 
 std::map<std::string, double> Scene::resolve(const std::map<std::string, double>& overrides) const {

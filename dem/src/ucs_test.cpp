@@ -7,6 +7,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/progress.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 
 namespace demcal::dem {
@@ -103,5 +104,37 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   }
   return result;
 }
+
+namespace {
+
+class UcsTest : public LabTest {
+ public:
+  std::string name() const override { return "ucs"; }
+  std::string description() const override {
+    return "uniaxial compression between two frictionless platens approaching at the loading velocity";
+  }
+  std::vector<BoundaryRole> boundary_roles() const override { return {platen_role()}; }
+  std::vector<OutputSpec> outputs(const Scene& scene) const override {
+    std::vector<OutputSpec> out = {
+        {"sigma_u_MPa", "MPa", "peak axial stress (platen force / (W t))"},
+        {"E_GPa", "GPa", "tangent Young's modulus where the stress first reaches half the peak"},
+        {"E50_GPa", "GPa", "secant modulus at half the peak"},
+        {"nu", "1", "Poisson's ratio: lateral over axial strain at half the peak"},
+        {"peak_strain", "1", "axial strain at the peak"},
+        {"reached_strain_limit", "1", "1 when the test ended at loading.strain_limit before the post-peak stop",
+         false},
+    };
+    for (OutputSpec& o : platen_crack_outputs(scene)) out.push_back(o);
+    return out;
+  }
+  TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                 const RunOptions& options) const override {
+    return run_ucs(scene, parameters, options);
+  }
+};
+
+}  // namespace
+
+void register_ucs_test(LabTestRegistry& registry) { registry.add(std::make_unique<UcsTest>()); }
 
 }  // namespace demcal::dem

@@ -70,6 +70,7 @@ int run(const Arguments& a, const CLI::App& app) {
     options.jobs = a.jobs;
     options.cache_dir = a.cache;
     options.progress = !a.quiet;
+    options.space_path = a.space;
     std::vector<std::string> outputs;
     for (const Target& t : targets) outputs.push_back(t.output);
     owned.push_back(std::make_unique<dem::DemModel>(a.dem_scene, *space, outputs, options));

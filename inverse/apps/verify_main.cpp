@@ -59,6 +59,7 @@ int run(const Arguments& a) {
   std::map<std::string, double> point = numbers(solution.at("x"), a.solution + ": x");
   if (!a.space.empty()) {
     ParameterSpace space = ParameterSpace::load(a.space);
+    scene.check_space(space, a.space);
     for (const auto& [name, value] : space.fixed())
       if (!point.count(name)) point[name] = value;
     for (const TiedParameter& t : space.tied()) {

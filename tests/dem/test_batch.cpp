@@ -167,3 +167,17 @@ TEST(DemcalDemBatch, AnEditedSceneIsRunAgainNotReused) {
   ASSERT_EQ(batch(), 0);
   EXPECT_NE(point_files(out + ".points").at("run1_seed1.json"), first);  // edited scene: run again
 }
+
+TEST(DemcalDemBatch, ADesignColumnThatNamesNoSceneParameterIsAnError) {
+  // A typo would otherwise run every point at the scene's default.
+  const std::string design = temp("typo_design.csv"), err = temp("typo.err");
+  std::ofstream(design) << "run,pb_sigma_c_MPa,pb_sigma_c_MPa_coded,Ec_GPA,blank1,null_column\n1,10,0,16,1,2\n";
+  const int status = std::system((kBin + " batch --scene " + kScene + " --design " + design + " --out " +
+                                  temp("typo.h5") + " --cache " + temp("cache") + " --quiet 2>" + err)
+                                     .c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream in(err);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find(design + ": column \"Ec_GPA\" is not a parameter of the scene"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+}

@@ -98,10 +98,19 @@ TEST(DemModel, ANewModelOnTheSameFolderResumesWithoutRerunning) {
 }
 
 TEST(DemModel, AFailedRunGivesNoNumberAndBadSetupsAreErrors) {
-  // Ec_GPa = 600 lies outside the scene's own bounds [0.1, 500]: the run fails.
+  // A space reaching beyond the scene's own bounds [0.1, 500] is refused.
   ParameterSpace wide = ParameterSpace::from_json(
       nlohmann::json::parse(R"({"parameters": [{"name": "Ec_GPa", "low": 10, "high": 700}]})"), "wide");
-  DemModel model(kScene, wide, {"sigma_u_MPa"}, options("failed"));
+  try {
+    DemModel(kScene, wide, {"sigma_u_MPa"}, options("wide"));
+    FAIL() << "a space wider than the scene's bounds was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("high 700 lies outside the bounds [0.1, 500]"), std::string::npos) << e.what();
+  }
+  // A point asked for beyond them (Ec_GPa = 600) is a failed run, not a number.
+  ParameterSpace inside = ParameterSpace::from_json(
+      nlohmann::json::parse(R"({"parameters": [{"name": "Ec_GPa", "low": 10, "high": 500}]})"), "inside");
+  DemModel model(kScene, inside, {"sigma_u_MPa"}, options("failed"));
   EXPECT_TRUE(std::isnan(model.predict(std::vector<double>{600.0})[0]));
   EXPECT_EQ(model.runs_failed(), 1);
 
@@ -109,7 +118,7 @@ TEST(DemModel, AFailedRunGivesNoNumberAndBadSetupsAreErrors) {
     DemModel(kScene, space(R"(, "porosity_target": 0.1)"), {"sigma_u_MPa"}, options("bad"));
     FAIL() << "a space parameter the scene does not have was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("porosity_target is not a parameter of this scene"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"porosity_target\" is not a parameter of the scene"), std::string::npos) << e.what();
   }
   DemModel unknown_output(kScene, space(), {"UCS"}, options("unknown"));
   try {

@@ -42,10 +42,11 @@ def bits(value):
 
 
 def csv_digest(path):
-    """Rows of a CSV without its timing columns: a hash and the row count (the whole table is too long to keep)."""
+    """Rows of a CSV without its timing columns, columns in name order (their order is layout, not numbers):
+    a hash and the row count (the whole table is too long to keep)."""
     with open(path) as f:
         rows = list(csv.reader(f))
-    keep = [k for k, name in enumerate(rows[0]) if name not in VOLATILE]
+    keep = sorted((k for k, name in enumerate(rows[0]) if name not in VOLATILE), key=lambda k: rows[0][k])
     text = "\n".join(",".join(row[k] for k in keep) for row in rows)
     return {"rows": len(rows) - 1, "columns": [rows[0][k] for k in keep],
             "sha256": hashlib.sha256(text.encode()).hexdigest()}

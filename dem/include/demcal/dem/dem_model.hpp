@@ -28,12 +28,13 @@ struct DemModelOptions {
   int jobs = 1;           // points run at once
   std::string cache_dir;  // packed specimens
   bool progress = true;   // a line on stderr at most every 10 s
+  std::string space_path = "the parameter space";  // for error messages
 };
 
 class DemModel : public BoxModel {
  public:
-  // Throws when a varied, fixed or tied parameter of the space is not a
-  // parameter of the scene.
+  // Throws when the space does not narrow the scene (Scene::check_space): a
+  // varied, fixed or tied parameter that the scene lacks, or a range beyond its bounds.
   DemModel(const std::string& scene_path, const ParameterSpace& space, std::vector<std::string> outputs,
            DemModelOptions options);
 

@@ -10,6 +10,7 @@
 
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/genesis.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/ucs_test.hpp"
 #include "demcal/dem/world.hpp"
@@ -17,6 +18,11 @@
 namespace demcal::dem {
 
 constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
+
+// The platens' contact role: "disk-platen", every specimen group against the platens.
+BoundaryRole platen_role();
+// The crack counts every platen test reports (by mode; a concrete also by phase).
+std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
 
 // Disks of `specimen` (only those with keep[i] when `keep` is given), the
 // scene's contact models, a bottom and a top platen touching the lowest and

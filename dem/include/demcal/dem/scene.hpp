@@ -5,13 +5,28 @@
 //   {"name": "ucs_rock_pb", "test": "ucs",
 //    "specimen": {"width_m": 0.05, "height_m": 0.1, "porosity": 0.16,
 //                 "radius_min_m": 5e-4, "radius_max_m": "R_min_m*1.5", "density_kg_m3": 2650},
-//    "parameters": {"Ec_GPa": {"value": 16, "low": 1, "high": 200}, ...},
+//    "parameters": {"Ec_GPa": {"value": 16, "low": 1, "high": 200, "unit": "GPa"}, ...},
 //    "contacts": {"disk-disk":   {"model": "parallel_bond", "parameters": {"modulus_pa": "Ec_GPa*1e9", ...}},
 //                 "disk-platen": {"model": "linear", "parameters": {...}}},
 //    "loading": {"platen_velocity_m_s": 0.02, "stop_fraction_of_peak": 0.7, "strain_limit": 0.02}}
 //
 // A bound value is a number or a product of parameter names and numbers
 // ("Ec_GPa*1e9", "R_min_m*R_max_over_R_min").
+//
+// The scene is the one place a parameter is declared: its default (`value`),
+// its physical bounds (`low`, `high`) and its `unit` (core/units.hpp: the unit
+// says whether it is stress-like, a length or dimensionless, "1"). Parameter
+// spaces only narrow it (check_space), studies fix it.
+//
+// Variants: {"extends": "ucs_concrete.json", ...} starts from that scene
+// (path relative to this file; chains allowed) and applies this file as a
+// JSON Merge Patch (RFC 7386): objects merge, anything else replaces, null
+// deletes.
+//
+// The contacts object binds a model to every contact role of the scene: the
+// specimen's own ("disk-disk", or a concrete's "mortar-mortar",
+// "mortar-aggregate", "aggregate-aggregate") and the test's boundaries
+// ("disk-platen").
 //
 // Concrete: an "aggregates" object (Walraven gradation, polygon sides, gap,
 // density) makes the disks inside each placed polygon one rigid clump, and
@@ -23,15 +38,27 @@
 
 #include <nlohmann/json.hpp>
 
+#include "demcal/core/units.hpp"
 #include "demcal/dem/aggregates.hpp"
 #include "demcal/dem/genesis.hpp"
+#include "demcal/dem/specimen_roles.hpp"
+
+namespace demcal {
+class ParameterSpace;
+}
 
 namespace demcal::dem {
 
 struct SceneParameter {
   double value = 0;                 // default (reference) value
-  double low = -1e300, high = 1e300;  // allowed range, checked on --set
+  double low = -1e300, high = 1e300;  // physical bounds, checked on --set
+  std::string unit;                 // "GPa", "m", "1" ...
+  Quantity quantity = Quantity::Dimensionless;  // what the unit says
+  std::string note;
 };
+
+class LabTest;
+class World;
 
 struct ContactSpec {
   std::string model;
@@ -50,21 +77,35 @@ struct LoadingSpec {
 
 class Scene {
  public:
+  // Reads the file, follows "extends" and validates.
   static Scene load(const std::string& path);
+  // `json` is a whole scene ("extends" already applied).
   static Scene from_json(const nlohmann::json& json, const std::string& origin);
+  // The scene's JSON with every "extends" applied (what from_json takes).
+  static nlohmann::json resolved_json(const std::string& path);
 
   const std::string& name() const { return name_; }
   const std::string& test() const { return test_; }
+  const LabTest& lab_test() const { return *lab_test_; }
+  // Every contact role the scene binds: the specimen's, then the test's boundaries'.
+  const std::vector<ContactRole>& contact_roles() const { return roles_; }
   const std::map<std::string, SceneParameter>& parameters() const { return parameters_; }
   const std::map<std::string, ContactSpec>& contacts() const { return contacts_; }
   const LoadingSpec& loading() const { return loading_; }
   // The aggregates of a concrete scene; empty for a one-phase specimen.
   const std::optional<AggregateSpec>& aggregates() const { return aggregates_; }
   const std::string& origin() const { return origin_; }
-  // Identifies what a stored result was made with: the scene's content and
+  // Identifies what a stored result was made with: what changes results
+  // (test, specimen, aggregates, contacts, loading, parameter defaults) and
   // the version of the results (raised when the engine's physics change), so
   // a batch never reuses a result of an edited scene or an older engine.
+  // Names, descriptions, notes, units and bounds do not count.
   const std::string& fingerprint() const { return fingerprint_; }
+
+  // A parameter space narrows the scene: each parameter it varies, fixes or
+  // ties must be a scene parameter, its unit (when given) the scene's, and
+  // its range inside the scene's bounds. Throws a one-line Error naming both files.
+  void check_space(const ParameterSpace& space, const std::string& space_path) const;
 
   // Defaults with `overrides` applied; unknown names, non-finite values and
   // values outside [low, high] are errors naming the parameter.
@@ -79,11 +120,17 @@ class Scene {
 
  private:
   std::string origin_, name_, test_, fingerprint_;
+  const LabTest* lab_test_ = nullptr;
+  std::vector<ContactRole> roles_;
   nlohmann::json specimen_;
   std::map<std::string, SceneParameter> parameters_;
   std::map<std::string, ContactSpec> contacts_;
   LoadingSpec loading_;
   std::optional<AggregateSpec> aggregates_;
 };
+
+// Creates a model for each of the scene's contact roles (in the order of
+// contact_roles(), bound to `parameters`) and assigns it to the role's groups.
+void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters);
 
 }  // namespace demcal::dem

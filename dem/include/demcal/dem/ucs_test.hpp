@@ -49,7 +49,8 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
 // between platens; macro sigma_t_MPa = 2 F_max / (pi D t).
 TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
 
-// The runner of the scene's test ("ucs" or "brazilian").
+// Runs the scene's lab test (LabTestRegistry) and checks that it reported
+// only outputs it declares, and every output it always reports.
 TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
 
 // sigma_u, E (tangent where the stress first reaches half the peak), E50

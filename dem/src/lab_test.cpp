@@ -1,0 +1,59 @@
+#include "demcal/dem/lab_test.hpp"
+
+#include <set>
+
+#include "demcal/core/error.hpp"
+#include "demcal/dem/scene.hpp"
+
+namespace demcal::dem {
+
+LabTestRegistry& LabTestRegistry::instance() {
+  static LabTestRegistry registry = [] {
+    LabTestRegistry r;
+    register_builtin_tests(r);
+    return r;
+  }();
+  return registry;
+}
+
+void LabTestRegistry::add(std::unique_ptr<LabTest> test) {
+  for (const auto& t : tests_)
+    if (t->name() == test->name()) throw Error("lab test \"" + test->name() + "\" is registered twice");
+  tests_.push_back(std::move(test));
+}
+
+const LabTest& LabTestRegistry::find(const std::string& name, const std::string& where) const {
+  for (const auto& t : tests_)
+    if (t->name() == name) return *t;
+  std::string list;
+  for (const auto& t : tests_) list += (list.empty() ? "\"" : ", \"") + t->name() + "\"";
+  throw Error(where + ": \"test\" must be one of " + list + " (got \"" + name + "\")");
+}
+
+std::vector<std::string> LabTestRegistry::names() const {
+  std::vector<std::string> out;
+  for (const auto& t : tests_) out.push_back(t->name());
+  return out;
+}
+
+void register_builtin_tests(LabTestRegistry& registry) {
+  register_ucs_test(registry);
+  register_brazilian_test(registry);
+}
+
+TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
+  const LabTest& test = LabTestRegistry::instance().find(scene.test(), scene.origin());
+  TestResult result = test.run(scene, parameters, options);
+  // A test reports what it declares: the study layer and describe rely on it.
+  std::set<std::string> declared;
+  for (const OutputSpec& o : test.outputs(scene)) {
+    declared.insert(o.name);
+    if (result.ok && o.always && !result.macro.count(o.name))
+      throw Error("lab test " + test.name() + " declares output " + o.name + " but did not report it");
+  }
+  for (const auto& [name, value] : result.macro)
+    if (!declared.count(name)) throw Error("lab test " + test.name() + " reported undeclared output " + name);
+  return result;
+}
+
+}  // namespace demcal::dem

@@ -1,0 +1,204 @@
+// Scenes as the one source of truth for parameters: units, variants by
+// "extends" (JSON Merge Patch), the fingerprint of what changes results, a
+// space that must narrow the scene, and lab tests that report what they declare.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/parameter_space.hpp"
+#include "demcal/dem/describe.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/scene.hpp"
+
+using namespace demcal;
+using namespace demcal::dem;
+using json = nlohmann::json;
+
+namespace {
+
+std::string source(const std::string& relative) { return std::string(DEMCAL_SOURCE_DIR) + "/" + relative; }
+
+json small_scene() {
+  std::ifstream in(source("tests/data/ucs_small.json"));
+  return json::parse(in);
+}
+
+std::string write(const std::string& name, const json& content) {
+  const std::string path = ::testing::TempDir() + "demcal_scene_" + std::to_string(::getpid()) + "_" + name;
+  std::ofstream(path) << content.dump(1);
+  return path;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Scene, EveryParameterDeclaresAKnownUnitThatSaysWhatItIs) {
+  Scene scene = Scene::from_json(small_scene(), "small");
+  EXPECT_EQ(scene.parameters().at("Ec_GPa").quantity, Quantity::Stress);
+  EXPECT_EQ(scene.parameters().at("kn_ks").quantity, Quantity::Dimensionless);
+  EXPECT_TRUE(is_stress_like(scene.parameters().at("pb_sigma_c_MPa").quantity));
+  EXPECT_FALSE(is_stress_like(scene.parameters().at("mu").quantity));
+
+  json missing = small_scene();
+  missing["parameters"]["mu"].erase("unit");
+  EXPECT_NE(error_of([&] { Scene::from_json(missing, "s.json"); }).find("s.json: parameters.mu: missing \"unit\""),
+            std::string::npos);
+  json unknown = small_scene();
+  unknown["parameters"]["Ec_GPa"]["unit"] = "psi";
+  EXPECT_NE(error_of([&] { Scene::from_json(unknown, "s.json"); }).find("unknown unit \"psi\""), std::string::npos);
+}
+
+TEST(Scene, ExtendsAppliesAMergePatchToItsBaseAlongAChain) {
+  const std::string base = write("base.json", small_scene());
+  const std::string base_name = base.substr(base.find_last_of('/') + 1);
+  // Child: a new default, a wider specimen, a parameter's note removed by null.
+  json child = {{"extends", base_name},
+                {"name", "child"},
+                {"specimen", {{"width_m", 0.012}}},
+                {"parameters", {{"mu", {{"value", 0.3}}}}}};
+  const std::string child_path = write("child.json", child);
+  json grandchild = {{"extends", child_path.substr(child_path.find_last_of('/') + 1)},
+                     {"loading", {{"platen_velocity_m_s", 0.04}}}};
+  const std::string grandchild_path = write("grandchild.json", grandchild);
+
+  Scene scene = Scene::load(grandchild_path);
+  EXPECT_EQ(scene.name(), "child");
+  EXPECT_DOUBLE_EQ(scene.parameters().at("mu").value, 0.3);
+  EXPECT_EQ(scene.parameters().at("mu").unit, "1");  // merged, not replaced
+  EXPECT_DOUBLE_EQ(scene.parameters().at("Ec_GPa").value, 16);
+  EXPECT_DOUBLE_EQ(scene.loading().platen_velocity_m_s, 0.04);
+  EXPECT_DOUBLE_EQ(scene.specimen(scene.resolve({}), 1).width_m, 0.012);
+  EXPECT_DOUBLE_EQ(scene.specimen(scene.resolve({}), 1).height_m, 0.02);
+
+  // null deletes: a parameter removed by the patch, whose contacts still use it, fails to load.
+  json removes = {{"extends", base_name}, {"parameters", {{"mu", nullptr}}}};
+  EXPECT_NE(error_of([&] { Scene::load(write("removes.json", removes)); }).find("\"mu\""), std::string::npos);
+
+  json cycle = {{"extends", "demcal_scene_" + std::to_string(::getpid()) + "_cycle.json"}};
+  EXPECT_NE(error_of([&] { Scene::load(write("cycle.json", cycle)); }).find("a cycle?"), std::string::npos);
+  json missing_base = {{"extends", "no_such_scene.json"}};
+  EXPECT_NE(error_of([&] { Scene::load(write("orphan.json", missing_base)); }).find("cannot open"), std::string::npos);
+}
+
+TEST(Scene, ShippedVariantsEqualTheirBaseExceptWhatTheyChange) {
+  json base = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
+  json demo = Scene::resolved_json(source("data/scenes/ucs_concrete_demo.json"));
+  EXPECT_EQ(demo["contacts"], base["contacts"]);
+  EXPECT_EQ(demo["parameters"], base["parameters"]);
+  EXPECT_EQ(demo["aggregates"], base["aggregates"]);
+  EXPECT_DOUBLE_EQ(demo["specimen"]["radius_min_m"].get<double>(), 0.0008);
+  EXPECT_EQ(demo["specimen"]["porosity"], base["specimen"]["porosity"]);
+}
+
+TEST(Scene, FingerprintCoversPhysicsNotDescriptionsNotesOrBounds) {
+  const std::string original = Scene::from_json(small_scene(), "a").fingerprint();
+  json cosmetic = small_scene();
+  cosmetic["name"] = "renamed";
+  cosmetic["description"] = "another description";
+  cosmetic["parameters"]["Ec_GPa"]["note"] = "a note";
+  cosmetic["parameters"]["Ec_GPa"]["high"] = 400;
+  cosmetic["parameters"]["Ec_GPa"]["unit"] = "GPa";
+  EXPECT_EQ(Scene::from_json(cosmetic, "b").fingerprint(), original);
+
+  json new_default = small_scene();
+  new_default["parameters"]["Ec_GPa"]["value"] = 17;
+  EXPECT_NE(Scene::from_json(new_default, "c").fingerprint(), original);
+  json new_loading = small_scene();
+  new_loading["loading"]["platen_velocity_m_s"] = 0.04;
+  EXPECT_NE(Scene::from_json(new_loading, "d").fingerprint(), original);
+  json new_specimen = small_scene();
+  new_specimen["specimen"]["porosity"] = 0.15;
+  EXPECT_NE(Scene::from_json(new_specimen, "e").fingerprint(), original);
+}
+
+TEST(Scene, ASpaceMustNarrowTheScene) {
+  Scene scene = Scene::from_json(small_scene(), "scene.json");
+  auto space = [](const std::string& text) { return ParameterSpace::from_json(json::parse(text), "space.json"); };
+  EXPECT_NO_THROW(scene.check_space(space(R"({"parameters": [{"name": "Ec_GPa", "unit": "GPa", "low": 5, "high": 40}]})"),
+                                    "space.json"));
+  std::string e = error_of([&] {
+    scene.check_space(space(R"({"parameters": [{"name": "porosity_x", "low": 0.1, "high": 0.2}]})"), "space.json");
+  });
+  EXPECT_NE(e.find("space.json: parameter \"porosity_x\" is not a parameter of the scene scene.json"), std::string::npos)
+      << e;
+  e = error_of([&] { scene.check_space(space(R"({"parameters": [{"name": "mu", "low": 0.1, "high": 20}]})"), "space.json"); });
+  EXPECT_NE(e.find("space.json: mu high 20 lies outside the bounds [0, 10] the scene scene.json declares"),
+            std::string::npos)
+      << e;
+  e = error_of([&] {
+    scene.check_space(space(R"({"parameters": [{"name": "Ec_GPa", "unit": "MPa", "low": 5, "high": 40}]})"), "space.json");
+  });
+  EXPECT_NE(e.find("has unit \"MPa\" but the scene scene.json declares \"GPa\""), std::string::npos) << e;
+  e = error_of([&] {
+    scene.check_space(space(R"({"parameters": [{"name": "Ec_GPa", "low": 5, "high": 40}], "fixed": {"Ec_X": 3}})"),
+                      "space.json");
+  });
+  EXPECT_NE(e.find("fixed parameter \"Ec_X\""), std::string::npos) << e;
+}
+
+TEST(Scene, TestsAndContactRolesComeFromTheRegistries) {
+  json unknown_test = small_scene();
+  unknown_test["test"] = "triaxial_3d";
+  std::string e = error_of([&] { Scene::from_json(unknown_test, "s.json"); });
+  EXPECT_NE(e.find("\"test\" must be one of \"ucs\", \"brazilian\" (got \"triaxial_3d\")"), std::string::npos) << e;
+
+  json extra_role = small_scene();
+  extra_role["contacts"]["disk-wall"] = extra_role["contacts"]["disk-platen"];
+  e = error_of([&] { Scene::from_json(extra_role, "s.json"); });
+  EXPECT_NE(e.find("unknown contact role \"disk-wall\" (this scene's roles: disk-disk, disk-platen)"), std::string::npos)
+      << e;
+
+  json bad_model_parameter = small_scene();
+  bad_model_parameter["contacts"]["disk-disk"]["parameters"]["tensile_strenght_pa"] = 1;
+  e = error_of([&] { Scene::from_json(bad_model_parameter, "s.json"); });
+  EXPECT_NE(e.find("s.json: contacts.disk-disk"), std::string::npos) << e;
+
+  Scene scene = Scene::from_json(small_scene(), "s");
+  ASSERT_EQ(scene.contact_roles().size(), 2u);
+  EXPECT_EQ(scene.contact_roles()[0].name, "disk-disk");
+  EXPECT_EQ(scene.contact_roles()[1].name, "disk-platen");
+}
+
+TEST(LabTests, ARunReportsExactlyTheOutputsItsTestDeclares) {
+  for (const char* file : {"tests/data/ucs_small.json", "tests/data/brazilian_small.json"}) {
+    Scene scene = Scene::load(source(file));
+    RunOptions options;
+    TestResult r = run_test(scene, scene.resolve({}), options);
+    ASSERT_TRUE(r.ok) << file << ": " << r.reason;
+    std::set<std::string> always, reported;
+    for (const OutputSpec& o : scene.lab_test().outputs(scene))
+      if (o.always) always.insert(o.name);
+    for (const auto& [name, value] : r.macro)
+      if (always.count(name)) reported.insert(name);
+    EXPECT_EQ(reported, always) << file;
+  }
+}
+
+TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
+  Scene scene = Scene::load(source("tests/data/ucs_small.json"));
+  json d = describe_scene(scene);
+  EXPECT_EQ(d["test"], "ucs");
+  EXPECT_EQ(d["parameters"]["Ec_GPa"]["unit"], "GPa");
+  EXPECT_EQ(d["parameters"]["Ec_GPa"]["quantity"], "stress");
+  EXPECT_EQ(d["parameters"]["Ec_GPa"]["value"], 16.0);
+  EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["unit"], "MPa");
+  EXPECT_EQ(d["outputs"]["reached_strain_limit"]["optional"], true);
+  EXPECT_EQ(d["contacts"]["disk-disk"]["model"], "parallel_bond");
+  json registries = describe_registries();
+  EXPECT_EQ(registries["tests"], json({"ucs", "brazilian"}));
+  EXPECT_EQ(registries["contact_models"], json({"linear", "parallel_bond", "contact_bond"}));
+}
