@@ -30,9 +30,7 @@ SCREENING_FIELDS = {"design", "factors", "outputs", "seeds", "p_threshold", "max
 STRATEGIES = {"surrogate", "dem_in_the_loop"}
 INVERSION_FIELDS = {"algorithm", "objective", "restarts", "polish", "seed", "population", "budget", "stop_below", "settings"}
 SURROGATES = {"quadratic", "linear", "gabp"}
-ALGORITHMS = {"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "search"}
-OBJECTIVES = {"sum-rel", "max-rel", "sse-rel"}
-DESIGNS = {"ccd", "bbd", "lhs"}
+DESIGNS = {"ccd", "bbd", "lhs"}  # the designs a study's surfaces are built from (doe has more)
 
 
 def fail(message):
@@ -50,25 +48,33 @@ def load_json(path, what):
         fail(f"{path}: not valid JSON ({e})")
 
 
-_DESCRIBED = {}
+_ASKED = {}
 
 
-def describe(scene_path, space_path=None):
-    """What the scene has (parameters, outputs, ...), from `demcal-dem describe`: the executable is the one
-    source of truth. With a space, the executable also checks that the space narrows the scene."""
-    key = (scene_path, space_path)
-    if key not in _DESCRIBED:
-        cmd = [os.path.join(os.environ.get("BIN", "build/bin"), "demcal-dem"), "describe", "--scene", scene_path]
-        if space_path:
-            cmd += ["--space", space_path]
+def ask(program, *args):
+    """The JSON an executable prints about itself (scenes, design kinds, algorithms): the executables are the
+    one source of truth, the study layer keeps no copy. Cached per call."""
+    key = (program,) + args
+    if key not in _ASKED:
+        cmd = [os.path.join(os.environ.get("BIN", "build/bin"), program)] + list(args)
         try:
             done = subprocess.run(cmd, capture_output=True, text=True)
         except OSError as e:
             fail(f"cannot run {cmd[0]} ({e.strerror}): build first (make build) or set BIN")
         if done.returncode != 0:
             fail(done.stderr.strip().splitlines()[-1] if done.stderr.strip() else f"{' '.join(cmd)} failed")
-        _DESCRIBED[key] = json.loads(done.stdout)
-    return _DESCRIBED[key]
+        _ASKED[key] = json.loads(done.stdout)
+    return _ASKED[key]
+
+
+def describe(scene_path, space_path=None):
+    """What the scene has (parameters, outputs, ...); with a space, demcal-dem also checks that it narrows the scene."""
+    return ask("demcal-dem", "describe", "--scene", scene_path, *(["--space", space_path] if space_path else []))
+
+
+def design_kind(kind):
+    """A design kind's factor limits and options, from demcal-doe --list-kinds."""
+    return ask("demcal-doe", "--list-kinds")["kinds"][kind]
 
 
 def write_if_changed(path, text):
@@ -203,8 +209,10 @@ def validate(study, path):
         if surface["factors"] == "auto":
             continue  # the design is checked once the screening has chosen the factors
         k_factors = len(surface["factors"])
-        if d["kind"] == "bbd" and not 3 <= k_factors <= 7:
-            fail(f"{w}: a Box-Behnken design needs 3 to 7 factors, not {k_factors}")
+        limits = design_kind(d["kind"])
+        if k_factors < limits["min_factors"] or (limits["max_factors"] and k_factors > limits["max_factors"]):
+            most = f"to {limits['max_factors']}" if limits["max_factors"] else "or more"
+            fail(f"{w}: a {limits['title']} design needs {limits['min_factors']} {most} factors, not {k_factors}")
         if d["kind"] == "lhs" and int(d.get("runs", 0)) < (k_factors + 1) * (k_factors + 2) // 2 + 1:
             fail(f"{w}: an LHS for a quadratic in {k_factors} factors needs at least "
                  f"{(k_factors + 1) * (k_factors + 2) // 2 + 1} runs (design.runs)")
@@ -224,10 +232,11 @@ def validate(study, path):
         fail(f"{where}: inversion.polish needs a smooth surrogate; it does not apply to dem_in_the_loop")
     if loop and inv.get("algorithm", "sa") == "search":
         fail(f"{where}: inversion.algorithm search samples thousands of points; use an optimiser for dem_in_the_loop")
-    if inv.get("algorithm", "ga") not in ALGORITHMS:
-        fail(f"{where}: inversion.algorithm must be one of {', '.join(sorted(ALGORITHMS))}")
-    if inv.get("objective", "sum-rel") not in OBJECTIVES:
-        fail(f"{where}: inversion.objective must be one of {', '.join(sorted(OBJECTIVES))}")
+    known = ask("demcal-invert", "--list-algorithms")
+    if inv.get("algorithm", "ga") not in known["algorithms"]:
+        fail(f"{where}: inversion.algorithm must be one of {', '.join(known['algorithms'])}")
+    if inv.get("objective", "sum-rel") not in known["objectives"]:
+        fail(f"{where}: inversion.objective must be one of {', '.join(known['objectives'])}")
     ver = study.get("verification", {})
     if int(ver.get("seeds", 5)) < 2:
         fail(f"{where}: verification.seeds must be at least 2 (a spread needs two runs)")
@@ -273,9 +282,6 @@ def fixed_values(study, scene, space, varied):
 def subspace(space, factors, fixed):
     params = [p for p in space["parameters"] if p["name"] in factors]
     return {"parameters": params, "fixed": {k: v for k, v in fixed.items()}}
-
-
-MIN_FACTORS = {"bbd": 3, "ccd": 2, "lhs": 1}
 
 
 def screening_rules(study, scene, space, cfg):
@@ -328,7 +334,8 @@ def choose_factors(study, space, anova):
         ranked = sorted(best, key=lambda n: -best[n][0])
         significant = [n for n in ranked if best[n][1] < threshold]
         factors = significant[:limit]
-        need = MIN_FACTORS.get(surface["design"]["kind"], 1)
+        limits = design_kind(surface["design"]["kind"])
+        need = limits["min_factors"]
         note = ""
         if len(significant) > limit:
             note = f"{len(significant)} parameters pass p < {threshold}; the {limit} strongest are kept (max_factors)"
@@ -340,9 +347,10 @@ def choose_factors(study, space, anova):
         if len(factors) < need:
             fail(f"surfaces[{k}]: the screening ANOVA ranks only {len(factors)} parameter(s) for "
                  f"{', '.join(surface['outputs'])}; a {surface['design']['kind']} needs {need}")
-        if surface["design"]["kind"] == "bbd" and len(factors) > 7:
-            factors = factors[:7]
-            note += "; a Box-Behnken design takes at most 7: the 7 strongest are kept"
+        most = limits["max_factors"]
+        if most and len(factors) > most:
+            factors = factors[:most]
+            note += f"; a {limits['title']} design takes at most {most}: the {most} strongest are kept"
         chosen[f"g{k + 1}"] = {"outputs": surface["outputs"], "factors": factors, "threshold": threshold,
                                "p": {n: best[n][1] for n in ranked}, "F": {n: best[n][0] for n in ranked}, "note": note}
     return chosen

@@ -2,6 +2,7 @@
 // its property report.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <set>
@@ -11,6 +12,7 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/parameter_space.hpp"
+#include "demcal/doe/design_kinds.hpp"
 #include "demcal/doe/factorial.hpp"
 #include "demcal/doe/natural_units.hpp"
 #include "demcal/doe/orthogonal_array.hpp"
@@ -42,17 +44,8 @@ struct Arguments {
   int iterations = 0;
 };
 
-// Options each kind understands; giving another is an error, not a silent no-op.
-const std::map<std::string, std::set<std::string>> kOptionsByKind = {
-    {"oa", {"--runs", "--levels", "--blank", "--doubled-level"}},
-    {"fullfact", {"--levels"}},
-    {"fracfact", {"--runs", "--generators"}},
-    {"pb", {"--runs"}},
-    {"ccd", {"--alpha", "--center", "--type"}},
-    {"bbd", {"--center"}},
-    {"lhs", {"--runs", "--criterion", "--iterations"}},
-    {"sobol", {"--runs"}},
-};
+// Options that belong to some kinds only; giving one to another kind is an
+// error, not a silent no-op (design_kinds.hpp says which).
 const std::vector<std::string> kKindOptions = {"--runs", "--levels", "--blank", "--doubled-level", "--generators",
                                                "--alpha", "--center", "--type", "--criterion", "--iterations"};
 
@@ -138,15 +131,15 @@ doe::Design build(const Arguments& a, int factors, const ParameterSpace* space) 
     return doe::latin_hypercube(options);
   }
   if (a.kind == "sobol") return doe::sobol(need_runs(), factors, a.seed);
-  throw Error("unknown design kind \"" + a.kind + "\" (expected oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol)");
+  throw Error("design kind \"" + a.kind + "\" has no generator");  // design_kinds() lists one without a branch here
 }
 
 int run(const Arguments& a, const CLI::App& app) {
-  auto options = kOptionsByKind.find(a.kind);
-  if (options == kOptionsByKind.end())
-    throw Error("unknown design kind \"" + a.kind + "\" (expected oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol)");
+  if (a.kind.empty()) throw Error("give a design kind (demcal-doe --list-kinds lists them)");
+  if (a.out.empty()) throw Error("--out is required (FILE.csv or FILE.h5)");
+  const doe::DesignKind& kind = doe::find_design_kind(a.kind);
   for (const std::string& name : kKindOptions)
-    if (app.count(name) > 0 && options->second.count(name) == 0)
+    if (app.count(name) > 0 && std::find(kind.options.begin(), kind.options.end(), name) == kind.options.end())
       throw Error("option " + name + " does not apply to " + a.kind);
   if (a.center < -1) throw Error(a.kind + ": --center must be >= 0");
 
@@ -163,6 +156,10 @@ int run(const Arguments& a, const CLI::App& app) {
     for (auto [level, count] : doe::parse_levels(a.levels, 0)) factors += count;
   }
   if (factors <= 0) throw Error("give --space FILE.json or --factors N (N >= 1)");
+  if (factors < kind.min_factors || (kind.max_factors > 0 && factors > kind.max_factors))
+    throw Error(a.kind + ": " + kind.title + " designs need " + std::to_string(kind.min_factors) +
+                (kind.max_factors > 0 ? ".." + std::to_string(kind.max_factors) : " or more") + " factors (got " +
+                std::to_string(factors) + ")");
 
   doe::Design design = build(a, factors, space.get());
   design.settings["seed"] = std::to_string(a.seed);
@@ -185,10 +182,12 @@ int main(int argc, char** argv) {
       "  demcal-doe KIND (--space FILE.json | --factors N) [options] --out FILE.csv|FILE.h5 [--seed S] [--report]\n"
       "KIND: oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol",
       "demcal-doe"};
-  app.add_option("kind", a.kind, "design kind: oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol")->required();
+  bool list_kinds = false;
+  app.add_option("kind", a.kind, "design kind: oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol");
+  app.add_flag("--list-kinds", list_kinds, "print the design kinds, their options and factor limits (JSON) and exit");
   app.add_option("--space", a.space_path, "parameter space JSON: factor names, bounds and levels (natural units)");
   app.add_option("--factors", a.factors, "number of factors (columns x1..xN in coded units)");
-  app.add_option("--out", a.out, "output design: .csv for people, .h5 for the pipeline")->required();
+  app.add_option("--out", a.out, "output design: .csv for people, .h5 for the pipeline");
   app.add_option("--seed", a.seed, "seed for randomised designs (lhs, sobol)")->capture_default_str();
   app.add_flag("--report", a.report, "print the design's property report (Markdown) on stdout");
   app.add_flag("--quiet", a.quiet, "no progress messages on stderr");
@@ -205,6 +204,10 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", a.iterations, "lhs maximin/phip: outer iterations of the optimiser (0: by size)");
   return demcal::cli::run_main(app, argc, argv, [&]() {
     if (a.quiet) demcal::log::set_level(demcal::log::Level::Quiet);
+    if (list_kinds) {
+      std::cout << demcal::doe::design_kinds_json().dump(2) << "\n";
+      return 0;
+    }
     return run(a, app);
   });
 }

@@ -159,14 +159,16 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", a.jobs, "DEM in the loop: points run at once")->capture_default_str();
   app.add_option("--dem-work", a.dem_work, "DEM in the loop: folder of its runs (default OUT.dem); a rerun resumes from it");
   app.add_option("--cache", a.cache, "DEM in the loop: folder of cached packed specimens")->capture_default_str();
-  app.add_option("--target", a.targets, "NAME=VALUE of a model output; repeat for several")->required();
+  app.add_option("--target", a.targets, "NAME=VALUE of a model output; repeat for several");
+  bool list_algorithms = false;
+  app.add_flag("--list-algorithms", list_algorithms, "print the algorithms and objectives (JSON) and exit");
   app.add_option("--space", a.space, "parameter space JSON: bounds, fixed and tied values (default: the models' domains)");
   app.add_option("--algo", a.algorithm, "ga, sa, sa-vfsr, wca, lhs-wca or search")->capture_default_str();
   app.add_option("--objective", a.objective, "sum-rel, max-rel or sse-rel")->capture_default_str();
   app.add_flag("--polish", a.polish, "polish the best point by bounded least squares (Ceres)");
   app.add_option("--restarts", a.restarts, "independent runs with seeds S, S+1, ...")->capture_default_str();
   app.add_option("--seed", a.seed, "seed of the first run")->capture_default_str();
-  app.add_option("--out", a.out, "SOLUTION.json")->required();
+  app.add_option("--out", a.out, "SOLUTION.json");
   app.add_option("--history", a.history, "convergence record CSV (best objective against evaluations)");
   app.add_option("--set", a.sets, "optimiser setting NAME=VALUE, e.g. population=300 (ga, wca), T0=100 (sa)");
   app.add_option("--budget", a.budget, "evaluations per run")->capture_default_str();
@@ -181,6 +183,14 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", a.quiet, "no summary on stderr");
   return cli::run_main(app, argc, argv, [&]() {
     if (a.quiet) log::set_level(log::Level::Quiet);
+    if (list_algorithms) {
+      std::vector<std::string> algorithms = inverse::optimizer_names();
+      algorithms.push_back("search");  // tolerance search + mean shift: not an optimiser
+      std::cout << nlohmann::json({{"algorithms", algorithms}, {"objectives", inverse::objective_names()}}).dump(2) << "\n";
+      return 0;
+    }
+    if (a.targets.empty()) throw Error("--target NAME=VALUE is required");
+    if (a.out.empty()) throw Error("--out is required");
     return run(a, app);
   });
 }

@@ -6,6 +6,8 @@
 
 namespace demcal::inverse {
 
+std::vector<std::string> objective_names() { return {"sum-rel", "max-rel", "sse-rel"}; }
+
 ObjectiveKind parse_objective(const std::string& name) {
   if (name == "sum-rel") return ObjectiveKind::SumRel;
   if (name == "max-rel") return ObjectiveKind::MaxRel;

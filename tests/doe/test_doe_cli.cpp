@@ -118,3 +118,18 @@ TEST(DemcalDoe, BadInputGivesOneLineAndNonZeroExit) {
   expect_one_line_error(run("ccd --space " + space + out), "parameters[0] (\"a\"): low (5) must be below high (1)");
   expect_one_line_error(run("ccd --factors 2"), "--out is required");
 }
+
+TEST(DemcalDoeCli, ListsEveryKindWithItsOptionsAndFactorLimits) {
+  Result r = run("--list-kinds");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The listing is what the executable enforces: a kind's lower and upper factor limits.
+  for (const char* kind : {"oa", "fullfact", "fracfact", "pb", "ccd", "bbd", "lhs", "sobol"})
+    EXPECT_NE(r.out.find(std::string("\"") + kind + "\": {"), std::string::npos) << kind;
+  EXPECT_NE(r.out.find("\"max_factors\": 7,\n      \"min_factors\": 3"), std::string::npos) << r.out;
+  const std::string out = " --out " + temp("limits.csv");
+  EXPECT_EQ(run("bbd --factors 7" + out).code, 0);
+  expect_one_line_error(run("bbd --factors 8" + out), "Box-Behnken designs need 3..7 factors (got 8)");
+  EXPECT_EQ(run("ccd --factors 10 --center 1" + out).code, 0);
+  expect_one_line_error(run("ccd --factors 11" + out), "central composite designs need 2..10 factors (got 11)");
+  expect_one_line_error(run("fracfact --factors 1" + out), "fractional factorial designs need 2..25 factors");
+}

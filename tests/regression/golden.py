@@ -17,6 +17,8 @@ import subprocess
 import sys
 import tempfile
 
+BIN_DIR = ""  # the executables under test (study.py asks them about scenes, designs, algorithms)
+
 # What depends on the machine's speed, not on the physics.
 VOLATILE = {"wall_s", "test_wall_s", "particle_steps_per_s", "dem_wall_s", "elapsed_s", "wall_time_s"}
 
@@ -53,7 +55,7 @@ def csv_digest(path):
 
 
 def run(command, cwd):
-    done = subprocess.run(command, cwd=cwd, capture_output=True, text=True)
+    done = subprocess.run(command, cwd=cwd, capture_output=True, text=True, env=dict(os.environ, BIN=BIN_DIR))
     if done.returncode != 0:
         sys.exit(f"golden.py: {' '.join(command)} failed ({done.returncode}):\n{done.stdout}{done.stderr}")
 
@@ -111,7 +113,9 @@ def main():
     args = [a for a in args if a != "--update"]
     if len(args) < 2:
         sys.exit(__doc__)
+    global BIN_DIR
     bin_dir, src = os.path.abspath(args[0]), os.path.abspath(args[1])
+    BIN_DIR = bin_dir
     names = args[2:] or list(CASES)
     failed = False
     for name in names:

@@ -3,7 +3,8 @@
 # part rewrites only that stage's config; bad studies stop with one line
 # naming the field.
 set -euo pipefail
-src=$1
+export BIN=$1  # study.py asks the executables about scenes, designs and algorithms
+src=$2
 cd "$src"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

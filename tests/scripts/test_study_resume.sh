@@ -4,6 +4,7 @@
 # point: every point file written before the kill is still the same file.
 set -euo pipefail
 bin=$1
+export BIN=$bin  # study.py asks the executables about scenes, designs and algorithms
 src=$2
 cd "$src"
 work=$(mktemp -d)

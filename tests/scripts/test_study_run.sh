@@ -6,6 +6,7 @@
 # make does nothing.
 set -euo pipefail
 bin=$1
+export BIN=$bin  # study.py asks the executables about scenes, designs and algorithms
 src=$2
 cd "$src"
 work=$(mktemp -d)

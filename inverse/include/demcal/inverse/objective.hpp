@@ -12,6 +12,7 @@ namespace demcal::inverse {
 enum class ObjectiveKind { SumRel, MaxRel, SseRel };
 
 ObjectiveKind parse_objective(const std::string& name);  // throws naming the allowed names
+std::vector<std::string> objective_names();
 std::string to_string(ObjectiveKind kind);
 
 double relative_objective(ObjectiveKind kind, const std::vector<double>& predicted, const std::vector<double>& targets);
