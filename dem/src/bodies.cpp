@@ -6,7 +6,7 @@
 namespace demcal::dem {
 
 std::size_t Bodies::add_disk(double x_m, double y_m, double radius_m, double density_kg_m3, double thickness_m,
-                             std::uint8_t material_group) {
+                             std::uint8_t material_group, std::int64_t stable_id) {
   x.push_back(x_m);
   y.push_back(y_m);
   vx.push_back(0.0);
@@ -22,6 +22,7 @@ std::size_t Bodies::add_disk(double x_m, double y_m, double radius_m, double den
   group.push_back(material_group);
   fixed.push_back(0);
   clump.push_back(-1);
+  id.push_back(static_cast<std::uint32_t>(stable_id >= 0 ? stable_id : static_cast<std::int64_t>(x.size() - 1)));
   return x.size() - 1;
 }
 
@@ -36,6 +37,7 @@ void Bodies::reserve(std::size_t n) {
   group.reserve(n);
   fixed.reserve(n);
   clump.reserve(n);
+  id.reserve(n);
 }
 
 }  // namespace demcal::dem

@@ -1,7 +1,9 @@
 // Neighbour list of the World: a cell grid finds the pairs closer than the
-// sum of their radii plus the skin; the pairs are kept sorted by (model, i, j)
-// so each model computes one contiguous range, and contact state carries over
-// from the previous list by a merge on that order.
+// sum of their radii plus the skin; the pairs are kept sorted by (model,
+// id_i, id_j) with id_i < id_j, the disks' stable ids, so each model computes
+// one contiguous block, the order of the force sums does not depend on the
+// order of the disks in their arrays, and contact state carries over from the
+// previous list by a merge on that order.
 #include <algorithm>
 #include <cmath>
 
@@ -16,8 +18,18 @@ std::uint64_t pair_key(std::uint8_t model, std::uint32_t i, std::uint32_t j) {
   return (static_cast<std::uint64_t>(model) << 56) | (static_cast<std::uint64_t>(i) << 28) | j;
 }
 
-std::uint64_t key_of(const ContactSet& c, std::size_t k) {
-  return pair_key(c.model[k], static_cast<std::uint32_t>(c.i[k]), static_cast<std::uint32_t>(c.j[k]));
+// A pair found by the grid: its sort key and the disks' indices (i the lower id).
+struct Found {
+  std::uint64_t key;
+  std::uint32_t i, j;
+  bool operator<(const Found& o) const { return key < o.key; }
+};
+
+// Pair k's key: disk-disk pairs by both ids, disk-wall pairs by the disk's id and the wall.
+std::uint64_t key_of(const ContactSet& c, std::size_t k, const Bodies& b, bool wall) {
+  const std::uint32_t i = b.id[static_cast<std::size_t>(c.i[k])];
+  const std::uint32_t j = wall ? static_cast<std::uint32_t>(c.j[k]) : b.id[static_cast<std::size_t>(c.j[k])];
+  return pair_key(c.model[k], i, j);
 }
 
 }  // namespace
@@ -57,8 +69,9 @@ void World::build_disk_pairs(ContactSet& fresh) {
     for (std::size_t i = 0; i < n; ++i) order[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
   }
 
-  std::vector<std::uint64_t> keys;
-  keys.reserve(4 * n);
+  std::vector<Found> found;
+  found.reserve(4 * n);
+  const std::uint32_t* id = bodies.id.data();
   const long offsets[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // half stencil
   for (long cy = 0; cy < ncy; ++cy)
     for (long cx = 0; cx < ncx; ++cx) {
@@ -76,8 +89,8 @@ void World::build_disk_pairs(ContactSet& fresh) {
             const double dx = bodies.x[j] - bodies.x[i], dy = bodies.y[j] - bodies.y[i];
             const double reach = bodies.radius[i] + bodies.radius[j] + skin_m_;
             if (dx * dx + dy * dy >= reach * reach) continue;
-            const std::uint32_t lo = std::min(i, j), hi = std::max(i, j);
-            keys.push_back(pair_key(model_for(bodies.group[lo], bodies.group[hi]), lo, hi));
+            const std::uint32_t lo = id[i] < id[j] ? i : j, hi = id[i] < id[j] ? j : i;
+            found.push_back({pair_key(model_for(bodies.group[lo], bodies.group[hi]), id[lo], id[hi]), lo, hi});
           }
         }
       }
@@ -86,18 +99,20 @@ void World::build_disk_pairs(ContactSet& fresh) {
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::int32_t ci = bodies.clump[static_cast<std::size_t>(pairs_.i[k])];
     const bool inside_clump = ci >= 0 && ci == bodies.clump[static_cast<std::size_t>(pairs_.j[k])];
-    if ((pairs_.flags[k] & kBonded) && !inside_clump) keys.push_back(key_of(pairs_, k));
+    if ((pairs_.flags[k] & kBonded) && !inside_clump)
+      found.push_back({key_of(pairs_, k, bodies, false), static_cast<std::uint32_t>(pairs_.i[k]),
+                       static_cast<std::uint32_t>(pairs_.j[k])});
   }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  fresh.reserve(keys.size());
-  for (std::uint64_t key : keys)
-    fresh.add(static_cast<std::int32_t>((key >> 28) & 0xFFFFFFF), static_cast<std::int32_t>(key & 0xFFFFFFF),
-              static_cast<std::uint8_t>(key >> 56));
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.key == b.key; }),
+              found.end());
+  fresh.reserve(found.size());
+  for (const Found& f : found)
+    fresh.add(static_cast<std::int32_t>(f.i), static_cast<std::int32_t>(f.j), static_cast<std::uint8_t>(f.key >> 56));
 }
 
 void World::build_wall_pairs(ContactSet& fresh) {
-  std::vector<std::uint64_t> keys;
+  std::vector<Found> found;
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const Wall& wall = walls[w];
     if (!wall.active) continue;
@@ -109,15 +124,14 @@ void World::build_wall_pairs(ContactSet& fresh) {
       const double dx = bodies.x[i] - (wall.x0 + s * ex), dy = bodies.y[i] - (wall.y0 + s * ey);
       const double reach = bodies.radius[i] + skin_m_;
       if (dx * dx + dy * dy >= reach * reach) continue;
-      keys.push_back(pair_key(model_for(bodies.group[i], wall.group), static_cast<std::uint32_t>(i),
-                              static_cast<std::uint32_t>(w)));
+      found.push_back({pair_key(model_for(bodies.group[i], wall.group), bodies.id[i], static_cast<std::uint32_t>(w)),
+                       static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w)});
     }
   }
-  std::sort(keys.begin(), keys.end());
-  fresh.reserve(keys.size());
-  for (std::uint64_t key : keys)
-    fresh.add(static_cast<std::int32_t>((key >> 28) & 0xFFFFFFF), static_cast<std::int32_t>(key & 0xFFFFFFF),
-              static_cast<std::uint8_t>(key >> 56));
+  std::sort(found.begin(), found.end());
+  fresh.reserve(found.size());
+  for (const Found& f : found)
+    fresh.add(static_cast<std::int32_t>(f.i), static_cast<std::int32_t>(f.j), static_cast<std::uint8_t>(f.key >> 56));
 }
 
 // Pairs already known keep their state; new ones get their model's constants.
@@ -126,9 +140,9 @@ void World::merge_into(ContactSet& fresh, ContactSet& old, bool wall) {
   PairBlock block;
   std::uint8_t block_model = kNoModel;
   for (std::size_t k = 0; k < fresh.size(); ++k) {
-    const std::uint64_t key = key_of(fresh, k);
-    while (o < old.size() && key_of(old, o) < key) ++o;
-    if (o < old.size() && key_of(old, o) == key) {
+    const std::uint64_t key = key_of(fresh, k, bodies, wall);
+    while (o < old.size() && key_of(old, o, bodies, wall) < key) ++o;
+    if (o < old.size() && key_of(old, o, bodies, wall) == key) {
       fresh.copy_state(k, old, o);
       continue;
     }

@@ -40,7 +40,7 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   for (std::size_t i = 0; i < specimen.size(); ++i) {
     if (keep && !(*keep)[i]) continue;
     world.bodies.add_disk(specimen.x[i], specimen.y[i], specimen.radius[i], specimen.density_kg_m3,
-                          specimen.thickness_m, kSpecimenGroup);
+                          specimen.thickness_m, kSpecimenGroup, static_cast<std::int64_t>(i));
     bottom_y = std::min(bottom_y, specimen.y[i] - specimen.radius[i]);
     top_y = std::max(top_y, specimen.y[i] + specimen.radius[i]);
     r_min = std::min(r_min, specimen.radius[i]);
@@ -70,9 +70,8 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     }
   }
 
-  Rng bond_rng(seed, 0x626f6e64 /* "bond" */);
   const double tolerance = scene.loading().bond_gap_tolerance_m > 0 ? scene.loading().bond_gap_tolerance_m : 0.01 * r_min;
-  world.install_bonds(tolerance, bond_rng);
+  world.install_bonds(tolerance, seed);
   return world;
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/rng.hpp"
 
 namespace demcal::dem {
 
@@ -62,7 +63,7 @@ std::size_t World::add_clump(const std::vector<std::size_t>& members, double mas
   return clumps_.size() - 1;
 }
 
-std::size_t World::install_bonds(double tolerance_m, Rng& rng) {
+std::size_t World::install_bonds(double tolerance_m, std::uint64_t seed) {
   rebuild();
   std::size_t installed = 0;
   for (std::uint8_t m : run_models_) {
@@ -73,6 +74,8 @@ std::size_t World::install_bonds(double tolerance_m, Rng& rng) {
           std::hypot(bodies.x[j] - bodies.x[i], bodies.y[j] - bodies.y[i]) - bodies.radius[i] - bodies.radius[j];
       if (gap > tolerance_m) continue;
       PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false, -gap};
+      const std::uint32_t a = bodies.id[i], b = bodies.id[j];
+      Rng rng(keyed_seed(seed, std::min(a, b), std::max(a, b)), 0x626f6e64 /* "bond" */);
       installed += models_[m]->install_bond(block, k, info, settings_.thickness_m, rng) ? 1 : 0;
     }
   }

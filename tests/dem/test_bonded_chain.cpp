@@ -28,8 +28,7 @@ World chain(int n) {
                          {"bond_kn_ks", 2.0}, {"tensile_strength_pa", 1e12}, {"shear_strength_pa", 1e12}},
                         "test")));
   for (int i = 0; i < n; ++i) world.bodies.add_disk(i * (2 * kRadius + kGap), 0, kRadius, kDensity, 1, 0);
-  demcal::Rng rng(1);
-  EXPECT_EQ(world.install_bonds(2 * kGap, rng), static_cast<std::size_t>(n - 1));
+  EXPECT_EQ(world.install_bonds(2 * kGap, 1), static_cast<std::size_t>(n - 1));
   return world;
 }
 

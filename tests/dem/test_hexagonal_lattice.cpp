@@ -7,7 +7,6 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "demcal/core/rng.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
 
@@ -33,8 +32,7 @@ TEST(HexagonalLattice, UniaxialStrainGivesTheLatticeModuli) {
       if (col == 0) left.push_back(id);
       if (col == columns - 1) right.push_back(id);
     }
-  demcal::Rng rng(1);
-  world.install_bonds(2 * gap, rng);
+  world.install_bonds(2 * gap, 1);
   // Bond springs (no linear contact: the disks never touch): kn = kn_b A = E_b t.
   const double kn = bond_modulus * 1.0, ks = kn / ratio;
 

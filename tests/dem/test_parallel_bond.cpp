@@ -6,7 +6,6 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "demcal/core/rng.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
 #include "imposed_motion.hpp"
@@ -38,8 +37,7 @@ World bonded_pair(double sigma_c, double tau_c) {
   world.bodies.add_disk(0, 0, kRadius, 2650, 1, 0);
   world.bodies.add_disk(2 * kRadius, 0, kRadius, 2650, 1, 0);
   world.bodies.fixed[0] = world.bodies.fixed[1] = 1;  // kinematics are imposed below
-  demcal::Rng rng(1);
-  EXPECT_EQ(world.install_bonds(1e-9, rng), 1u);
+  EXPECT_EQ(world.install_bonds(1e-9, 1), 1u);
   return world;
 }
 

@@ -39,4 +39,10 @@ class Rng {
   double spare_normal_ = 0.0;
 };
 
+// A seed for draws keyed by identity rather than by the order they are made
+// in (e.g. a bond's strength from the seed and the stable ids of its two
+// particles): splitmix64 over the three words, so neighbouring keys give
+// unrelated seeds. Sorting particles or running threads cannot change it.
+std::uint64_t keyed_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
+
 }  // namespace demcal

@@ -63,8 +63,11 @@ class World {
   // Rebuilds the neighbour list now (after bodies were moved or added by hand).
   void refresh();
   // Material genesis: bonds every disk pair whose gap is at most `tolerance_m`
-  // and whose model has a bond. Returns the number of bonds installed.
-  std::size_t install_bonds(double tolerance_m, Rng& rng);
+  // and whose model has a bond. Each bond draws its random strengths from a
+  // generator keyed by `seed` and the ids of its two disks, so a bond's
+  // strength does not depend on the order of the disks or of the pairs.
+  // Returns the number of bonds installed.
+  std::size_t install_bonds(double tolerance_m, std::uint64_t seed);
 
   double time_s() const { return time_s_; }
   std::uint64_t steps_done() const { return steps_; }
