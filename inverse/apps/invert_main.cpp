@@ -10,7 +10,7 @@
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
 #include "demcal/core/number_format.hpp"
-#include "demcal/dem/dem_model.hpp"
+#include "demcal/jobs/dem_model.hpp"
 #include "demcal/inverse/inversion.hpp"
 #include "demcal/surrogate/model_file.hpp"
 
@@ -58,13 +58,13 @@ int run(const Arguments& a, const CLI::App& app) {
 
   std::vector<std::unique_ptr<Model>> owned;
   std::vector<const Model*> models;
-  dem::DemModel* dem_model = nullptr;
+  jobs::DemModel* dem_model = nullptr;
   for (const std::string& path : a.models) {
     owned.push_back(surrogate::load_model(path));
     models.push_back(owned.back().get());
   }
   if (dem_in_loop) {
-    dem::DemModelOptions options;
+    jobs::DemModelOptions options;
     options.work_dir = a.dem_work.empty() ? a.out + ".dem" : a.dem_work;
     options.seeds = a.dem_seeds;
     options.jobs = a.jobs;
@@ -73,8 +73,8 @@ int run(const Arguments& a, const CLI::App& app) {
     options.space_path = a.space;
     std::vector<std::string> outputs;
     for (const Target& t : targets) outputs.push_back(t.output);
-    owned.push_back(std::make_unique<dem::DemModel>(a.dem_scene, *space, outputs, options));
-    dem_model = static_cast<dem::DemModel*>(owned.back().get());
+    owned.push_back(std::make_unique<jobs::DemModel>(a.dem_scene, *space, outputs, options));
+    dem_model = static_cast<jobs::DemModel*>(owned.back().get());
     models.push_back(dem_model);
   }
   InversionProblem problem(models, space.get(), targets, parse_objective(a.objective));

@@ -15,7 +15,7 @@
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/parameter_space.hpp"
-#include "demcal/dem/batch.hpp"
+#include "demcal/jobs/batch.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/inverse/verification.hpp"
 
@@ -79,7 +79,7 @@ int run(const Arguments& a) {
   for (const auto& [name, value] : point) design.add_column(name, {value});
   const std::string design_path = work + "/design.csv";
   design.write_csv(design_path);
-  dem::BatchOptions batch;
+  jobs::BatchOptions batch;
   batch.scene_path = a.scene;
   batch.design_path = design_path;
   batch.out_path = work + "/runs.h5";
@@ -89,7 +89,7 @@ int run(const Arguments& a) {
   batch.first_seed = a.first_seed;
   batch.jobs = a.jobs;
   batch.progress = !a.quiet;
-  dem::BatchSummary summary = dem::run_batch(batch);
+  jobs::BatchSummary summary = jobs::run_batch(batch);
 
   std::vector<inverse::SeedRun> seeds;
   for (int s = a.first_seed; s < a.first_seed + a.seeds; ++s) {

@@ -13,12 +13,13 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/parameter_space.hpp"
-#include "demcal/dem/dem_model.hpp"
+#include "demcal/jobs/dem_model.hpp"
 #include "demcal/dem/scene.hpp"
-#include "demcal/dem/ucs_test.hpp"
+#include "demcal/dem/lab_test.hpp"
 
 using namespace demcal;
 using namespace demcal::dem;
+using namespace demcal::jobs;
 
 namespace {
 

@@ -6,6 +6,8 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem/scene.hpp"
+#include "demcal/dem/brazilian_test.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/ucs_test.hpp"
 
 using namespace demcal::dem;

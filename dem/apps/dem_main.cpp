@@ -1,0 +1,167 @@
+// demcal-dem: runs the DEM scenes: one run, a resumable batch over a design
+// (local processes, MPI ranks or a shard of a job array), and the merge of shards.
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/atomic_file.hpp"
+#include "demcal/core/cli_main.hpp"
+#include "demcal/core/error.hpp"
+#include "demcal/core/log.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/core/parameter_space.hpp"
+#include "demcal/core/table.hpp"
+#include "demcal/core/progress.hpp"
+#include "demcal/jobs/batch.hpp"
+#include "demcal/jobs/batch_mpi.hpp"
+#include "demcal/dem/describe.hpp"
+#include "demcal/jobs/merge.hpp"
+#include "demcal/dem/result_json.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/dem/lab_test.hpp"
+
+namespace {
+
+using namespace demcal;
+using json = nlohmann::json;
+
+std::map<std::string, double> parse_sets(const std::vector<std::string>& sets) {
+  std::map<std::string, double> values;
+  for (const std::string& item : sets) {
+    auto [name, value] = parse_name_value(item, "--set");
+    values[name] = value;
+  }
+  return values;
+}
+
+void write_curve(const dem::TestResult& r, const std::string& path) {
+  Table table;
+  std::vector<double> strain, stress, lateral, cracks;
+  for (const auto& p : r.curve) {
+    strain.push_back(p.axial_strain);
+    stress.push_back(p.stress_pa / 1e6);
+    lateral.push_back(p.lateral_strain);
+    cracks.push_back(static_cast<double>(p.cracks));
+  }
+  table.add_column("axial_strain", strain);
+  table.add_column("stress_MPa", stress);
+  table.add_column("lateral_strain", lateral);
+  table.add_column("cracks", cracks);
+  table.write(path, "/curve");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  log::set_program("demcal-dem");
+  CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (its lab test): one run, a resumable batch over a design, the merge of shards, or a description of the scene.", "demcal-dem"};
+  app.require_subcommand(1);
+  std::string scene_path, out, curve, cache_dir = "build/cache";
+  std::vector<std::string> sets;
+  std::uint64_t seed = 1;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "run one scene at one parameter set");
+  run->add_option("--scene", scene_path, "scene JSON (data/scenes/...)")->required();
+  run->add_option("--set", sets, "NAME=VALUE for a scene parameter (repeatable)");
+  run->add_option("--seed", seed, "packing and bond-strength seed")->capture_default_str();
+  run->add_option("--out", out, "result JSON (default: the result is printed on stdout only)");
+  run->add_option("--curve", curve, "stress-strain curve, .csv or .h5");
+  run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
+  std::string vtk_dir;
+  run->add_option("--vtk", vtk_dir, "folder for VTK snapshots (disks and bonds, bond breaks) for ParaView");
+  run->add_flag("--quiet", quiet, "no progress on stderr");
+  jobs::BatchOptions batch_options;
+  CLI::App* batch = app.add_subcommand("batch", "run every point of a design (x seeds), resumable");
+  batch->add_option("--scene", batch_options.scene_path, "scene JSON")->required();
+  batch->add_option("--design", batch_options.design_path, "design .csv or .h5 (columns named after scene parameters)")
+      ->required();
+  batch->add_option("--out", batch_options.out_path, "responses .h5 (point results also under OUT.points/)")->required();
+  batch->add_option("--seeds", batch_options.seeds, "seeds per design point (first seed .. first seed + K - 1)")
+      ->capture_default_str();
+  batch->add_option("--first-seed", batch_options.first_seed, "first seed of each point")->capture_default_str();
+  batch->add_option("--jobs", batch_options.jobs, "points run at once")->capture_default_str();
+  batch->add_option("--csv", batch_options.csv_path, "flat CSV export: design columns, seed, status, macro values");
+  batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
+  std::string shard;
+  batch->add_option("--shard", shard, "I/N: run only every N-th point, starting at the I-th (job arrays; join with merge)");
+  batch->add_flag("--quiet", quiet, "no progress on stderr");
+  std::string describe_scene, describe_space;
+  bool describe_registries = false;
+  CLI::App* describe = app.add_subcommand("describe", "print what a scene has (JSON): test, parameters, outputs, contacts");
+  describe->add_option("--scene", describe_scene, "scene JSON");
+  describe->add_option("--space", describe_space, "also check that this parameter space narrows the scene");
+  describe->add_flag("--registries", describe_registries, "list the registered lab tests and contact models instead");
+  std::vector<std::string> merge_inputs;
+  std::string merge_out, merge_csv;
+  CLI::App* merge = app.add_subcommand("merge", "join the result files of batch shards into one (resumable by batch)");
+  merge->add_option("inputs", merge_inputs, "responses .h5 of the shards")->required();
+  merge->add_option("--out", merge_out, "merged responses .h5 (point results also under OUT.points/)")->required();
+  merge->add_option("--csv", merge_csv, "flat CSV export of the merged results");
+  return cli::run_main(app, argc, argv, [&]() {
+    if (quiet) log::set_level(log::Level::Quiet);
+    if (batch->parsed()) {
+      batch_options.cache_dir = cache_dir;
+      batch_options.progress = !quiet;
+      if (!is_hdf5_path(batch_options.out_path)) throw Error("--out must be an .h5 file (the responses)");
+      if (!shard.empty()) jobs::parse_shard(shard, batch_options);
+      jobs::BatchSummary s;
+      if (jobs::started_by_mpi_launcher()) {
+        jobs::MpiSession mpi;
+        if (mpi.size() > 1) {
+          if (mpi.rank() > 0) log::set_level(log::Level::Quiet);
+          s = jobs::run_batch_mpi(batch_options, mpi);
+          if (mpi.rank() > 0) return 0;  // rank 0's exit status carries a failure (and says why)
+        } else {
+          s = jobs::run_batch(batch_options);
+        }
+      } else {
+        s = jobs::run_batch(batch_options);
+      }
+      log::info(std::to_string(s.points) + " points: " + std::to_string(s.ok) + " ok, " + std::to_string(s.failed) +
+                " failed, " + std::to_string(s.skipped) + " done before; " + format_duration(s.wall_s) + "; wrote " +
+                batch_options.out_path);
+      return s.failed > 0 ? 4 : 0;
+    }
+    if (describe->parsed()) {
+      if (describe_registries) {
+        std::cout << dem::describe_registries().dump(2) << "\n";
+        return 0;
+      }
+      if (describe_scene.empty()) throw Error("describe: --scene is required (or --registries)");
+      dem::Scene scene = dem::Scene::load(describe_scene);
+      if (!describe_space.empty()) scene.check_space(ParameterSpace::load(describe_space), describe_space);
+      std::cout << dem::describe_scene(scene).dump(2) << "\n";
+      return 0;
+    }
+    if (merge->parsed()) {
+      if (!is_hdf5_path(merge_out)) throw Error("--out must be an .h5 file (the merged responses)");
+      jobs::MergeSummary m = jobs::merge_results(merge_inputs, merge_out, merge_csv);
+      log::info("merged " + std::to_string(m.inputs) + " file(s): " + std::to_string(m.points) + " points (" +
+                std::to_string(m.failed) + " failed, " + std::to_string(m.duplicates) + " duplicate(s) dropped); wrote " +
+                merge_out);
+      if (m.points < m.design_points) {
+        log::warn(std::to_string(m.design_points - m.points) + " of the design's " + std::to_string(m.design_points) +
+                  " points are missing (a shard not given or not finished); a batch over the whole design into " +
+                  merge_out + " runs only those");
+        return 4;
+      }
+      return 0;
+    }
+    dem::Scene scene = dem::Scene::load(scene_path);
+    std::map<std::string, double> parameters = scene.resolve(parse_sets(sets));
+    dem::RunOptions options;
+    options.seed = seed;
+    options.cache_dir = cache_dir;
+    options.progress = !quiet;
+    options.vtk_dir = vtk_dir;
+    dem::TestResult result = dem::run_test(scene, parameters, options);
+    json summary = dem::result_json(result, parameters, seed);
+    if (!out.empty()) write_file_atomically(out, summary.dump(2) + "\n");
+    if (!curve.empty()) write_curve(result, curve);
+    if (!quiet) std::cout << summary.dump(2) << "\n";
+    return result.ok ? 0 : 4;
+  });
+}

@@ -1,0 +1,92 @@
+#pragma once
+// Contact models behind one interface and a registry by name, in the manner
+// of LAMMPS pair styles: a new model is one file in dem/models/src plus one
+// line in dem/models/src/builtin_models.cpp. The world assigns a model to
+// each pair of material groups (mortar-mortar, mortar-aggregate, disk-wall ...).
+//
+// A model computes the forces of its whole block of pairs in one call, so the
+// virtual call happens once per model and step, not once per contact, and it
+// owns the per-pair state it declares (see contacts.hpp).
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "demcal/dem/bodies.hpp"
+#include "demcal/dem/contacts.hpp"
+#include "demcal/dem/walls.hpp"
+
+namespace demcal {
+class Rng;
+}
+
+namespace demcal::dem {
+
+struct StepContext {
+  double dt_s = 0;
+  double time_s = 0;
+  double thickness_m = 1;
+  std::vector<BreakEvent>* breaks = nullptr;  // where bond breaks are logged
+};
+
+// The two sides of a pair when it enters the neighbour list.
+struct PairInfo {
+  double radius_i = 0, radius_j = 0;  // radius_j = 0 for a wall
+  std::uint8_t group_i = 0, group_j = 0;
+  bool wall = false;
+  double overlap = 0;  // current overlap (negative: a gap), set when a bond is installed
+};
+
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+  virtual std::string name() const = 0;
+
+  // The state the model keeps per pair, one name per column with its unit in
+  // the name ("kn_n_m", "shear_force_n"); the contact set stores these
+  // columns for this model's pairs only and carries them across neighbour-list
+  // rebuilds. Column c is PairBlock::column[c].
+  virtual std::vector<std::string> state_columns() const = 0;
+
+  // Sets the constants of the block's pair k (stiffness, friction) when it enters the list.
+  virtual void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const = 0;
+  // Installs a bond on the block's pair k (material genesis); false when the model has none.
+  virtual bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const;
+
+  // Adds the forces of a block of disk pairs to the bodies.
+  virtual void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const = 0;
+  // Adds the forces of a block of disk-wall pairs to the disks and walls.
+  virtual void wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, const StepContext& step) const = 0;
+
+  // Translational and rotational stiffness the block's pair k adds to a disk
+  // whose contact lies `arm_m` from its centre (for the critical time step).
+  virtual void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                         double& rotational_nm_rad) const = 0;
+  // Normal force the block's pair k carries at `overlap_m` (for the
+  // equilibrium measure of material genesis), N.
+  virtual double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const = 0;
+  // Normal stiffness of a contact between two disks of radius r, for a disk
+  // that has no neighbour yet (time step bound).
+  virtual double normal_stiffness_estimate(double radius_m, double thickness_m) const = 0;
+};
+
+using ContactModelFactory =
+    std::function<std::unique_ptr<ContactModel>(const nlohmann::json& parameters, const std::string& where)>;
+
+class ContactModelRegistry {
+ public:
+  // Holds the built-in models; defined by the models library (dem/models).
+  static ContactModelRegistry& instance();
+  void add(const std::string& name, ContactModelFactory factory);
+  // Throws an Error naming the known models when `name` is unknown.
+  std::unique_ptr<ContactModel> create(const std::string& name, const nlohmann::json& parameters,
+                                       const std::string& where) const;
+  std::vector<std::string> names() const;
+
+ private:
+  std::vector<std::pair<std::string, ContactModelFactory>> factories_;
+};
+
+}  // namespace demcal::dem

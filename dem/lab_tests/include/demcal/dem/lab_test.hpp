@@ -1,0 +1,68 @@
+#pragma once
+// Lab tests behind one interface and a registry by name, like the contact
+// models: a test declares what it measures (its outputs, with units) and the
+// contact roles of its boundaries, and runs a scene. A new test is one file
+// plus one line in register_builtin_tests (src/lab_test.cpp).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "demcal/dem/test_result.hpp"
+
+namespace demcal::dem {
+
+class Scene;
+
+// A macro value a test reports.
+struct OutputSpec {
+  std::string name, unit, description;
+  bool always = true;  // false: reported only in some runs (a flag such as reached_strain_limit)
+};
+
+// A contact role of a test's boundary ("disk-platen"): it joins every group
+// of the specimen to the boundary's group.
+struct BoundaryRole {
+  std::string name;
+  std::uint8_t group = 0;
+  std::string description;
+};
+
+class LabTest {
+ public:
+  virtual ~LabTest() = default;
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  virtual std::vector<BoundaryRole> boundary_roles() const = 0;
+  // What a run of `scene` reports (some outputs depend on the specimen, e.g.
+  // the cracks in the mortar and the interface of a concrete).
+  virtual std::vector<OutputSpec> outputs(const Scene& scene) const = 0;
+  // Packs (or loads) the specimen, bonds it and runs the test. Bad input
+  // throws; a run that goes unstable or times out returns ok = false.
+  virtual TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                         const RunOptions& options) const = 0;
+};
+
+class LabTestRegistry {
+ public:
+  static LabTestRegistry& instance();  // holds the built-in tests
+  void add(std::unique_ptr<LabTest> test);
+  // Throws an Error "<where>: unknown test ... (known: ...)".
+  const LabTest& find(const std::string& name, const std::string& where) const;
+  std::vector<std::string> names() const;
+
+ private:
+  std::vector<std::unique_ptr<LabTest>> tests_;
+};
+
+// Runs the scene's lab test (LabTestRegistry) and checks that it reported
+// only outputs it declares, and every output it always reports.
+TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
+
+// One registration function per built-in test (each in its own file).
+void register_ucs_test(LabTestRegistry& registry);
+void register_brazilian_test(LabTestRegistry& registry);
+void register_builtin_tests(LabTestRegistry& registry);
+
+}  // namespace demcal::dem

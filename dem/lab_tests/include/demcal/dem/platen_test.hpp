@@ -1,0 +1,79 @@
+#pragma once
+// What the platen tests (uniaxial compression, Brazilian disc) share: the
+// world of a specimen between two platens that approach each other, bonds
+// installed, and the checks that tell a run has gone unstable.
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "demcal/core/progress.hpp"
+#include "demcal/dem/genesis.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/dem/test_result.hpp"
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+
+constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
+
+// The platens' contact role: "disk-platen", every specimen group against the platens.
+BoundaryRole platen_role();
+// The crack counts every platen test reports (by mode; a concrete also by phase).
+std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
+
+// Disks of `specimen` (only those with keep[i] when `keep` is given), the
+// scene's contact models, a bottom and a top platen touching the lowest and
+// highest disk and moving towards each other at the loading velocity, and
+// bonds on every pair closer than the scene's tolerance. Walls: [0] bottom, [1] top.
+// A scene with aggregates also places them (seeded by `seed`), makes their
+// clumps and binds the mortar, interface and aggregate contacts; `info`, when
+// given, receives what the specimen holds (aggregates placed, disks in them).
+World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
+                        const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
+                        std::map<std::string, double>* info = nullptr);
+
+// Empty when the state is sane; otherwise why the run must stop as failed
+// (non-finite values, a disk faster than 1000 x the platen speed, a disk
+// beyond the platens' ends or through a platen).
+std::string instability(const World& world, double platen_velocity_m_s);
+
+// Mean force the disks exert on the two platens, compression positive, N.
+double platen_force(const World& world);
+
+// Writes VTK snapshots into options.vtk_dir at the first curve point, every
+// options.vtk_every points and at the end (`final`); nothing when unset.
+void snapshot(const World& world, const RunOptions& options, std::size_t points, bool final);
+
+// Records the curve of a platen test and decides when loading ends: past the
+// peak (bonds have broken and the stress has fallen below the stop fraction
+// of the peak a few points later, so an elastic dip does not count), at the
+// strain limit, on instability or on timeout. Draws the progress line.
+class LoadingMonitor {
+ public:
+  LoadingMonitor(const LoadingSpec& loading, const RunOptions& options, std::chrono::steady_clock::time_point start);
+  ~LoadingMonitor();
+  // Adds `point`; false when the run ends (result.ok set when it ended as
+  // planned, result.reason when it failed; `where` says where, for the reason).
+  bool record(const World& world, const CurvePoint& point, TestResult& result, const std::string& where);
+  double peak() const { return peak_; }
+
+ private:
+  const LoadingSpec& loading_;
+  const RunOptions& options_;
+  std::chrono::steady_clock::time_point start_;
+  std::unique_ptr<Progress> progress_;
+  int shown_ = 0;
+  double peak_ = 0;
+  std::size_t peak_index_ = 0;
+};
+
+// Fills in what every run reports at its end: steps, time step, wall times
+// (whole run since `start`, loading since `loading_start`) and cracks by mode,
+// and writes the final VTK snapshot when asked for.
+void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point loading_start, TestResult& result);
+
+}  // namespace demcal::dem

@@ -1,0 +1,42 @@
+#pragma once
+// What every lab test returns: the run's curve, its macro values (the
+// outputs its test declares), status and cost; and the options of a run.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace demcal::dem {
+
+struct CurvePoint {
+  double axial_strain = 0;    // platen approach / initial height (compression > 0)
+  double stress_pa = 0;       // mean platen force / (W t) (compression > 0)
+  double lateral_strain = 0;  // widening of the middle third / initial width (expansion > 0)
+  std::size_t cracks = 0;     // bond breaks so far
+};
+
+struct TestResult {
+  bool ok = false;
+  std::string reason;          // why it failed
+  std::string ended_by;        // why a successful test stopped (post-peak fraction, strain limit, burst)
+  std::map<std::string, double> macro;  // sigma_u_MPa, E_GPa, E50_GPa, nu, peak_strain, cracks_*
+  std::vector<CurvePoint> curve;
+  std::size_t particles = 0;
+  std::uint64_t steps = 0;
+  double wall_s = 0;           // whole run, packing or cache load included
+  double test_wall_s = 0;      // the loading alone (for particle-steps per second)
+  double porosity = 0;
+  double dt_s = 0;
+  double density_scaling_dt_s = 0;  // > 0 when masses were scaled (quasi-static run)
+  std::map<std::string, double> specimen_info;  // concrete: aggregates placed, disks in them, ...
+};
+
+struct RunOptions {
+  std::uint64_t seed = 1;
+  std::string cache_dir;  // packed specimens; empty: pack every time
+  bool progress = false;  // a progress line on stderr
+  std::string vtk_dir;    // VTK snapshots (disks + bonds, breaks) when set
+  int vtk_every = 25;     // a snapshot every this many curve points, plus the first and last
+};
+
+}  // namespace demcal::dem

@@ -1,0 +1,22 @@
+#include "demcal/dem/builtin_models.hpp"
+
+namespace demcal::dem {
+
+// The registry lives with the models it holds: the engine declares it and
+// never fills it, so it depends on no model.
+ContactModelRegistry& ContactModelRegistry::instance() {
+  static ContactModelRegistry registry = [] {
+    ContactModelRegistry r;
+    register_builtin_models(r);
+    return r;
+  }();
+  return registry;
+}
+
+void register_builtin_models(ContactModelRegistry& registry) {
+  register_linear_model(registry);
+  register_parallel_bond_model(registry);
+  register_contact_bond_model(registry);
+}
+
+}  // namespace demcal::dem
