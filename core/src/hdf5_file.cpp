@@ -177,12 +177,6 @@ void Group::write(const std::string& name, const std::vector<std::int64_t>& valu
   write_raw(id(), name, H5T_NATIVE_INT64, H5T_STD_I64LE, values.data(), {values.size()}, where(name));
 }
 
-void Group::write_matrix(const std::string& name, const std::vector<double>& values, std::size_t rows,
-                         std::size_t cols) const {
-  if (values.size() != rows * cols) throw Error(where(name) + ": matrix data does not match its shape");
-  write_raw(id(), name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values.data(), {rows, cols}, where(name));
-}
-
 std::vector<double> Group::read_doubles(const std::string& name) const {
   std::vector<hsize_t> dims;
   Handle set = open_dataset(id(), name, where(name), dims);
@@ -200,18 +194,6 @@ std::vector<std::int64_t> Group::read_integers(const std::string& name) const {
   std::vector<std::int64_t> values(dims[0]);
   if (!values.empty() && H5Dread(set.id(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
     throw Error(where(name) + ": cannot read as integers");
-  return values;
-}
-
-std::vector<double> Group::read_matrix(const std::string& name, std::size_t& rows, std::size_t& cols) const {
-  std::vector<hsize_t> dims;
-  Handle set = open_dataset(id(), name, where(name), dims);
-  if (dims.size() != 2) throw Error(where(name) + ": expected a 2D dataset");
-  rows = dims[0];
-  cols = dims[1];
-  std::vector<double> values(rows * cols);
-  if (!values.empty() && H5Dread(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    throw Error(where(name) + ": cannot read as doubles");
   return values;
 }
 

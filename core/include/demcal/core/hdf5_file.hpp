@@ -61,13 +61,8 @@ class Group {
 
   void write(const std::string& name, const std::vector<double>& values) const;
   void write(const std::string& name, const std::vector<std::int64_t>& values) const;
-  // Row-major rows x cols matrix of doubles.
-  void write_matrix(const std::string& name, const std::vector<double>& values, std::size_t rows,
-                    std::size_t cols) const;
   std::vector<double> read_doubles(const std::string& name) const;
   std::vector<std::int64_t> read_integers(const std::string& name) const;
-  // Returns the data row-major and the shape.
-  std::vector<double> read_matrix(const std::string& name, std::size_t& rows, std::size_t& cols) const;
 
   void set_attribute(const std::string& name, const std::string& value) const;
   void set_attribute(const std::string& name, double value) const;
