@@ -9,8 +9,10 @@ build=$2
 jobs=$3
 filter=${4:-}
 name=$(basename "$study" .json)
+# The study layer is the package python/demcal_study.
+export PYTHONPATH=python${PYTHONPATH:+:$PYTHONPATH}
 dir="$build/studies/$name"
-BIN="$build/bin" /usr/bin/python3 scripts/study.py plan "$study" "$dir" > /dev/null
+BIN="$build/bin" /usr/bin/python3 -m demcal_study plan "$study" "$dir" > /dev/null
 report="$dir/report.md"
 before=$(stat -c %Y "$report" 2>/dev/null || echo none)
 start=$(date +%s.%N)
@@ -29,6 +31,6 @@ if [ "$before" != "$after" ]; then
   [ -f "$dir/make_wall_s.csv" ] || echo "finished,wall_s,jobs" > "$dir/make_wall_s.csv"
   echo "$(date -Iseconds),$(awk -v s="$start" -v e="$(date +%s.%N)" 'BEGIN{printf "%.1f", e - s}'),$jobs" >> "$dir/make_wall_s.csv"
   # The report states the time: write it again now that this run's time is known.
-  BIN="$build/bin" /usr/bin/python3 scripts/study.py report "$dir" > /dev/null
+  BIN="$build/bin" /usr/bin/python3 -m demcal_study report "$dir" > /dev/null
 fi
 echo "report: $dir/report.md and report.html"

@@ -17,7 +17,7 @@ import subprocess
 import sys
 import tempfile
 
-BIN_DIR = ""  # the executables under test (study.py asks them about scenes, designs, algorithms)
+BIN_DIR = ""  # the executables under test (the study layer asks them about scenes, designs, algorithms)
 
 # What depends on the machine's speed, not on the physics.
 VOLATILE = {"wall_s", "test_wall_s", "particle_steps_per_s", "dem_wall_s", "elapsed_s", "wall_time_s"}
@@ -55,7 +55,9 @@ def csv_digest(path):
 
 
 def run(command, cwd):
-    done = subprocess.run(command, cwd=cwd, capture_output=True, text=True, env=dict(os.environ, BIN=BIN_DIR))
+    # The study layer is the package SRC/python/demcal_study.
+    env = dict(os.environ, BIN=BIN_DIR, PYTHONPATH=os.path.join(cwd, "python"))
+    done = subprocess.run(command, cwd=cwd, capture_output=True, text=True, env=env)
     if done.returncode != 0:
         sys.exit(f"golden.py: {' '.join(command)} failed ({done.returncode}):\n{done.stdout}{done.stderr}")
 
@@ -71,7 +73,7 @@ def dem_run(bin_dir, src, work, scene, seed):
 
 def study(bin_dir, src, work, path):
     folder = os.path.join(work, "study")
-    run(["/usr/bin/python3", "scripts/study.py", "plan", path, folder], src)
+    run(["/usr/bin/python3", "-m", "demcal_study", "plan", path, folder], src)
     run(["make", "--no-print-directory", "-f", os.path.join(folder, "plan.mk"), f"BIN={bin_dir}",
          f"CACHE={os.path.join(work, 'cache')}", "JOBS=2", "all"], src)
     with open(os.path.join(folder, "solution.json")) as f:

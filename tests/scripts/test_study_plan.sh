@@ -3,12 +3,13 @@
 # part rewrites only that stage's config; bad studies stop with one line
 # naming the field.
 set -euo pipefail
-export BIN=$1  # study.py asks the executables about scenes, designs and algorithms
+export BIN=$1  # the study layer asks the executables about scenes, designs and algorithms
 src=$2
 cd "$src"
+export PYTHONPATH=python  # the study layer: python/demcal_study
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-study="/usr/bin/python3 scripts/study.py"
+study="/usr/bin/python3 -m demcal_study"
 
 $study plan data/studies/demo.json "$work/demo" > /dev/null
 for f in plan.mk config/design_g1.json config/space_g1.json config/inversion.json config/verification.json; do
@@ -64,7 +65,7 @@ edit "$work/strategy.json" data/studies/demo.json "d['strategy'] = 'dem-in-loop'
 expect_error "$work/strategy.json" 'strategy must be one of'
 
 # A study whose factors come from its screening plans the screening first, then plans again.
-/usr/bin/python3 scripts/study.py plan data/studies/rock_response_surface.json "$work/rrs" > /dev/null
+/usr/bin/python3 -m demcal_study plan data/studies/rock_response_surface.json "$work/rrs" > /dev/null
 grep -q '^\$(D)/screening/anova.json:' "$work/rrs/plan.mk" || { echo "FAIL: no screening stage"; exit 1; }
-grep -q 'scripts/study.py plan data/studies/rock_response_surface.json' "$work/rrs/plan.mk" || { echo "FAIL: no re-plan after the screening"; exit 1; }
+grep -q 'demcal_study plan data/studies/rock_response_surface.json' "$work/rrs/plan.mk" || { echo "FAIL: no re-plan after the screening"; exit 1; }
 echo "study plan: stages written, a target change leaves the design alone, 9 bad studies rejected, auto factors re-plan"

@@ -4,9 +4,10 @@
 # point: every point file written before the kill is still the same file.
 set -euo pipefail
 bin=$1
-export BIN=$bin  # study.py asks the executables about scenes, designs and algorithms
+export BIN=$bin  # the study layer asks the executables about scenes, designs and algorithms
 src=$2
 cd "$src"
+export PYTHONPATH=python  # the study layer: python/demcal_study
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # The small study with 4 seeds per point: 40 DEM points in its design batch.
@@ -17,7 +18,7 @@ d['seeds_per_point'] = 4
 for key in ('stability', 'compare_with'):
     d.pop(key)
 print(json.dumps(d))" > "$work/study_resume.json"
-/usr/bin/python3 scripts/study.py plan "$work/study_resume.json" "$work/s" > /dev/null
+/usr/bin/python3 -m demcal_study plan "$work/study_resume.json" "$work/s" > /dev/null
 points="$work/s/g1/responses.h5.points"
 
 setsid make --no-print-directory -f "$work/s/plan.mk" BIN="$bin" CACHE="$work/cache" JOBS=2 all > "$work/first.log" 2>&1 &

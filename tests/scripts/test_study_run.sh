@@ -6,14 +6,15 @@
 # make does nothing.
 set -euo pipefail
 bin=$1
-export BIN=$bin  # study.py asks the executables about scenes, designs and algorithms
+export BIN=$bin  # the study layer asks the executables about scenes, designs and algorithms
 src=$2
 cd "$src"
+export PYTHONPATH=python  # the study layer: python/demcal_study
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 run_study() {  # NAME: plan and make tests/data/NAME.json into $work/NAME
-  /usr/bin/python3 scripts/study.py plan "tests/data/$1.json" "$work/$1" > /dev/null
+  /usr/bin/python3 -m demcal_study plan "tests/data/$1.json" "$work/$1" > /dev/null
   make --no-print-directory -f "$work/$1/plan.mk" BIN="$bin" CACHE="$work/cache" JOBS=2 all > "$work/$1.log" 2>&1 \
     || { cat "$work/$1.log"; echo "FAIL: study $1 did not run"; exit 1; }
 }

@@ -1,0 +1,142 @@
+"""The command line of every program the study layer runs, each built by one function.
+
+plan.mk's recipes are these lists written for make (`for_make`), with make's variables ($(BIN), $(JOBS),
+$(CACHE), $(D), $<, $@) left for make to expand; the stages that run the tools themselves (the screening
+analysis, refinement, stability) pass the same lists to subprocess. One builder per program, so a recipe and a
+direct call cannot drift apart.
+"""
+import os
+import re
+import shlex
+from dataclasses import dataclass
+
+PYTHON = "/usr/bin/python3"  # the project runs Debian's Python, which has its packages
+
+
+@dataclass(frozen=True)
+class Tools:
+    """Where the executables are and how they run: the bin folder, parallel jobs, the specimen cache, Python."""
+    bin: str
+    jobs: str
+    cache: str
+    python: str
+
+    def program(self, name):
+        return os.path.join(self.bin, name)
+
+
+# In plan.mk: make's own variables (set on make's command line by run_study.sh, or to the plan's defaults).
+IN_MAKE = Tools(bin="$(BIN)", jobs="$(JOBS)", cache="$(CACHE)", python="$(PY)")
+
+
+def from_environment():
+    """For the stages' own calls: plan.mk exports BIN, JOBS and CACHE to them; the defaults are the plan's."""
+    return Tools(bin=os.environ.get("BIN", "build/bin"), jobs=os.environ.get("JOBS", "2"),
+                 cache=os.environ.get("CACHE", "build/cache"), python=PYTHON)
+
+
+# The options of a design a study may give (study file: screening.design, surfaces[].design).
+DESIGN_OPTIONS = ("center", "alpha", "runs", "criterion", "blank", "levels")
+
+
+def doe(tools, design, space, out):
+    """demcal-doe: `design` ({"kind": ..., options}) over the parameter space file `space`, natural units."""
+    args = [tools.program("demcal-doe"), design["kind"], "--space", space, "--out", out, "--quiet"]
+    for key in DESIGN_OPTIONS:
+        if key in design:
+            args += [f"--{key}", str(design[key])]
+    return args
+
+
+def dem_batch(tools, scene, design, out, csv, seeds):
+    """demcal-dem batch: every point of `design` x `seeds` (resumable: out.points/ keeps the finished ones)."""
+    return [tools.program("demcal-dem"), "batch", "--scene", scene, "--design", design, "--out", out, "--csv", csv,
+            "--seeds", str(seeds), "--jobs", tools.jobs, "--cache", tools.cache]
+
+
+def fit(tools, kind, data, factors, output, space, out, report=None, residuals=None):
+    """demcal-fit of one output: response surfaces coded on their surface's space, GA-BP trained from seed 1."""
+    coding = ["--seed", "1"] if kind == "gabp" else ["--space", space]
+    args = [tools.program("demcal-fit"), kind, "--data", data, "--x", ",".join(factors), "--y", output] + coding
+    args += ["--out", out]
+    if report:
+        args += ["--report", report]
+    if residuals:
+        args += ["--residuals", residuals]
+    return args + ["--quiet"]
+
+
+def invert(tools, inversion, targets, space, out, models=(), dem=None, seed=None, history=None, quiet=False):
+    """demcal-invert with the study's inversion settings (config/inversion.json): on the surrogate `models`, or,
+    with dem = {"scene", "seeds"}, on the DEM itself; `seed` replaces the settings' seed (stability)."""
+    args = [tools.program("demcal-invert")]
+    for model in models:
+        args += ["--model", model]
+    if dem:
+        args += ["--dem-scene", dem["scene"], "--dem-seeds", str(dem["seeds"]), "--jobs", tools.jobs,
+                 "--cache", tools.cache]
+    for name, value in targets.items():
+        args += ["--target", f"{name}={value}"]
+    args += ["--space", space, "--algo", inversion["algorithm"], "--objective", inversion["objective"],
+             "--restarts", str(inversion["restarts"]), "--seed", str(inversion["seed"] if seed is None else seed)]
+    if inversion["polish"]:
+        args.append("--polish")
+    args += inversion.get("extra", []) + ["--out", out]
+    if history:
+        args += ["--history", history]
+    if quiet:
+        args.append("--quiet")
+    return args
+
+
+def verify(tools, solution, scene, space, verification, work, out, md=None, csv=None, quiet=False):
+    """demcal-verify: the DEM at a solution over the seeds of config/verification.json."""
+    args = [tools.program("demcal-verify"), "--solution", solution, "--scene", scene, "--space", space,
+            "--seeds", str(verification["seeds"]), "--first-seed", str(verification.get("first_seed", 1)),
+            "--tolerance", str(verification["tolerance"]), "--jobs", tools.jobs, "--cache", tools.cache,
+            "--work", work]
+    if md:
+        args += ["--md", md]
+    if csv:
+        args += ["--csv", csv]
+    args += ["--out", out]
+    if quiet:
+        args.append("--quiet")
+    return args
+
+
+def analyze(tools, kind, data, factors, responses, fmt, out, error=None):
+    """demcal-analyze range or anova of a screening table; `error` names the term that is the error."""
+    args = [tools.program("demcal-analyze"), kind, "--data", data, "--factors", ",".join(factors),
+            "--responses", ",".join(responses), "--format", fmt, "--out", out]
+    if error:
+        args += ["--error", error]
+    return args
+
+
+def plot(tools, kind, data, out):
+    """scripts/plot_analysis.py: main-effects, pareto or fit figure of a demcal-analyze/demcal-fit output."""
+    return [tools.python, "scripts/plot_analysis.py", kind, data, "--out", out]
+
+
+def stage(tools, name, *args):
+    """One of the study layer's own stages (design, screen, refine, stability, report, plan)."""
+    return [tools.python, "-m", "demcal_study", name] + list(args)
+
+
+# A make variable reference, which make expands before the shell sees the line.
+MAKE_REFERENCE = re.compile(r"(\$\([A-Za-z_][A-Za-z0-9_]*\)|\$[<@])")
+
+
+def for_make(args):
+    """A recipe line: each argument quoted for the shell where it needs it and `$` doubled for make, except
+    make's own variable references, which stay for make to expand."""
+    return " ".join(_make_word(arg) for arg in args)
+
+
+def _make_word(arg):
+    if arg == "":
+        return "''"
+    pieces = MAKE_REFERENCE.split(arg)  # odd indexes are the references
+    return "".join(piece if k % 2 else shlex.quote(piece).replace("$", "$$") if piece else ""
+                   for k, piece in enumerate(pieces))

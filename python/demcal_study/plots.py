@@ -1,0 +1,92 @@
+"""The report's own figures (matplotlib): stress-strain curves of the verification runs, the convergence of
+the DEM in the loop, speed against accuracy over the compared studies. Each returns None when it wrote the
+figure, else why not (the report then leaves the figure out)."""
+import csv
+
+
+def pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def curves_png(runs_h5, out_png):
+    try:
+        import h5py
+        plt = pyplot()
+    except ImportError as e:
+        return f"(no curve plot: {e})"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    with h5py.File(runs_h5, "r") as f:
+        for name in sorted(f["points"]):
+            g = f["points"][name]
+            if "curve_axial_strain" in g and "curve_stress_MPa" in g:
+                ax.plot(g["curve_axial_strain"][:] * 100, g["curve_stress_MPa"][:], label=name.replace("run1_", ""))
+    ax.set_xlabel("axial strain (%)")
+    ax.set_ylabel("axial stress (MPa)")
+    ax.set_title("Verification runs at the calibrated parameters")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=150)
+    return None
+
+
+def convergence_png(history_csv, out_png, objective_kind):
+    try:
+        plt = pyplot()
+    except ImportError as e:
+        return f"(no convergence plot: {e})"
+    with open(history_csv) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        return "(empty history)"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for restart in sorted({r["restart"] for r in rows}):
+        pts = [(int(r["evaluations"]), float(r["best_objective"])) for r in rows if r["restart"] == restart]
+        ax.step([p[0] for p in pts], [p[1] for p in pts], where="post", label=f"run {restart}")
+    ax.set_yscale("log")
+    ax.set_xlabel("evaluations (DEM runs asked for)")
+    ax.set_ylabel(f"best {objective_kind}")
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=150)
+    plt.close(fig)
+    return None
+
+
+def comparison_png(rows, out_png):
+    """Largest verified error against DEM runs and against wall time, one point per study (cost.study_cost)."""
+    try:
+        plt = pyplot()
+    except ImportError as e:
+        return f"(no chart: {e})"
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for r in rows:
+        if r["max_error_pct"] is None:
+            continue
+        axes[0].scatter(r["dem_runs"], r["max_error_pct"], s=40)
+        axes[0].annotate(r["strategy"], (r["dem_runs"], r["max_error_pct"]), fontsize=8, xytext=(4, 4),
+                         textcoords="offset points")
+        if r["wall_s"] is not None:
+            axes[1].scatter(r["wall_s"] / 60, r["max_error_pct"], s=40)
+            axes[1].annotate(r["strategy"], (r["wall_s"] / 60, r["max_error_pct"]), fontsize=8, xytext=(4, 4),
+                             textcoords="offset points")
+    tol = rows[0]["tolerance_pct"]
+    largest = [max([r["dem_runs"] for r in rows] + [1]),
+               max([r["wall_s"] / 60 for r in rows if r["wall_s"] is not None] + [1])]
+    top = max([r["max_error_pct"] for r in rows if r["max_error_pct"] is not None] + [tol])
+    for ax, xlabel, right in zip(axes, ("DEM runs", "wall time of make study (min)"), largest):
+        ax.axhline(tol, color="grey", linestyle="--", linewidth=1, label=f"tolerance {tol:g} %")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("largest verified relative error (%)")
+        ax.set_xlim(0, 1.45 * right)  # room for the labels
+        ax.set_ylim(0, 1.15 * top)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Speed versus accuracy of the calibration strategies")
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=150)
+    plt.close(fig)
+    return None

@@ -1,0 +1,145 @@
+"""report: OUT_DIR/report.md and a self-contained report.html (figures inlined): the calibration from targets
+to verification, refinement, stability and cost; or, for a screening alone, the screening and its cost."""
+import os
+
+from . import strategy
+from .cost import count_rows, make_wall_s
+from .errors import load_json
+from .files import write_if_changed
+from .plots import convergence_png, curves_png
+from .sections import comparison_section, number, screening_section, significance_section, stability_section
+from .to_html import to_html
+
+
+def report(out):
+    study = load_json(os.path.join(out, "config", "study.json"), "study")
+    lines = screening_report(study, out) if strategy.screening_only(study) else calibration_report(study, out)
+    text = "\n".join(lines) + "\n"
+    write_if_changed(os.path.join(out, "report.md"), text)
+    write_if_changed(os.path.join(out, "report.html"), to_html(text, out))
+    print(os.path.join(out, "report.md"))
+    print(os.path.join(out, "report.html"))
+
+
+def space_lines(space):
+    lines = ["| varied parameter | low | high |", "|---|---|---|"]
+    lines += [f"| {p['name']} | {p['low']} | {p['high']} |" for p in space["parameters"]]
+    return lines + ["", "Fixed: " + ", ".join(f"{k} = {v}" for k, v in space.get("fixed", {}).items()), ""]
+
+
+def screening_report(study, out):
+    space = load_json(os.path.join(out, "config", "screening_space.json"), "space")
+    lines = [f"# Screening report: {study['name']}", "", study.get("description", ""), "",
+             f"Scene `{study['scene']}`, space `{study['space']}`.", "", "## Parameter space", ""]
+    lines += space_lines(space) + screening_section(study, out) + significance_section(out)
+    wall = make_wall_s(out)
+    runs = count_rows(os.path.join(out, "screening", "responses.csv"))
+    lines += ["## Cost", "",
+              f"{runs} DEM runs; wall time of `make study` summed over its runs: "
+              + (f"{wall / 60:.1f} min" if wall is not None else "not recorded") + ".", ""]
+    return lines
+
+
+def calibration_report(study, out):
+    refined = load_json(os.path.join(out, "refined.json"), "refinement record")
+    final = refined["final"]
+    first = load_json(os.path.join(out, "verification.json"), "verification")
+    solution = load_json(final["solution"], "solution")
+    lines = [f"# Calibration report: {study['name']}", "", study.get("description", ""), "",
+             f"Scene `{study['scene']}`, space `{study['space']}`.", "", "## Targets and parameter space", "",
+             "| output | target |", "|---|---|"]
+    lines += [f"| {k} | {v} |" for k, v in study["targets"].items()]
+    lines += [""] + space_lines(load_json(os.path.join(out, "config", "space_inversion.json"), "space"))
+    lines += screening_section(study, out)
+    loop = strategy.in_the_loop(study)
+    lines += loop_lines(study, solution, out) if loop else surrogate_lines(study, solution, out)
+    if refined["rounds"]:
+        lines.insert(len(lines) - 3, f"(The solution of the last refinement round, {len(refined['rounds'])}; its surrogates "
+                                     "were refitted with the verification runs added.)")
+        lines.insert(len(lines) - 3, "")
+    for name, value in solution["x"].items():
+        s = solution.get("spread", {}).get(name)
+        spread = f"{s['min']:.4g} - {s['max']:.4g}" if s else ""
+        ident = ("yes" if s["identified"] else "no") if s else ""
+        lines.append(f"| {name} | {value:.4g} | {spread} | {ident} |")
+    source = "DEM run at the solution" if loop else "surrogate at the solution"
+    lines += ["", f"| output | target | {source} | attainable range |", "|---|---|---|---|"]
+    for o, t in solution["targets"].items():
+        a = solution["attainable"].get(o)
+        attainable = f"{a['min']:.4g} - {a['max']:.4g}" if a else "not assessed"
+        predicted = solution["predicted"].get(o)
+        lines.append(f"| {o} | {t} | {number(predicted, 4) if predicted is None else f'{predicted:.4g}'} | {attainable} |")
+    if solution.get("unidentified"):
+        lines += ["", "Not identified by these targets (restarts that meet them spread over more than half the range): "
+                  + ", ".join(solution["unidentified"]) + "."]
+    lines += verification_lines(refined, first, out)
+    lines += [""] + stability_section(out) + comparison_section(study, out)
+    return lines
+
+
+def loop_lines(study, solution, out):
+    """The DEM in the loop: its runs, its convergence, then the head of the inversion table."""
+    dem = solution.get("dem", {})
+    lines = ["## DEM in the loop", "",
+             f"No surrogate: every evaluation of {solution['algorithm']} was a DEM run of `{study['scene']}` "
+             f"({dem.get('seeds_per_point', 1)} specimen(s) per point, {dem.get('jobs', 1)} at once). "
+             f"{solution['evaluations']} evaluations asked for {dem.get('points', 0)} distinct points: "
+             f"**{dem.get('runs', 0)} DEM runs** ({dem.get('runs_failed', 0)} failed), "
+             f"{dem.get('dem_wall_s', 0) / 60:.1f} min of DEM wall time"
+             + (f"; {dem['runs_reused']} of them were made by an interrupted earlier attempt and reused"
+                if dem.get("runs_reused") else "") + ". The verification below uses other specimens (seeds "
+             f"{dem.get('seeds_per_point', 1) + 1} onwards) than the one(s) the optimiser saw.", ""]
+    history = os.path.join(out, "inversion_history.csv")
+    if os.path.exists(history) and convergence_png(history, os.path.join(out, "convergence.png"),
+                                                   solution.get("objective_kind", "")) is None:
+        lines += ["![best objective against DEM evaluations](convergence.png)", ""]
+    return lines + ["## Inversion", "",
+                    f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} run(s), "
+                    f"status **{solution['status']}**" + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "")
+                    + ".", "", "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+
+
+def surrogate_lines(study, solution, out):
+    """The surrogates' fit statistics and plots, then the head of the inversion table."""
+    lines = ["## Surrogates", "",
+             "| output | model | runs | R^2 | adjusted R^2 | predicted R^2 |", "|---|---|---|---|---|---|"]
+    figures = []
+    for surface in study["surfaces"]:
+        for o in surface["outputs"]:
+            m = load_json(os.path.join(out, "models", f"{o}.json"), "model")
+            if m["kind"] == "gabp":
+                # Training R^2 and the hold-out R^2 of the rows it never trained on.
+                t, v = m.get("training", {}), m.get("validation", {})
+                lines.append(f"| {o} | gabp | {t.get('rows', 0) + v.get('rows', 0)} | {number(t.get('r2', {}).get(o))} | "
+                             f"- | {number(v.get('r2', {}).get(o))} (hold-out, {v.get('rows', 0)} rows) |")
+                continue
+            r = m["responses"][0] if "responses" in m else {}
+            lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
+                         f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
+            figures.append(f"![fit of {o}](models/{o}_fit.png)")
+    return lines + [""] + figures + ["", "## Inversion", "",
+                    f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
+                    f"{solution['evaluations']} evaluations, status **{solution['status']}**"
+                    + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "") + ".", "",
+                    "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+
+
+def verification_lines(refined, first, out):
+    """The first verification, the refinement rounds, the final verification table and its curves."""
+    final = refined["final"]
+    lines = ["", "## Verification in DEM", ""]
+    if refined["rounds"]:
+        lines += ["The first verification " + ("passed" if first["passed"] else "failed") + ": " +
+                  ", ".join(f"{o} {r['relative_error_pct']:+.2f} %" for o, r in first["outputs"].items()) +
+                  ". Refinement (its DEM runs added to the data, surrogates refitted, inverted and verified again):", "",
+                  "| round | data points | DEM runs | relative errors | passed |", "|---|---|---|---|---|"]
+        for r in refined["rounds"]:
+            errors = ", ".join(f"{o} {e:+.2f} %" for o, e in r["relative_error_pct"].items())
+            lines.append(f"| {r['round']} | {r['data_points']} | {r['dem_runs']} | {errors} | {'yes' if r['passed'] else 'no'} |")
+        lines += ["", "The final round:", ""]
+    with open(final["verification"].replace(".json", ".md")) as f:
+        lines += f.read().rstrip().split("\n")
+    runs = os.path.join(os.path.dirname(final["verification"]), "verification", "runs.h5")
+    if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png")) is None:
+        lines += ["", "![stress-strain curves](verification_curves.png)"]
+    return lines

@@ -1,0 +1,127 @@
+"""Sections of the report (Markdown lines): the screening, the stability checks, cost and accuracy."""
+import csv
+import os
+
+from .cost import study_cost
+from .errors import load_json
+from .plots import comparison_png
+
+
+def number(value, digits=4):
+    """A statistic for the report: fixed digits, or a dash when the tool wrote null."""
+    return f"{value:.{digits}f}" if isinstance(value, (int, float)) else "-"
+
+
+def screening_section(study, out):
+    """The screening's range analysis and ANOVA with their plots, then (when surfaces follow) the factors
+    kept for each surface and how they were chosen."""
+    if "screening" not in study:
+        return []
+    d = os.path.join(out, "screening")
+    sc = study["screening"]
+    with open(os.path.join(d, "screening.csv")) as f:
+        rows = list(csv.DictReader(f))
+    failed = [r for r in rows if r["status"] != "ok"]
+    lines = ["## Screening", "",
+             f"Orthogonal plan of {sc['design'].get('runs', '?')} runs over the whole space "
+             f"({sc['design'].get('blank', 0)} blank column(s)), {sc.get('seeds', 1)} seed(s) per point: "
+             f"{len(rows)} DEM runs, {len(failed)} failed" + (" (left out of the analysis)" if failed else "") + ".", ""]
+    with open(os.path.join(d, "range.md")) as f:
+        lines += f.read().rstrip().split("\n")
+    for o in sc["outputs"]:
+        if os.path.exists(os.path.join(d, f"main_effects_{o}.png")):
+            lines += ["", f"![main effects on {o}](screening/main_effects_{o}.png)"]
+    with open(os.path.join(d, "anova.md")) as f:
+        lines += [""] + f.read().rstrip().split("\n")
+    for o in sc["outputs"]:
+        if os.path.exists(os.path.join(d, f"pareto_{o}.png")):
+            lines += ["", f"![Pareto chart of F for {o}](screening/pareto_{o}.png)"]
+    if "surfaces" not in study:
+        return lines + [""]
+    lines += ["", "### Factors kept for the response surfaces", "",
+              "| surface | outputs | factors | how chosen |", "|---|---|---|---|"]
+    chosen_path = os.path.join(out, "config", "factors.json")
+    chosen = load_json(chosen_path, "chosen factors") if os.path.exists(chosen_path) else {}
+    for k, surface in enumerate(study.get("surfaces", []), start=1):
+        c = chosen.get(f"g{k}")
+        if c:
+            how = (f"screening ANOVA, p < {c['threshold']}: " +
+                   ", ".join(f"{n} (p = {c['p'][n]:.2g})" for n in c["factors"]) + (f"; {c['note']}" if c["note"] else ""))
+            factors = c["factors"]
+        else:
+            how, factors = "listed in the study", surface["factors"]
+        lines.append(f"| g{k} | {', '.join(surface['outputs'])} | {', '.join(factors)} | {how} |")
+    return lines + [""]
+
+
+def significance_section(out):
+    """Per output, the factors the screening ANOVA finds significant, strongest (largest F) first."""
+    anova = load_json(os.path.join(out, "screening", "anova.json"), "screening ANOVA")
+    lines = ["## Significant factors", "",
+             "| response | significant at p < 0.01 (\\*\\*) or p < 0.05 (\\*), by F |", "|---|---|"]
+    for response, rows in anova.items():
+        marks = [(row.get("F") or 0, name + row["significance"].replace("*", "\\*")) for name, row in rows.items()
+                 if name != "error" and row.get("significance")]
+        lines.append(f"| {response} | {', '.join(m for _, m in sorted(marks, reverse=True)) or 'none'} |")
+    return lines + [""]
+
+
+def stability_section(out):
+    path = os.path.join(out, "stability.json")
+    if not os.path.exists(path):
+        return []
+    st = load_json(path, "stability record")
+
+    def errors(case):
+        if "verified" in case:
+            return ", ".join(f"{o} {e:+.1f} %" for o, e in case["verified"].items())
+        return case.get("verify_message", "not verified")
+
+    lines = ["## Stability", "",
+             "The same calibration repeated with other optimiser seeds, on the surrogates it ended with (the design is "
+             "kept: another design seed would mean a new DEM batch), each solution verified in DEM:",
+             "", "| seed | status | solution | verified relative errors | passed |", "|---|---|---|---|---|"]
+    for c in st["seeds"]:
+        x = ", ".join(f"{k} {v:.4g}" for k, v in c.get("x", {}).items())
+        lines.append(f"| {c['seed']} | {c.get('status', c['message'])} | {x} | {errors(c)} | "
+                     f"{'yes' if c.get('passed') else 'no'} |")
+    e = st.get("edge")
+    if e:
+        lines += ["", f"A target near the edge: {e['output']} = {e['targets'][e['output']]:.4g}, at {100 * e['fraction']:.0f} % "
+                  f"of its attainable range [{e['attainable'][0]:.4g}, {e['attainable'][1]:.4g}] (the other targets "
+                  f"unchanged): inversion status **{e.get('status', '-')}**"
+                  + (f" ({e['message']})" if e.get("message") else "") + "; verified: " + errors(e) + "."]
+    lines += ["", "Deliberately small designs (the first runs of the first surface's design, refitted):", "",
+              "| design | fit | predicted R^2 | inversion | verified relative errors |", "|---|---|---|---|---|"]
+    for c in st["small_design"]:
+        if "fit_exit" in c:
+            lines.append(f"| {c['case']} | refused: {c['message']} | - | - | - |")
+            continue
+        r2 = ", ".join(f"{o} {number(v, 3)}" for o, v in c.get("r2_pred", {}).items())
+        lines.append(f"| {c['case']} | ok | {r2} | {c.get('status', c.get('message', '-'))} | {errors(c)} |")
+    return lines + [""]
+
+
+def comparison_section(study, out):
+    rows = [study_cost(out)]
+    missing = []
+    for other in study.get("compare_with", []):
+        d = os.path.join(os.path.dirname(out), os.path.splitext(os.path.basename(other))[0])
+        if os.path.exists(os.path.join(d, "refined.json")):
+            rows.append(study_cost(d))
+        else:
+            missing.append(other)
+    lines = ["## Cost and accuracy", "",
+             "DEM runs of the calibration (screening, designs, DEM in the loop, verification and refinement; not the "
+             "stability checks), wall time of `make study` summed over its runs, and the largest relative error of the "
+             "final verification:", "",
+             "| study | strategy | DEM runs | wall time (min) | largest verified error (%) | passed |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        wall = f"{r['wall_s'] / 60:.1f}" if r["wall_s"] is not None else "not recorded"
+        lines.append(f"| {r['name']} | {r['strategy']} | {r['dem_runs']} | {wall} | {number(r['max_error_pct'], 2)} | "
+                     f"{'yes' if r['passed'] else 'no'} |")
+    if len(rows) > 1 and comparison_png(rows, os.path.join(out, "speed_accuracy.png")) is None:
+        lines += ["", "![DEM runs and wall time against the verified error](speed_accuracy.png)"]
+    if missing:
+        lines += ["", "Not run yet (run `make study STUDY=...` on them for the comparison): " + ", ".join(missing) + "."]
+    return lines + [""]

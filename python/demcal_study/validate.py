@@ -1,0 +1,142 @@
+"""A study file checked in full: its structure against the schema (schema.py), then what a schema cannot say:
+which fields its strategy takes, its names against the scene and the space (through demcal-dem describe), the
+scene's outputs, the factor limits of each design kind (demcal-doe) and the algorithms (demcal-invert). The
+first problem stops it with one line naming the file and the field."""
+import os
+
+from . import executables, schema, strategy
+from .errors import fail, load_json
+
+
+def validate(study, path):
+    """Returns (scene as demcal-dem describes it, space file) of a valid study read from `path`."""
+    schema.check(study, path)
+    where = path
+    check_strategy_fields(study, where)
+    try:
+        scene = executables.describe(study["scene"], study["space"])
+    except executables.ToolError as e:  # demcal-dem names the scene or space file: name the study's field too
+        fail(f"{where}: {'space' if study['space'] in str(e) else 'scene'}: {e}")
+    space = load_json(study["space"], "parameter space")
+    names = Names(study, scene, space)
+    for name in study.get("targets", {}):
+        if name not in names.outputs:
+            fail(f"{where}: targets.{name}: not a DEM output (outputs of {study['scene']}: "
+                 f"{', '.join(sorted(names.outputs))})")
+    if isinstance(study.get("fixed"), dict):
+        for name in study["fixed"]:
+            if name not in names.scene_parameters:
+                fail(f"{where}: fixed.{name}: not a parameter of {study['scene']}")
+    for name in study.get("factors", []):
+        names.check_factor(f"{where}: factor {name}", name)
+    if "screening" in study:
+        check_screening(study["screening"], names, f"{where}: screening")
+    covered = set(study["targets"]) if strategy.in_the_loop(study) else set()
+    for k, surface in enumerate(study.get("surfaces", [])):
+        check_surface(surface, study.get("screening"), names, covered, f"{where}: surfaces[{k}]")
+    if strategy.screening_only(study):
+        return scene, space
+    missing = sorted(set(study["targets"]) - covered)
+    if missing:
+        fail(f"{where}: target {missing[0]} has no surface (add it to a surfaces[].outputs)")
+    check_inversion(study, where)
+    if "stability" in study and strategy.in_the_loop(study):
+        fail(f"{where}: stability repeats the calibration with 5 seeds; with the DEM in the loop that is 5 whole "
+             "calibrations: run the study with other inversion.seed values instead")
+    for other in study.get("compare_with", []):
+        if not os.path.exists(other):
+            fail(f"{where}: compare_with: {other} is not a study file")
+    return scene, space
+
+
+def check_strategy_fields(study, where):
+    """The fields each shape of study needs and those it refuses (strategy.py)."""
+    if strategy.screening_only(study):
+        for key in strategy.CALIBRATION_ONLY:
+            if key in study:
+                fail(f"{where}: \"{key}\" does not apply to a screening alone (a study without \"surfaces\")")
+        return
+    loop = strategy.in_the_loop(study)
+    kind = study.get("strategy", "surrogate")
+    for key in ("targets",) + (("factors",) if loop else ("surfaces",)):
+        if key not in study:
+            fail(f"{where}: missing \"{key}\"")
+    for key in (("surfaces", "surrogate", "refinement") if loop else ("factors",)):
+        if key in study:
+            fail(f"{where}: \"{key}\" does not apply to strategy {kind}")
+
+
+class Names:
+    """The parameters and outputs a study may name: the scene's, and the space's varied parameters."""
+
+    def __init__(self, study, scene, space):
+        self.scene_path, self.space_path = study["scene"], study["space"]
+        self.scene_parameters = set(scene["parameters"])
+        self.outputs = set(scene["outputs"])
+        self.space_parameters = [p["name"] for p in space.get("parameters", [])]
+
+    def check_factor(self, what, name):
+        """A parameter to vary: the space gives its range, the scene must have it."""
+        if name not in self.space_parameters:
+            fail(f"{what} is not a parameter of {self.space_path} (parameters: {', '.join(self.space_parameters)})")
+        if name not in self.scene_parameters:
+            fail(f"{what} is not a parameter of {self.scene_path}")
+
+    def check_output(self, what, name):
+        if name not in self.outputs:
+            fail(f"{what} is not a DEM output")
+
+
+def check_screening(screening, names, w):
+    if screening["design"]["kind"] != "oa":
+        fail(f"{w}: design.kind must be \"oa\" (range analysis and ANOVA need an orthogonal plan)")
+    for output in screening["outputs"]:
+        names.check_output(f"{w}: output {output}", output)
+    for name in screening.get("factors", names.space_parameters):
+        if name not in names.space_parameters:
+            fail(f"{w}: factor {name} is not a parameter of {names.space_path}")
+        if name not in names.scene_parameters:
+            fail(f"{w}: the space's parameter {name} is not a parameter of {names.scene_path}")
+
+
+def check_surface(surface, screening, names, covered, w):
+    """One surface: its outputs (each fitted once), its factors and whether its design kind takes that many."""
+    for output in surface["outputs"]:
+        names.check_output(f"{w}: output {output}", output)
+        if output in covered:
+            fail(f"{w}: output {output} has a surface already")
+        covered.add(output)
+    if surface["factors"] == "auto":
+        if screening is None:
+            fail(f"{w}: factors \"auto\" are chosen from the screening ANOVA: add a \"screening\" stage")
+        missing = [o for o in surface["outputs"] if o not in screening["outputs"]]
+        if missing:
+            fail(f"{w}: factors \"auto\" needs output {missing[0]} in screening.outputs")
+        return  # the design is checked once the screening has chosen the factors
+    for name in surface["factors"]:
+        names.check_factor(f"{w}: factor {name}", name)
+    design = surface["design"]
+    k = len(surface["factors"])
+    limits = executables.design_kinds()[design["kind"]]
+    if k < limits["min_factors"] or (limits["max_factors"] and k > limits["max_factors"]):
+        most = f"to {limits['max_factors']}" if limits["max_factors"] else "or more"
+        fail(f"{w}: a {limits['title']} design needs {limits['min_factors']} {most} factors, not {k}")
+    quadratic_terms = (k + 1) * (k + 2) // 2
+    if design["kind"] == "lhs" and design.get("runs", 0) < quadratic_terms + 1:
+        fail(f"{w}: an LHS for a quadratic in {k} factors needs at least {quadratic_terms + 1} runs (design.runs)")
+
+
+def check_inversion(study, where):
+    """The optimiser: one demcal-invert knows, and one that suits the strategy."""
+    inv = study.get("inversion", {})
+    loop = strategy.in_the_loop(study)
+    algorithm = inv.get("algorithm", "sa" if loop else "ga")
+    if loop and inv.get("polish"):
+        fail(f"{where}: inversion.polish needs a smooth surrogate; it does not apply to dem_in_the_loop")
+    if loop and algorithm == "search":
+        fail(f"{where}: inversion.algorithm search samples thousands of points; use an optimiser for dem_in_the_loop")
+    known = executables.inversion_choices()
+    if algorithm not in known["algorithms"]:
+        fail(f"{where}: inversion.algorithm must be one of {', '.join(known['algorithms'])}")
+    if inv.get("objective", "max-rel" if loop else "sum-rel") not in known["objectives"]:
+        fail(f"{where}: inversion.objective must be one of {', '.join(known['objectives'])}")

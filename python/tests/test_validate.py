@@ -1,0 +1,135 @@
+"""Study files: a bad one stops `python -m demcal_study plan` with exit 2 and one line that names the file and
+the field; a good one plans. Structure errors come from the schema before any executable is asked."""
+import glob
+import json
+import os
+
+import pytest
+
+from conftest import REPO, run_study_layer
+from demcal_study import schema
+from demcal_study.errors import StudyError
+
+
+def demo():
+    with open(os.path.join(REPO, "data", "studies", "demo.json")) as f:
+        return json.load(f)
+
+
+def loop():
+    with open(os.path.join(REPO, "data", "studies", "rock_dem_in_the_loop.json")) as f:
+        return json.load(f)
+
+
+def edited(base, change):
+    study = base()
+    change(study)
+    return study
+
+
+def plan_error(tmp_path, study, bin_dir=""):
+    """The one error line of planning `study`, after checking it is one line and the exit code is 2."""
+    path = tmp_path / "bad.json"
+    path.write_text(study if isinstance(study, str) else json.dumps(study))
+    done = run_study_layer(["plan", str(path), str(tmp_path / "out")], bin_dir)
+    lines = done.stderr.splitlines()
+    assert done.returncode == 2, done.stderr
+    assert len(lines) == 1, done.stderr
+    assert lines[0].startswith(f"demcal_study: error: {path}: "), lines[0]
+    return lines[0]
+
+
+# Structure: the schema alone (no executable is asked: BIN points nowhere).
+SCHEMA_CASES = [
+    (lambda d: d.update(surogate="quadratic"), 'unknown field "surogate" (allowed: '),
+    (lambda d: d["inversion"].update(restarts="a"), "inversion.restarts: 'a' is not of type 'integer'"),
+    (lambda d: d["targets"].update(sigma_u_MPa=0), "targets.sigma_u_MPa must be a non-zero number"),
+    (lambda d: d["surfaces"][0]["design"].update(kind="ccf"), "surfaces[0].design.kind must be one of bbd, ccd, lhs"),
+    (lambda d: d["surfaces"][0]["design"].update(centre=3), 'surfaces[0].design: unknown field "centre"'),
+    (lambda d: d.pop("name"), 'missing "name"'),
+    (lambda d: d.update(fixed="refrence"), 'fixed must be "reference" or an object of parameter: value'),
+    (lambda d: d.update(fixed={"mu": "high"}), "fixed.mu: 'high' is not of type 'number'"),
+    (lambda d: d["verification"].update(seeds=1), "verification.seeds must be at least 2"),
+    (lambda d: d.update(screening={"design": {"kind": "oa"}, "outputs": ["nu"], "p_threshold": 1.5}),
+     "screening.p_threshold must lie in (0, 1)"),
+    (lambda d: d.update(strategy="dem-in-loop"), "strategy must be one of dem_in_the_loop, surrogate"),
+    (lambda d: d.update(name="my study"), "name must be letters, digits"),
+]
+
+
+@pytest.mark.parametrize("change,expected", SCHEMA_CASES, ids=[c[1][:30] for c in SCHEMA_CASES])
+def test_structure_errors_name_the_field(tmp_path, change, expected):
+    assert expected in plan_error(tmp_path, edited(demo, change))
+
+
+@pytest.mark.parametrize("token", ["NaN", "Infinity", "1e400"])
+def test_a_number_that_is_not_finite(tmp_path, token):
+    text = json.dumps(demo()).replace('"sigma_u_MPa": 25', f'"sigma_u_MPa": {token}')
+    line = plan_error(tmp_path, text)
+    assert "targets.sigma_u_MPa: " in line and line.endswith(" is not a finite number"), line
+
+
+def test_a_file_that_is_not_json(tmp_path):
+    assert "not valid JSON" in plan_error(tmp_path, '{"name": "x",}')
+
+
+def test_a_missing_file(tmp_path):
+    done = run_study_layer(["plan", str(tmp_path / "none.json"), str(tmp_path / "out")])
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and "cannot open study" in done.stderr
+
+
+@pytest.mark.parametrize("path", sorted(glob.glob(os.path.join(REPO, "data", "studies", "*.json"))))
+def test_every_shipped_study_fits_the_schema(path):
+    with open(path) as f:
+        schema.check(json.load(f), path)
+
+
+def test_the_schema_is_a_valid_draft7_schema():
+    import jsonschema
+    jsonschema.Draft7Validator.check_schema(schema.schema())
+
+
+def test_schema_check_raises_the_error_in_process():
+    with pytest.raises(StudyError, match=r"^x.json: inversion.restarts: 'a' is not of type 'integer'$"):
+        schema.check(edited(demo, lambda d: d["inversion"].update(restarts="a")), "x.json")
+
+
+# What involves the scene, the space, the executables or another field: validate.py (asks the executables).
+CROSS_CASES = [
+    (demo, lambda d: d["targets"].update(density=2400), "targets.density: not a DEM output"),
+    (demo, lambda d: d.update(scene="data/scenes/no_such_scene.json"),
+     "scene: demcal-dem: error: data/scenes/no_such_scene.json: cannot open scene file"),
+    (demo, lambda d: d["surfaces"][0]["factors"].__setitem__(-1, "kn_ks_x"), "factor kn_ks_x is not a parameter"),
+    (demo, lambda d: d["surfaces"][0].update(factors="auto"), 'add a "screening" stage'),
+    (demo, lambda d: d["surfaces"][0].update(factors=["Ec_GPa", "kn_ks"]),
+     "surfaces[0]: a Box-Behnken design needs 3 to 7 factors, not 2"),
+    (demo, lambda d: d["inversion"].update(algorithm="pso"), "inversion.algorithm must be one of ga, sa"),
+    (demo, lambda d: d.update(screening={"design": {"kind": "lhs"}, "outputs": ["nu"]}),
+     'screening: design.kind must be "oa"'),
+    (loop, lambda d: d.update(surfaces=[]), '"surfaces" does not apply to strategy dem_in_the_loop'),
+    (loop, lambda d: d["inversion"].update(polish=True), "polish needs a smooth surrogate"),
+    (demo, lambda d: [d.pop(k) for k in ("surfaces", "surrogate", "inversion", "verification", "refinement",
+                                          "seeds_per_point", "stability")]
+     and d.update(screening={"design": {"kind": "oa", "runs": 18}, "outputs": ["nu"]}),
+     '"targets" does not apply to a screening alone'),
+]
+
+
+@pytest.mark.parametrize("base,change,expected", CROSS_CASES, ids=[c[2][:30] for c in CROSS_CASES])
+def test_cross_field_errors_name_the_field(tmp_path, bin_dir, base, change, expected):
+    assert expected in plan_error(tmp_path, edited(base, change), bin_dir)
+
+
+def test_a_good_study_plans(tmp_path, bin_dir):
+    done = run_study_layer(["plan", "data/studies/demo.json", str(tmp_path / "demo")], bin_dir)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == str(tmp_path / "demo" / "plan.mk")
+    assert (tmp_path / "demo" / "config" / "inversion.json").exists()
+
+
+def test_a_screening_alone_plans_its_screening_and_report(tmp_path, bin_dir):
+    done = run_study_layer(["plan", "data/studies/concrete_screening.json", str(tmp_path / "s")], bin_dir)
+    assert done.returncode == 0, done.stderr
+    plan = (tmp_path / "s" / "plan.mk").read_text()
+    assert "$(D)/screening/anova.json:" in plan and "$(D)/report.md: $(D)/screening/anova.json" in plan
+    assert "solution.json" not in plan and "refined.json" not in plan
