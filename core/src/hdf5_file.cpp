@@ -191,6 +191,9 @@ std::vector<std::int64_t> Group::read_integers(const std::string& name) const {
   std::vector<hsize_t> dims;
   Handle set = open_dataset(id(), name, where(name), dims);
   if (dims.size() != 1) throw Error(where(name) + ": expected a 1D dataset");
+  // HDF5 would convert 1.5 to 1 without a word: integers must be stored as integers.
+  Handle type(H5Dget_type(set.id()), Handle::Kind::Datatype);
+  if (H5Tget_class(type.id()) != H5T_INTEGER) throw Error(where(name) + ": expected integers");
   std::vector<std::int64_t> values(dims[0]);
   if (!values.empty() && H5Dread(set.id(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
     throw Error(where(name) + ": cannot read as integers");

@@ -1,6 +1,9 @@
 #include "demcal/core/json_fields.hpp"
 
+#include <sys/stat.h>
+
 #include <fstream>
+#include <ios>
 
 #include <nlohmann/json.hpp>
 
@@ -22,12 +25,19 @@ void require_known_fields(const nlohmann::json& object, std::initializer_list<co
 }
 
 nlohmann::json read_json_file(const std::string& path, const std::string& what) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) throw Error(path + ": is a folder, not a " + what);
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open " + what);
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond double's range (1e999): nlohmann refuses it while parsing.
+    throw Error(path + ": a number is out of range (" + std::string(e.what()) + ")");
+  } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
+  } catch (const std::ios_base::failure& e) {
+    throw Error(path + ": cannot read " + what + " (" + std::string(e.what()) + ")");
   }
 }
 

@@ -144,6 +144,9 @@ void ParameterSpace::validate(const std::string& origin) const {
     claim(p.name, where);
     if (!(p.low < p.high))
       throw Error(where + ": low (" + format_double(p.low) + ") must be below high (" + format_double(p.high) + ")");
+    // Coding needs (high - low) / 2 and the midpoint: a range wider than double's overflows.
+    if (!std::isfinite(p.high - p.low))
+      throw Error(where + ": the range [" + format_double(p.low) + ", " + format_double(p.high) + "] is too wide to code");
     if (p.log_scale && p.low <= 0)
       throw Error(where + ": log_scale needs low > 0 (low is " + format_double(p.low) + ")");
     for (std::size_t k = 0; k < p.levels.size(); ++k) {

@@ -1,5 +1,6 @@
 // CSV reading and writing of a Table.
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -73,6 +74,8 @@ Table Table::read_csv(const std::string& path) {
       double run = 0;
       if (!parse_double(fields[0], run) || !std::isfinite(run) || run != std::floor(run))
         throw Error(path + ":" + std::to_string(line_number) + ": run id \"" + fields[0] + "\" is not an integer");
+      if (run < 0 || run > std::numeric_limits<int>::max())
+        throw Error(path + ":" + std::to_string(line_number) + ": run id \"" + fields[0] + "\" is out of range");
       runs.push_back(static_cast<int>(run));
     } else {
       runs.push_back(static_cast<int>(runs.size()) + 1);

@@ -1,4 +1,5 @@
 // HDF5 reading and writing of a Table (one group per table).
+#include <limits>
 #include <sstream>
 
 #include "demcal/core/error.hpp"
@@ -42,11 +43,19 @@ Table Table::read_hdf5(const std::string& path, const std::string& group_name) {
   }
   std::vector<int> runs;
   if (group.has("run")) {
-    for (std::int64_t r : group.read_integers("run")) runs.push_back(static_cast<int>(r));
+    for (std::int64_t r : group.read_integers("run")) {
+      if (r < 0 || r > std::numeric_limits<int>::max())
+        throw Error(path + ": " + group_name + "/run: run id " + std::to_string(r) + " is out of range");
+      runs.push_back(static_cast<int>(r));
+    }
   }
   Table table(runs);
   for (const auto& name : names) {
-    table.add_column(name, group.read_doubles(name));
+    try {
+      table.add_column(name, group.read_doubles(name));
+    } catch (const Error& e) {
+      throw Error(path + ": " + group_name + ": " + e.what());  // a column of another length
+    }
   }
   for (const auto& attribute : group.attribute_names()) {
     if (attribute == "columns") continue;

@@ -2,6 +2,8 @@
 // writes the verification table (target, mean, SD, CV, relative error, pass).
 #include <CLI/CLI.hpp>
 
+#include <set>
+
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -16,6 +18,7 @@
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/parameter_space.hpp"
 #include "demcal/jobs/batch.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/inverse/verification.hpp"
 
@@ -47,16 +50,32 @@ int run(const Arguments& a) {
   if (a.first_seed < 1) throw Error("--first-seed must be at least 1");
   if (!(a.tolerance > 0)) throw Error("--tolerance must be positive");
   const json solution = read_json_file(a.solution, "solution");
-  if (!solution.contains("x") || !solution.contains("targets"))
+  if (!solution.is_object() || !solution.contains("x") || !solution.contains("targets"))
     throw Error(a.solution + ": not a demcal-invert solution (needs \"x\" and \"targets\")");
+  if (solution.contains("status") && !solution.at("status").is_string())
+    throw Error(a.solution + ": \"status\" must be a string");
+  if (solution.contains("predicted") && !solution.at("predicted").is_object())
+    throw Error(a.solution + ": \"predicted\" must be an object of output: number");
+  const std::map<std::string, double> targets = numbers(solution.at("targets"), a.solution + ": targets");
+  if (targets.empty()) throw Error(a.solution + ": targets is empty");
   if (solution.value("status", std::string("ok")) != "ok")
     log::warn(a.solution + ": the inversion reported status " + solution.value("status", std::string()) +
               "; verifying its nearest point anyway");
   const dem::Scene scene = dem::Scene::load(a.scene);
+  // Check the targets before any DEM run: each must be an output of the scene's test.
+  std::set<std::string> outputs;
+  for (const dem::OutputSpec& o : scene.lab_test().outputs(scene)) outputs.insert(o.name);
+  for (const auto& [name, value] : targets)
+    if (!outputs.count(name)) {
+      std::string list;
+      for (const std::string& o : outputs) list += (list.empty() ? "" : ", ") + o;
+      throw Error(a.solution + ": target " + name + " is not an output of " + a.scene + " (its outputs: " + list + ")");
+    }
 
   // The point to run: the solution's parameters, then the space's fixed and
   // tied values, then --set; every name must be a scene parameter.
   std::map<std::string, double> point = numbers(solution.at("x"), a.solution + ": x");
+  if (point.empty()) throw Error(a.solution + ": x is empty (no parameter to run)");
   if (!a.space.empty()) {
     ParameterSpace space = ParameterSpace::load(a.space);
     scene.check_space(space, a.space);
@@ -71,7 +90,11 @@ int run(const Arguments& a) {
     auto [name, value] = parse_name_value(s, "--set");
     point[name] = value;
   }
-  scene.resolve(point);  // unknown names and values outside the scene's ranges are errors here
+  try {
+    scene.resolve(point);  // unknown names and values outside the scene's ranges are errors here
+  } catch (const Error& e) {
+    throw Error(a.solution + ": x: " + e.what());
+  }
 
   const std::string work = a.work.empty() ? a.out + ".runs" : a.work;
   ::mkdir(work.c_str(), 0755);
@@ -107,7 +130,7 @@ int run(const Arguments& a) {
   if (solution.contains("predicted"))
     for (auto it = solution.at("predicted").begin(); it != solution.at("predicted").end(); ++it)
       if (it.value().is_number()) predicted[it.key()] = it.value().get<double>();
-  inverse::Verification v = inverse::verify(numbers(solution.at("targets"), a.solution + ": targets"), predicted, seeds, a.tolerance);
+  inverse::Verification v = inverse::verify(targets, predicted, seeds, a.tolerance);
 
   json out = inverse::verification_json(v);
   out["parameters"] = point;

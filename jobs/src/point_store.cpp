@@ -76,6 +76,19 @@ std::vector<std::string> design_parameter_columns(const Scene& scene, const Tabl
   }
   if (columns.empty())
     throw Error(design_path + ": no column is named after a scene parameter (scene parameters: " + list() + ")");
+  // A design is a list of distinct points with a number in every cell. A value
+  // outside the scene's bounds is not checked here: that point is recorded as
+  // failed with its reason and the batch goes on.
+  if (design.rows() == 0) throw Error(design_path + ": the design has no runs");
+  std::set<int> runs;
+  for (std::size_t row = 0; row < design.rows(); ++row) {
+    const int run = design.run_ids()[row];
+    if (!runs.insert(run).second) throw Error(design_path + ": run " + std::to_string(run) + " appears twice");
+    for (const std::string& c : columns)
+      if (!std::isfinite(design.at(row, c)))
+        throw Error(design_path + ": run " + std::to_string(run) + ", column \"" + c + "\": " +
+                    format_double(design.at(row, c)) + " is not a finite number");
+  }
   return columns;
 }
 

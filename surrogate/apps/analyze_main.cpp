@@ -69,10 +69,14 @@ int design_analysis(const Arguments& a) {
   std::vector<DesignAnova> anovas;
   for (const std::string& response : responses) {
     Eigen::VectorXd y = select_columns(table, {response}, a.data).col(0);
-    if (a.command == "range")
-      ranges.push_back(range_analysis(factors, X.leftCols(static_cast<Eigen::Index>(factors.size())), y, response));
-    else
-      anovas.push_back(design_anova(columns, X, y, factors, response, options));
+    try {
+      if (a.command == "range")
+        ranges.push_back(range_analysis(factors, X.leftCols(static_cast<Eigen::Index>(factors.size())), y, response));
+      else
+        anovas.push_back(design_anova(columns, X, y, factors, response, options));
+    } catch (const Error& e) {
+      throw Error(a.data + ": " + e.what());  // what the data lacks (levels, runs)
+    }
   }
   std::string text;
   if (a.command == "range")

@@ -110,7 +110,11 @@ int run(const Arguments& a, const CLI::App& app) {
     options.eliminate_alpha = a.eliminate;
     std::vector<SurfaceFit> fits;
     for (Eigen::Index o = 0; o < Y.cols(); ++o) {
-      fits.push_back(fit_surface(x_names, X, Y.col(o), y_names[static_cast<std::size_t>(o)], options));
+      try {
+        fits.push_back(fit_surface(x_names, X, Y.col(o), y_names[static_cast<std::size_t>(o)], options));
+      } catch (const Error& e) {
+        throw Error(a.data + ": " + e.what());  // what the data lacks (runs, variation, estimable terms)
+      }
       report += surface_markdown(fits.back());
     }
     file = surface_model_json(fits, a.data);
@@ -128,7 +132,13 @@ int run(const Arguments& a, const CLI::App& app) {
     options.ga_population = a.ga_population;
     options.ga_generations = a.ga_generations;
     options.progress = !a.quiet;
-    GabpFit fit = fit_gabp(x_names, X, y_names, Y, options);
+    GabpFit fit = [&] {
+      try {
+        return fit_gabp(x_names, X, y_names, Y, options);
+      } catch (const Error& e) {
+        throw Error(a.data + ": " + e.what());
+      }
+    }();
     report = gabp_markdown(fit);
     file = gabp_model_json(fit, a.data);
     if (!a.residuals.empty())

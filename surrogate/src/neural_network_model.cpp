@@ -1,5 +1,8 @@
 #include "demcal/surrogate/neural_network_model.hpp"
 
+#include <cmath>
+#include <utility>
+
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
@@ -56,6 +59,8 @@ std::unique_ptr<NeuralNetworkModel> NeuralNetworkModel::from_json(const json& fi
   const int hidden = net.at("hidden").get<int>();
   const auto m = domain.size(), o = outputs.size();
   if (hidden <= 0 || m == 0 || o == 0) throw Error(origin + ": network needs inputs, outputs and hidden > 0");
+  // Far beyond any fitted network (h = sqrt(m + n) + 10), and the parameter count stays an int.
+  if (hidden > 100000) throw Error(origin + ": network.hidden " + std::to_string(hidden) + " is not a fitted network's size");
   NeuralNetwork network(static_cast<int>(m), hidden, static_cast<int>(o));
   network.parameters() =
       vector_of(net.at("parameters"), static_cast<std::size_t>(network.parameter_count()), origin, "network.parameters");
@@ -64,6 +69,11 @@ std::unique_ptr<NeuralNetworkModel> NeuralNetworkModel::from_json(const json& fi
                    vector_of(scaling.at("input_max"), m, origin, "scaling.input_max")};
   MinMaxScaling out{vector_of(scaling.at("output_min"), o, origin, "scaling.output_min"),
                     vector_of(scaling.at("output_max"), o, origin, "scaling.output_max")};
+  // Each scaling maps [min, max] onto [-1, 1]: an empty range maps every value to one.
+  for (const auto& [scale, what] : {std::pair<const MinMaxScaling*, const char*>{&in, "input"}, {&out, "output"}})
+    for (Eigen::Index j = 0; j < scale->min.size(); ++j)
+      if (!(scale->min[j] < scale->max[j]) || !std::isfinite(scale->max[j] - scale->min[j]))
+        throw Error(origin + ": scaling of " + what + " " + std::to_string(j + 1) + " needs finite min < max");
   return std::make_unique<NeuralNetworkModel>(domain, outputs, in, out, network);
 }
 

@@ -93,6 +93,7 @@ SurfaceFit fit_surface(const std::vector<std::string>& factors, const Eigen::Mat
   const Eigen::Index n = X.rows();
   const int k = static_cast<int>(factors.size());
   if (k == 0) throw Error("fit: no factors (--x) given");
+  if (n == 0 || y.size() != n) throw Error("fit: the data has no runs");
   require_varying(X, factors, "fit", "a response surface needs every factor to vary");
   if (y.size() > 0 && y.maxCoeff() == y.minCoeff())
     throw Error("fit: response " + response + " is constant; there is nothing to fit");

@@ -3,6 +3,8 @@
 // stdout and stderr, for the command-line tests.
 #include <gtest/gtest.h>
 
+#include "scratch.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,7 +23,7 @@ struct CommandResult {
 };
 
 inline std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "demcal_" + std::to_string(::getpid()) + "_" + name;
+  return scratch_path(name);
 }
 
 inline std::string slurp(const std::string& path) {

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "../common/scratch.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -14,7 +16,7 @@ using demcal::Table;
 namespace {
 
 std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "demcal_table_" + std::to_string(::getpid()) + "_" + name;
+  return demcal::test::scratch_path(name);
 }
 
 void write_text(const std::string& path, const std::string& text) {

@@ -3,6 +3,8 @@
 // that had finished.
 #include <gtest/gtest.h>
 
+#include "../common/scratch.hpp"
+
 #include <dirent.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -19,7 +21,7 @@
 namespace {
 
 std::string temp(const std::string& name) {
-  return ::testing::TempDir() + "demcal_batch_" + std::to_string(::getpid()) + "_" + name;
+  return demcal::test::scratch_path(name);
 }
 
 std::map<std::string, std::string> point_files(const std::string& dir) {

@@ -1,6 +1,8 @@
 // demcal-dem run as users call it: a result file, and one-line errors.
 #include <gtest/gtest.h>
 
+#include "../common/scratch.hpp"
+
 #include <sys/wait.h>
 
 #include <fstream>
@@ -15,7 +17,7 @@ struct Result {
 };
 
 std::string temp(const std::string& name) {
-  return ::testing::TempDir() + "demcal_dem_cli_" + std::to_string(::getpid()) + "_" + name;
+  return demcal::test::scratch_path(name);
 }
 
 Result run(const std::string& arguments) {

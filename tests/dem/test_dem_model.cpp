@@ -4,6 +4,8 @@
 // stored runs instead of repeating them.
 #include <gtest/gtest.h>
 
+#include "../common/scratch.hpp"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -34,9 +36,9 @@ ParameterSpace space(const std::string& extra_fixed = "") {
 
 DemModelOptions options(const std::string& name, int jobs = 2) {
   DemModelOptions o;
-  o.work_dir = ::testing::TempDir() + "demcal_dem_model_" + std::to_string(::getpid()) + "_" + name;
+  o.work_dir = demcal::test::scratch_path("dem_model_" + name);
   o.jobs = jobs;
-  o.cache_dir = ::testing::TempDir() + "demcal_dem_model_cache_" + std::to_string(::getpid());
+  o.cache_dir = demcal::test::scratch_path("dem_model_cache");
   o.progress = false;
   return o;
 }

@@ -3,6 +3,8 @@
 // seed, and survives the HDF5 cache unchanged.
 #include <gtest/gtest.h>
 
+#include "../common/scratch.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <unistd.h>
@@ -59,7 +61,7 @@ TEST(Genesis, SameSeedSamePackingOtherSeedAnother) {
 }
 
 TEST(Genesis, CacheStoresAndReloadsTheSamePacking) {
-  std::string dir = ::testing::TempDir() + "demcal_cache_" + std::to_string(::getpid());
+  std::string dir = demcal::test::scratch_path("cache");
   SpecimenSpec spec = small_spec(5);
   Specimen packed = cached_specimen(spec, dir);
   Specimen loaded = cached_specimen(spec, dir);  // from the file this time

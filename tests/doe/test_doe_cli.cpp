@@ -1,6 +1,8 @@
 // demcal-doe as users and scripts call it: exit codes, one-line errors, files.
 #include <gtest/gtest.h>
 
+#include "../common/scratch.hpp"
+
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -18,7 +20,7 @@ struct Result {
 };
 
 std::string temp(const std::string& name) {
-  return ::testing::TempDir() + "demcal_cli_" + std::to_string(::getpid()) + "_" + name;
+  return demcal::test::scratch_path(name);
 }
 
 std::string slurp(const std::string& path) {

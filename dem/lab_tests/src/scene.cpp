@@ -1,6 +1,9 @@
 #include "demcal/dem/scene.hpp"
 
+#include <climits>
 #include <cstdint>
+#include <cstdlib>
+#include <algorithm>
 #include <cstdio>
 
 #include <cmath>
@@ -60,24 +63,38 @@ AggregateSpec aggregate_spec(const json& a, const std::string& where) {
 
 namespace {
 
-// Follows "extends" (relative to the extending file), at most this deep, so a cycle is an error.
-constexpr int kMaxExtends = 16;
+// The canonical path of a file, to recognise an "extends" cycle however its paths are spelled.
+std::string canonical_path(const std::string& path) {
+  char resolved[PATH_MAX];
+  return ::realpath(path.c_str(), resolved) ? std::string(resolved) : path;
+}
 
-json resolve_extends(const std::string& path, int depth) {
+// Follows "extends" (relative to the extending file). `chain` holds the files
+// already on the way, so a cycle is an error naming the file that closes it.
+json resolve_extends(const std::string& path, std::vector<std::string>& chain) {
+  const bool first = chain.empty();  // the file the user named
   json root = read_json_file(path, "scene file");
   if (!root.is_object()) throw Error(path + ": a scene must be a JSON object");
   if (!root.contains("extends")) return root;
   const json& base_name = root.at("extends");
   if (!base_name.is_string() || base_name.get<std::string>().empty())
     throw Error(path + ": \"extends\" must be the path of another scene file");
-  if (depth >= kMaxExtends)
-    throw Error(path + ": \"extends\" chain deeper than " + std::to_string(kMaxExtends) + " (a cycle?)");
   std::string base_path = base_name.get<std::string>();
   if (base_path[0] != '/') {
     const std::size_t slash = path.find_last_of('/');
     if (slash != std::string::npos) base_path = path.substr(0, slash + 1) + base_path;
   }
-  json merged = resolve_extends(base_path, depth + 1);
+  chain.push_back(canonical_path(path));
+  if (std::find(chain.begin(), chain.end(), canonical_path(base_path)) != chain.end())
+    throw Error(path + ": \"extends\": " + base_name.get<std::string>() + " extends this file again (a cycle)");
+  json merged;
+  try {
+    merged = resolve_extends(base_path, chain);
+  } catch (const Error& e) {
+    // Name the file the user gave first; the base's own message follows.
+    if (!first) throw;
+    throw Error(path + ": extends " + base_name.get<std::string>() + ": " + e.what());
+  }
   json patch = root;
   patch.erase("extends");
   merged.merge_patch(patch);  // RFC 7386
@@ -86,7 +103,10 @@ json resolve_extends(const std::string& path, int depth) {
 
 }  // namespace
 
-json Scene::resolved_json(const std::string& path) { return resolve_extends(path, 0); }
+json Scene::resolved_json(const std::string& path) {
+  std::vector<std::string> chain;
+  return resolve_extends(path, chain);
+}
 
 Scene Scene::load(const std::string& path) { return from_json(resolved_json(path), path); }
 
@@ -133,9 +153,10 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
                        origin);
   Scene scene;
   scene.origin_ = origin;
-  scene.fingerprint_ = scene_fingerprint(root);
-  scene.name_ = root.value("name", std::string("scene"));
   if (root.contains("name") && !root.at("name").is_string()) throw Error(origin + ": \"name\" must be a string");
+  if (root.contains("description") && !root.at("description").is_string())
+    throw Error(origin + ": \"description\" must be a string");
+  scene.name_ = root.value("name", std::string("scene"));
   if (!root.contains("test") || !root.at("test").is_string()) throw Error(origin + ": missing \"test\" (a string)");
   scene.test_ = root.at("test").get<std::string>();
   scene.lab_test_ = &LabTestRegistry::instance().find(scene.test_, origin);
@@ -151,6 +172,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     if (!params.is_object()) throw Error(origin + ": \"parameters\" must be an object of name: {value, low, high}");
     for (auto it = params.begin(); it != params.end(); ++it) {
       const std::string where = origin + ": parameters." + it.key();
+      if (!it.value().is_object()) throw Error(where + ": must be an object {value, low, high, unit}");
       require_known_fields(it.value(), {"value", "low", "high", "unit", "note"}, where);
       SceneParameter p;
       if (!it.value().contains("value")) throw Error(where + ": missing \"value\" (the default)");
@@ -220,20 +242,30 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     s.bond_gap_tolerance_m = number_field(l, "bond_gap_tolerance_m", s.bond_gap_tolerance_m, where);
     s.density_scaling_dt_s = number_field(l, "density_scaling_dt_s", s.density_scaling_dt_s, where);
     if (s.density_scaling_dt_s < 0) throw Error(where + ": density_scaling_dt_s must be >= 0");
-    if (!(s.platen_velocity_m_s > 0)) throw Error(where + ": platen_velocity_m_s must be positive");
+    // A quasi-static test: platens faster than 10 m/s would be an impact test.
+    if (!(s.platen_velocity_m_s > 0 && s.platen_velocity_m_s <= 10))
+      throw Error(where + ": platen_velocity_m_s must lie in (0, 10] m/s");
+    if (!(s.max_wall_s > 0)) throw Error(where + ": max_wall_s must be positive");
+    if (s.bond_gap_tolerance_m < 0) throw Error(where + ": bond_gap_tolerance_m must be >= 0");
     if (!(s.stop_fraction_of_peak > 0 && s.stop_fraction_of_peak < 1))
       throw Error(where + ": stop_fraction_of_peak must lie in (0, 1)");
     if (!(s.strain_limit > 0 && s.strain_limit < 0.5)) throw Error(where + ": strain_limit must lie in (0, 0.5)");
-    if (!(s.record_strain > 0)) throw Error(where + ": record_strain must be positive");
+    if (!(s.record_strain > 0 && s.record_strain < s.strain_limit))
+      throw Error(where + ": record_strain must lie in (0, strain_limit)");
   }
   // Evaluate everything once with the defaults, so a bad expression fails at load.
   std::map<std::string, double> defaults = scene.resolve({});
-  scene.specimen(defaults, 1).validate();
+  try {
+    scene.specimen(defaults, 1).validate();
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
   for (const auto& [pair, contact] : scene.contacts_) {
     // Building the model checks its parameters (names, signs) at load, not at the first run.
     const std::string where = origin + ": contacts." + pair;
     ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
   }
+  scene.fingerprint_ = scene_fingerprint(root);  // on the validated file
   return scene;
 }
 

@@ -43,17 +43,18 @@ inline Table read_data(const std::string& path) {
   std::ifstream probe(path);
   if (!probe) throw Error(path + ": cannot open data file");
   Table table = Table::read(path);
+  if (table.rows() == 0) throw Error(path + ": the data has no rows");
   if (table.statuses().empty()) return table;
   std::vector<std::size_t> ok;
+  for (std::size_t i = 0; i < table.rows(); ++i)
+    if (table.statuses()[i] == "ok") ok.push_back(i);
+  if (ok.empty())
+    throw Error(path + ": none of its " + std::to_string(table.rows()) + " rows has status ok; nothing to analyse");
   for (std::size_t i = 0; i < table.rows(); ++i) {
-    if (table.statuses()[i] == "ok") {
-      ok.push_back(i);
-      continue;
-    }
+    if (table.statuses()[i] == "ok") continue;
     std::string seed = table.has_column("seed") ? " seed " + std::to_string(static_cast<long long>(table.column("seed")[i])) : "";
     log::warn(path + ": run " + std::to_string(table.run_ids()[i]) + seed + " left out (" + table.statuses()[i] + ")");
   }
-  if (ok.empty()) throw Error(path + ": no row has status ok; nothing to analyse");
   return table.select_rows(ok);
 }
 

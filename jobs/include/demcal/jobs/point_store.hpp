@@ -23,8 +23,9 @@ struct PointSpec {
   std::string scene_fingerprint;         // Scene::fingerprint() of the scene it runs on
 };
 
-// The design's columns that are scene parameters; warns about the others
-// (coded and blank columns are expected and pass silently). Throws when none is.
+// The design's columns that are scene parameters. Throws a one-line error
+// naming the file for any other column (but NAME_coded and blank columns), a
+// design without runs, a run id twice, or a cell that is not a finite number.
 std::vector<std::string> design_parameter_columns(const dem::Scene& scene, const Table& design,
                                                   const std::string& design_path);
 
