@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "../common/error_of.hpp"
+
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +11,8 @@
 using demcal::Error;
 using demcal::ParameterSpace;
 using nlohmann::json;
+
+using demcal::test::error_of;
 
 namespace {
 
@@ -23,16 +27,6 @@ json valid_space() {
   })");
 }
 
-// The message of the Error thrown by `f`, or "" when nothing is thrown.
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 // space that must narrow the scene, and lab tests that report what they declare.
 #include <gtest/gtest.h>
 
+#include "../common/error_of.hpp"
+
 #include "../common/scratch.hpp"
 
 #include <unistd.h>
@@ -22,6 +24,8 @@ using namespace demcal;
 using namespace demcal::dem;
 using json = nlohmann::json;
 
+using demcal::test::error_of;
+
 namespace {
 
 std::string source(const std::string& relative) { return std::string(DEMCAL_SOURCE_DIR) + "/" + relative; }
@@ -37,14 +41,6 @@ std::string write(const std::string& name, const json& content) {
   return path;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

@@ -6,10 +6,14 @@
 // analysis prints.
 #include <gtest/gtest.h>
 
+#include "../common/error_of.hpp"
+
 #include "demcal/core/error.hpp"
 #include "demcal/doe/response_surface.hpp"
 #include "demcal/surrogate/response_surface.hpp"
 #include "fixtures.hpp"
+
+using demcal::test::error_of;
 
 namespace {
 
@@ -28,14 +32,6 @@ const AnovaRow& anova_row(const SurfaceFit& fit, const std::string& source) {
   throw std::runtime_error("no row " + source);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(ResponseSurface, RecoversAnExactQuadraticOnABoxBehnkenDesign) {
   doe::Design design = doe::box_behnken(3, -1);
