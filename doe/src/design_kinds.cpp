@@ -8,7 +8,8 @@ const std::vector<DesignKind>& design_kinds() {
   static const std::vector<DesignKind> kinds = {
       {"oa", "orthogonal-array", "orthogonal array (Rao-Hamming/Bose over GF(q), L18, L36, collapsed 3-level plans)", 1, 0,
        {"--runs", "--levels", "--blank", "--doubled-level"}, "--runs"},
-      {"fullfact", "full factorial", "full factorial", 1, 0, {"--levels"}, "product of the level counts (at most 1,000,000)"},
+      {"fullfact", "full factorial", "full factorial", 1, 0, {"--levels"},
+       "product of the level counts (at most 1,000,000)", 0, 1000000},
       {"fracfact", "fractional factorial", "2-level fractional factorial of maximal resolution", 2, 25, {"--runs", "--generators"},
        "--runs (a power of two) or 2^(factors - generators)"},
       {"pb", "Plackett-Burman", "Plackett-Burman screening design", 1, 0, {"--runs"}, "--runs, default the smallest above the factor count"},
@@ -17,8 +18,8 @@ const std::vector<DesignKind>& design_kinds() {
       {"bbd", "Box-Behnken", "Box-Behnken (BIBD for 6 and 7 factors)", 3, 7, {"--center"},
        "15, 27, 46, 54, 62 for 3..7 factors with Minitab's centre points"},
       {"lhs", "Latin hypercube", "Latin hypercube (random, centred, maximin, phi_p by ESE)", 1, 0, {"--runs", "--criterion", "--iterations"},
-       "--runs (at least 2)"},
-      {"sobol", "Sobol", "Owen-scrambled Sobol sequence", 1, 3667, {"--runs"}, "--runs (at least 2)"},
+       "--runs (at least 2)", 2},
+      {"sobol", "Sobol", "Owen-scrambled Sobol sequence", 1, 3667, {"--runs"}, "--runs (at least 2)", 2},
   };
   return kinds;
 }
@@ -38,6 +39,8 @@ nlohmann::json design_kinds_json() {
                      {"description", k.description},
                      {"min_factors", k.min_factors},
                      {"max_factors", k.max_factors > 0 ? nlohmann::json(k.max_factors) : nlohmann::json()},
+                     {"min_runs", k.min_runs > 0 ? nlohmann::json(k.min_runs) : nlohmann::json()},
+                     {"max_runs", k.max_runs > 0 ? nlohmann::json(k.max_runs) : nlohmann::json()},
                      {"options", k.options},
                      {"runs", k.runs}};
   return {{"kinds", kinds}};

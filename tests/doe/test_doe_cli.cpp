@@ -134,4 +134,8 @@ TEST(DemcalDoeCli, ListsEveryKindWithItsOptionsAndFactorLimits) {
   EXPECT_EQ(run("ccd --factors 10 --center 1" + out).code, 0);
   expect_one_line_error(run("ccd --factors 11" + out), "central composite designs need 2..10 factors (got 11)");
   expect_one_line_error(run("fracfact --factors 1" + out), "fractional factorial designs need 2..25 factors");
+  // Run limits as listed: an LHS needs at least 2 runs.
+  EXPECT_NE(r.out.find("\"lhs\": {\n      \"description\""), std::string::npos);
+  EXPECT_NE(r.out.find("\"min_runs\": 2"), std::string::npos) << r.out;
+  expect_one_line_error(run("lhs --factors 2 --runs 1" + out), "at least 2");
 }

@@ -15,12 +15,14 @@ struct DesignKind {
   int max_factors = 0;  // 0: no fixed limit (the run count bounds it)
   std::vector<std::string> options;  // command-line options that apply
   std::string runs;     // how many runs it makes
+  int min_runs = 0, max_runs = 0;  // limits of --runs or of the run count; 0: set by the factors alone
 };
 
 const std::vector<DesignKind>& design_kinds();
 // Throws "unknown design kind "X" (expected oa, ...)".
 const DesignKind& find_design_kind(const std::string& name);
-// {"kinds": {name: {description, min_factors, max_factors (null: none), options, runs}}}
+// {"kinds": {name: {title, description, min_factors, max_factors, min_runs, max_runs (null: no fixed
+// limit), options, runs}}}
 nlohmann::json design_kinds_json();
 
 }  // namespace demcal::doe
