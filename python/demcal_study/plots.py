@@ -30,6 +30,7 @@ def curves_png(runs_h5, out_png):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out_png, dpi=150)
+    plt.close(fig)  # as the other figures: a long-lived process would keep every figure open
     return None
 
 
