@@ -96,16 +96,25 @@ std::vector<PointSpec> design_points(const Table& design, const std::vector<std:
                                      const std::string& points_dir, const std::string& scene_fingerprint,
                                      int first_seed) {
   std::vector<PointSpec> points;
-  for (std::size_t row = 0; row < design.rows(); ++row)
-    for (int s = first_seed; s < first_seed + seeds; ++s) {
+  // A row that repeats an earlier one (a design's centre replicates) runs on
+  // the next block of seeds, so replicates are other specimens and a fit gets
+  // a pure error; rows that occur once keep seeds first..first+seeds-1.
+  std::map<std::map<std::string, double>, int> occurrences;
+  for (std::size_t row = 0; row < design.rows(); ++row) {
+    std::map<std::string, double> values;
+    for (const std::string& c : columns) values[c] = design.at(row, c);
+    const int replicate = occurrences[values]++;
+    const int first = first_seed + replicate * seeds;
+    for (int s = first; s < first + seeds; ++s) {
       PointSpec p;
       p.run = design.run_ids()[row];
       p.seed = static_cast<std::uint64_t>(s);
-      for (const std::string& c : columns) p.design[c] = design.at(row, c);
+      p.design = values;
       p.file = points_dir + "/run" + std::to_string(p.run) + "_seed" + std::to_string(p.seed) + ".json";
       p.scene_fingerprint = scene_fingerprint;
       points.push_back(p);
     }
+  }
   return points;
 }
 

@@ -17,6 +17,8 @@
 #include <thread>
 
 #include "demcal/core/hdf5_file.hpp"
+#include "demcal/core/table.hpp"
+#include "demcal/jobs/point_store.hpp"
 
 namespace {
 
@@ -182,4 +184,21 @@ TEST(DemcalDemBatch, ADesignColumnThatNamesNoSceneParameterIsAnError) {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find(design + ": column \"Ec_GPA\" is not a parameter of the scene"), std::string::npos) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+}
+
+TEST(DesignPoints, ReplicatedRowsRunOnOtherSpecimens) {
+  // Rows 2 and 4 repeat row 1 (a design's centre replicates): with 2 seeds per
+  // row, row 1 takes seeds 1-2, row 2 seeds 3-4, row 4 seeds 5-6; row 3 occurs
+  // once and keeps seeds 1-2, as every row did before replicates were told apart.
+  demcal::Table design(std::vector<int>{1, 2, 3, 4});
+  design.add_column("a", {0.5, 0.5, 0.7, 0.5});
+  design.add_column("b", {2.0, 2.0, 2.0, 2.0});
+  const auto points = demcal::jobs::design_points(design, {"a", "b"}, 2, "/tmp/p", "fp", 1);
+  ASSERT_EQ(points.size(), 8u);
+  std::vector<std::pair<int, std::uint64_t>> got;
+  for (const auto& p : points) got.push_back({p.run, p.seed});
+  const std::vector<std::pair<int, std::uint64_t>> want = {{1, 1}, {1, 2}, {2, 3}, {2, 4}, {3, 1}, {3, 2}, {4, 5}, {4, 6}};
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(points[2].file, "/tmp/p/run2_seed3.json");
+  EXPECT_EQ(points[4].design.at("a"), 0.7);
 }

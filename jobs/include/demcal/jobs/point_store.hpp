@@ -30,7 +30,9 @@ std::vector<std::string> design_parameter_columns(const dem::Scene& scene, const
                                                   const std::string& design_path);
 
 // Every (row, seed first_seed .. first_seed + seeds - 1) of the design, in row
-// order then seed order, with result files under points_dir.
+// order then seed order, with result files under points_dir. The k-th repeat
+// of an identical row (k = 1, 2, ...) takes seeds first_seed + k * seeds
+// onwards instead: replicates are distinct specimens.
 std::vector<PointSpec> design_points(const Table& design, const std::vector<std::string>& columns, int seeds,
                                      const std::string& points_dir, const std::string& scene_fingerprint,
                                      int first_seed = 1);
