@@ -1,10 +1,13 @@
 // demcal-verify: runs the DEM at a calibrated solution with several seeds and
-// writes the verification table (target, mean, SD, CV, relative error, pass).
+// writes the verification table (target, mean, SD, CV, 95 % interval, relative
+// error, pass, verdict). Seeds are added, up to --max-seeds, until every
+// output's interval is narrow enough to judge against the tolerance.
 #include <CLI/CLI.hpp>
 
 #include <set>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 
@@ -30,10 +33,16 @@ using nlohmann::json;
 struct Arguments {
   std::string solution, scene, space, out, csv, md, work, cache = "build/cache";
   std::vector<std::string> sets;
-  int seeds = 5, first_seed = 1, jobs = 2;
+  int seeds = 5, max_seeds = 20, first_seed = 1, jobs = 2;
   double tolerance = 0.05;
   bool quiet = false;
 };
+
+std::string one_decimal(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f", x);
+  return buffer;
+}
 
 std::map<std::string, double> numbers(const json& object, const std::string& where) {
   std::map<std::string, double> out;
@@ -47,6 +56,8 @@ std::map<std::string, double> numbers(const json& object, const std::string& whe
 
 int run(const Arguments& a) {
   if (a.seeds < 1) throw Error("--seeds must be at least 1");
+  if (a.max_seeds < a.seeds)
+    throw Error("--max-seeds (" + std::to_string(a.max_seeds) + ") must be at least --seeds (" + std::to_string(a.seeds) + ")");
   if (a.first_seed < 1) throw Error("--first-seed must be at least 1");
   if (!(a.tolerance > 0)) throw Error("--tolerance must be positive");
   const json solution = read_json_file(a.solution, "solution");
@@ -108,36 +119,60 @@ int run(const Arguments& a) {
   batch.out_path = work + "/runs.h5";
   batch.csv_path = work + "/runs.csv";
   batch.cache_dir = a.cache;
-  batch.seeds = a.seeds;
   batch.first_seed = a.first_seed;
   batch.jobs = a.jobs;
   batch.progress = !a.quiet;
-  jobs::BatchSummary summary = jobs::run_batch(batch);
-
-  std::vector<inverse::SeedRun> seeds;
-  for (int s = a.first_seed; s < a.first_seed + a.seeds; ++s) {
-    const json r = read_json_file(batch.out_path + ".points/run1_seed" + std::to_string(s) + ".json", "DEM result");
-    inverse::SeedRun run;
-    run.seed = static_cast<std::uint64_t>(s);
-    run.ok = r.value("status", std::string()) == "ok";
-    run.reason = r.value("reason", std::string());
-    if (r.contains("macro"))
-      for (auto it = r.at("macro").begin(); it != r.at("macro").end(); ++it)
-        if (it.value().is_number()) run.macro[it.key()] = it.value().get<double>();
-    seeds.push_back(run);
-  }
   std::map<std::string, double> predicted;
   if (solution.contains("predicted"))
     for (auto it = solution.at("predicted").begin(); it != solution.at("predicted").end(); ++it)
       if (it.value().is_number()) predicted[it.key()] = it.value().get<double>();
-  inverse::Verification v = inverse::verify(targets, predicted, seeds, a.tolerance);
+
+  // Run n seeds (the batch resumes, so only the new ones run) and judge them.
+  double wall_s = 0.0;
+  auto judge = [&](int n) {
+    batch.seeds = n;
+    wall_s += jobs::run_batch(batch).wall_s;
+    std::vector<inverse::SeedRun> seeds;
+    for (int s = a.first_seed; s < a.first_seed + n; ++s) {
+      const json r = read_json_file(batch.out_path + ".points/run1_seed" + std::to_string(s) + ".json", "DEM result");
+      inverse::SeedRun run;
+      run.seed = static_cast<std::uint64_t>(s);
+      run.ok = r.value("status", std::string()) == "ok";
+      run.reason = r.value("reason", std::string());
+      if (r.contains("macro"))
+        for (auto it = r.at("macro").begin(); it != r.at("macro").end(); ++it)
+          if (it.value().is_number()) run.macro[it.key()] = it.value().get<double>();
+      seeds.push_back(run);
+    }
+    return inverse::verify(targets, predicted, seeds, a.tolerance);
+  };
+  inverse::Verification v = judge(a.seeds);
+  for (;;) {
+    const int have = static_cast<int>(v.seeds.size());
+    const int want = inverse::seeds_wanted(v, a.max_seeds);
+    if (want <= have) {
+      v.seeds_stop_reason = inverse::interval_outside_band(v) ? "an interval lies outside the band"
+                            : have >= a.max_seeds          ? "--max-seeds reached"
+                                                            : "every half-width within the tolerance";
+      break;
+    }
+    if (!a.quiet) {
+      std::string widths;
+      for (const inverse::VerificationRow& r : v.rows)
+        widths += (widths.empty() ? "" : ", ") + r.output + " " + one_decimal(r.half_width_pct) + " %";
+      log::info("verification: " + std::to_string(have) + " seeds give 95 % half-widths " + widths + "; running " +
+                std::to_string(want - have) + " more (tolerance " + one_decimal(100 * a.tolerance) + " %)");
+    }
+    v = judge(want);
+  }
 
   json out = inverse::verification_json(v);
   out["parameters"] = point;
   out["scene"] = a.scene;
   out["solution"] = a.solution;
   out["runs"] = batch.out_path;
-  out["wall_s"] = summary.wall_s;
+  out["wall_s"] = wall_s;
+  out["max_seeds"] = a.max_seeds;
   write_file_atomically(a.out, out.dump(2) + "\n");
   if (!a.csv.empty()) write_file_atomically(a.csv, inverse::verification_csv(v));
   const std::string table = inverse::verification_markdown(v);
@@ -152,14 +187,17 @@ int main(int argc, char** argv) {
   log::set_program("demcal-verify");
   Arguments a;
   CLI::App app{"demcal-verify: the DEM at a calibrated solution over several seeds, against the targets.\n"
-               "  demcal-verify --solution SOLUTION.json --scene S.json [--space S.json] [--seeds 5] [--tolerance 0.05]\n"
+               "  demcal-verify --solution SOLUTION.json --scene S.json [--space S.json] [--seeds 5] [--max-seeds 20] [--tolerance 0.05]\n"
                "                --out VERIFY.json [--csv V.csv] [--md V.md]",
                "demcal-verify"};
   app.add_option("--solution", a.solution, "SOLUTION.json of demcal-invert (x, targets, predicted)")->required();
   app.add_option("--scene", a.scene, "the DEM scene the solution's parameters belong to")->required();
   app.add_option("--space", a.space, "parameter space whose fixed and tied values complete the point");
   app.add_option("--set", a.sets, "NAME=VALUE for another scene parameter (repeatable)");
-  app.add_option("--seeds", a.seeds, "DEM seeds S..S+K-1 (S: --first-seed)")->capture_default_str();
+  app.add_option("--seeds", a.seeds, "DEM seeds S..S+K-1 to start with (S: --first-seed)")->capture_default_str();
+  app.add_option("--max-seeds", a.max_seeds,
+                 "add seeds up to this many until every output's 95 % half-width is within the tolerance")
+      ->capture_default_str();
   app.add_option("--first-seed", a.first_seed,
                  "first DEM seed (after a calibration on specimens 1..n, verify on others: n + 1)")
       ->capture_default_str();

@@ -92,7 +92,9 @@ def invert(tools, inversion, targets, space, out, models=(), dem=None, seed=None
 def verify(tools, solution, scene, space, verification, work, out, md=None, csv=None, quiet=False):
     """demcal-verify: the DEM at a solution over the seeds of config/verification.json."""
     args = [tools.program("demcal-verify"), "--solution", solution, "--scene", scene, "--space", space,
-            "--seeds", str(verification["seeds"]), "--first-seed", str(verification.get("first_seed", 1)),
+            "--seeds", str(verification["seeds"]),
+            "--max-seeds", str(verification.get("max_seeds", max(20, verification["seeds"]))),
+            "--first-seed", str(verification.get("first_seed", 1)),
             "--tolerance", str(verification["tolerance"]), "--jobs", tools.jobs, "--cache", tools.cache,
             "--work", work]
     if md:

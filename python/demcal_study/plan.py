@@ -191,8 +191,10 @@ def calibration_rules(study, scene, space, cfg, out, code, models):
              "\t" + for_make(invert) + " || case $$? in 3|4) ;; *) exit 1 ;; esac", ""]
     ver = study.get("verification", {})
     # In the loop the optimiser saw specimens 1..n: verify on others.
+    # Seeds are added up to max_seeds until every 95 % interval is as narrow as the tolerance.
     verification = {"seeds": int(ver.get("seeds", 5)), "tolerance": float(ver.get("tolerance", 0.05)),
                     "scene": study["scene"], "first_seed": seeds + 1 if loop else 1}
+    verification["max_seeds"] = int(ver.get("max_seeds", max(20, verification["seeds"])))
     write_if_changed(os.path.join(cfg, "verification.json"), json.dumps(verification) + "\n")
     rules += [f"$(D)/verification.json: $(D)/solution.json $(D)/config/verification.json {study['scene']}",
               "\t" + for_make(commands.verify(IN_MAKE, "$<", study["scene"], "$(D)/config/space_inversion.json",

@@ -57,7 +57,7 @@ def refine(out):
         if subprocess.run(cmd).returncode != 0:
             fail(f"refinement round {k}: demcal-verify failed")
         v = load_json(ver, "verification")
-        record["rounds"].append({"round": k, "data_points": len(rows), "dem_runs": verification["seeds"],
+        record["rounds"].append({"round": k, "data_points": len(rows), "dem_runs": len(v["seeds"]),
                                  "passed": v["passed"],
                                  "relative_error_pct": {o: r["relative_error_pct"] for o, r in v["outputs"].items()}})
         print(f"refinement round {k}: " + ", ".join(f"{o} {r['relative_error_pct']:+.2f} %" for o, r in v["outputs"].items())

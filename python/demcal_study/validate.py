@@ -13,6 +13,10 @@ def validate(study, path):
     schema.check(study, path)
     where = path
     check_strategy_fields(study, where)
+    ver = study.get("verification", {})
+    if ver.get("max_seeds", 10**9) < ver.get("seeds", 5):
+        fail(f"{where}: verification.max_seeds ({ver['max_seeds']}) must be at least verification.seeds "
+             f"({ver.get('seeds', 5)})")
     try:
         scene = executables.describe(study["scene"], study["space"])
     except executables.ToolError as e:  # demcal-dem names the scene or space file: name the study's field too

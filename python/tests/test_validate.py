@@ -50,6 +50,7 @@ SCHEMA_CASES = [
     (lambda d: d.update(fixed="refrence"), 'fixed must be "reference" or an object of parameter: value'),
     (lambda d: d.update(fixed={"mu": "high"}), "fixed.mu: 'high' is not of type 'number'"),
     (lambda d: d["verification"].update(seeds=1), "verification.seeds must be at least 2"),
+    (lambda d: d["verification"].update(seeds=5, max_seeds=3), "verification.max_seeds (3) must be at least verification.seeds (5)"),
     (lambda d: d.update(screening={"design": {"kind": "oa"}, "outputs": ["nu"], "p_threshold": 1.5}),
      "screening.p_threshold must lie in (0, 1)"),
     (lambda d: d.update(strategy="dem-in-loop"), "strategy must be one of dem_in_the_loop, surrogate"),

@@ -111,7 +111,7 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
                                    "targets": {"sigma_u_MPa": 15, "E_GPa": 20}, "predicted": {"sigma_u_MPa": 15}})";
   }
   std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
-  auto r = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --jobs 2 --out " + out +
+  auto r = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --max-seeds 2 --jobs 2 --out " + out +
                                             " --md " + md + " --cache " + temp_path("verify_cache") + " --quiet");
   ASSERT_EQ(r.code, 0) << r.err;
   nlohmann::json v = read_json(out);
@@ -124,7 +124,7 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
 
   // Other specimens (after a calibration on seed 1, say): seeds 3 and 4, not 1 and 2.
   const std::string later = temp_path("verify_later.json");
-  auto l = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --first-seed 3 --jobs 2 " +
+  auto l = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --max-seeds 2 --first-seed 3 --jobs 2 " +
                                             "--out " + later + " --cache " + temp_path("verify_cache") + " --quiet");
   ASSERT_EQ(l.code, 0) << l.err;
   nlohmann::json w = read_json(later);
@@ -133,12 +133,51 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
   EXPECT_EQ(w["seeds"][1]["seed"], 4);
   EXPECT_NE(w["outputs"]["sigma_u_MPa"]["mean"], v["outputs"]["sigma_u_MPa"]["mean"]);
 
+  EXPECT_EQ(w["seeds_stop_reason"], "--max-seeds reached");
+  EXPECT_TRUE(w["outputs"]["sigma_u_MPa"]["ci95_low"].get<double>() < w["outputs"]["sigma_u_MPa"]["mean"].get<double>());
+
   std::string bad = temp_path("verify_bad.json");
   {
     std::ofstream(bad) << R"({"x": {"density": 1}, "targets": {"E_GPa": 20}})";
   }
   expect_one_line_error(run_program("demcal-verify", "--solution " + bad + " --scene " + scene + " --out " + out),
                         "demcal-verify", "unknown parameter \"density\"");
+  expect_one_line_error(run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 5 " +
+                                                         "--max-seeds 3 --out " + out),
+                        "demcal-verify", "--max-seeds (3) must be at least --seeds (5)");
+}
+
+TEST(DemcalVerify, AddsSeedsUntilTheIntervalIsNarrowOrTheLimit) {
+  // Two seeds first, to learn the mean; then a target at that mean with a
+  // tolerance no spread can meet: the mean is inside the band, the interval is
+  // not narrow enough, so seeds are added (seeds 1 and 2 reused) up to --max-seeds.
+  const std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+  const std::string first = temp_path("verify_grow_first.json"), solution = temp_path("verify_grow_solution.json");
+  const std::string work = temp_path("verify_grow_runs"), cache = temp_path("verify_cache");
+  {
+    std::ofstream(first) << R"({"x": {"pb_sigma_c_MPa": 12, "pb_tau_c_MPa": 30}, "targets": {"sigma_u_MPa": 15}})";
+  }
+  auto r = run_program("demcal-verify", "--solution " + first + " --scene " + scene + " --seeds 2 --max-seeds 2 --jobs 2 " +
+                                            "--work " + work + " --out " + temp_path("verify_grow_a.json") + " --cache " + cache +
+                                            " --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const double mean = read_json(temp_path("verify_grow_a.json"))["outputs"]["sigma_u_MPa"]["mean"].get<double>();
+  {
+    nlohmann::json s = {{"x", {{"pb_sigma_c_MPa", 12}, {"pb_tau_c_MPa", 30}}}, {"targets", {{"sigma_u_MPa", mean}}}};
+    std::ofstream(solution) << s.dump();
+  }
+  const std::string out = temp_path("verify_grow_b.json");
+  auto g = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --max-seeds 4 " +
+                                            "--tolerance 1e-9 --jobs 2 --work " + work + " --out " + out + " --cache " + cache);
+  ASSERT_EQ(g.code, 0) << g.err;
+  nlohmann::json v = read_json(out);
+  ASSERT_EQ(v["seeds"].size(), 4u);
+  EXPECT_EQ(v["seeds"][3]["seed"], 4);
+  EXPECT_EQ(v["seeds_stop_reason"], "--max-seeds reached");
+  EXPECT_EQ(v["outputs"]["sigma_u_MPa"]["runs"], 4);
+  EXPECT_EQ(v["outputs"]["sigma_u_MPa"]["verdict"], "outside");  // the 4-seed mean moved off a 1e-9 band
+  EXPECT_NE(g.err.find("2 seeds give 95 % half-widths sigma_u_MPa"), std::string::npos) << g.err;
+  EXPECT_NE(g.err.find("resuming: 2 of 4 points already done"), std::string::npos) << g.err;
 }
 
 }  // namespace
