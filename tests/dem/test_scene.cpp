@@ -199,6 +199,12 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["unit"], "MPa");
   EXPECT_EQ(d["outputs"]["reached_strain_limit"]["optional"], true);
   EXPECT_EQ(d["contacts"]["disk-disk"]["model"], "parallel_bond");
+  EXPECT_EQ(d["parameters"]["Ec_GPa"]["shapes_specimen"], false);
+  // Radii given by parameters: each value is another packing.
+  json rock = describe_scene(Scene::load(source("tests/data/ucs_rock_cb_small.json")));
+  EXPECT_EQ(rock["parameters"]["R_min_m"]["shapes_specimen"], true);
+  EXPECT_EQ(rock["parameters"]["R_max_over_R_min"]["shapes_specimen"], true);
+  EXPECT_EQ(rock["parameters"]["cb_sigma_c_mean_Pa"]["shapes_specimen"], false);
   json registries = describe_registries();
   EXPECT_EQ(registries["tests"], json({"ucs", "brazilian"}));
   EXPECT_EQ(registries["contact_models"], json({"linear", "parallel_bond", "contact_bond"}));

@@ -16,7 +16,7 @@ nlohmann::json describe_scene(const Scene& scene) {
   out["parameters"] = json::object();
   for (const auto& [name, p] : scene.parameters()) {
     json item = {{"unit", p.unit}, {"quantity", quantity_name(p.quantity)}, {"stress_like", is_stress_like(p.quantity)},
-                 {"value", p.value}, {"low", p.low}, {"high", p.high}};
+                 {"value", p.value}, {"low", p.low}, {"high", p.high}, {"shapes_specimen", scene.shapes_specimen(name)}};
     if (!p.note.empty()) item["note"] = p.note;
     out["parameters"][name] = item;
   }

@@ -375,4 +375,15 @@ SpecimenSpec Scene::specimen(const std::map<std::string, double>& parameters, st
   return spec;
 }
 
+bool Scene::shapes_specimen(const std::string& parameter) const {
+  for (auto it = specimen_.begin(); it != specimen_.end(); ++it) {
+    if (!it.value().is_string()) continue;
+    std::stringstream stream(it.value().get<std::string>());
+    std::string factor;
+    while (std::getline(stream, factor, '*'))
+      if (factor == parameter) return true;
+  }
+  return false;
+}
+
 }  // namespace demcal::dem

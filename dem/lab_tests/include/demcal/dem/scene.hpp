@@ -117,6 +117,11 @@ class Scene {
   nlohmann::json bind(const ContactSpec& contact, const std::map<std::string, double>& parameters,
                       const std::string& where) const;
   SpecimenSpec specimen(const std::map<std::string, double>& parameters, std::uint64_t seed) const;
+  // Whether the parameter enters the specimen (its size, radii, porosity,
+  // density): each value is then another packing, not the same specimen
+  // with other contacts. A calibration keeps such parameters fixed unless
+  // its space varies them.
+  bool shapes_specimen(const std::string& parameter) const;
 
  private:
   std::string origin_, name_, test_, fingerprint_;
