@@ -43,6 +43,15 @@ const char* quantity_name(Quantity q) {
   return "unknown";
 }
 
+double si_factor_of_unit(const std::string& unit, const std::string& where) {
+  quantity_of_unit(unit, where);  // an unknown unit is an error here too
+  if (unit == "kPa") return 1e3;
+  if (unit == "MPa") return 1e6;
+  if (unit == "GPa") return 1e9;
+  if (unit == "mm") return 1e-3;
+  return 1.0;
+}
+
 bool is_stress_like(Quantity q) { return q == Quantity::Stress || q == Quantity::Stiffness; }
 
 std::vector<std::string> known_units() {

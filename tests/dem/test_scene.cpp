@@ -200,6 +200,10 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   EXPECT_EQ(d["outputs"]["reached_strain_limit"]["optional"], true);
   EXPECT_EQ(d["contacts"]["disk-disk"]["model"], "parallel_bond");
   EXPECT_EQ(d["parameters"]["Ec_GPa"]["shapes_specimen"], false);
+  EXPECT_EQ(d["parameters"]["Ec_GPa"]["si_factor"], 1e9);
+  EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["stress_like"], true);
+  EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["si_factor"], 1e6);
+  EXPECT_EQ(d["outputs"]["nu"]["stress_like"], false);
   // Radii given by parameters: each value is another packing.
   json rock = describe_scene(Scene::load(source("tests/data/ucs_rock_cb_small.json")));
   EXPECT_EQ(rock["parameters"]["R_min_m"]["shapes_specimen"], true);

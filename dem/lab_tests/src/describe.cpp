@@ -16,13 +16,16 @@ nlohmann::json describe_scene(const Scene& scene) {
   out["parameters"] = json::object();
   for (const auto& [name, p] : scene.parameters()) {
     json item = {{"unit", p.unit}, {"quantity", quantity_name(p.quantity)}, {"stress_like", is_stress_like(p.quantity)},
-                 {"value", p.value}, {"low", p.low}, {"high", p.high}, {"shapes_specimen", scene.shapes_specimen(name)}};
+                 {"value", p.value}, {"low", p.low}, {"high", p.high}, {"shapes_specimen", scene.shapes_specimen(name)},
+                 {"si_factor", si_factor_of_unit(p.unit, name)}};
     if (!p.note.empty()) item["note"] = p.note;
     out["parameters"][name] = item;
   }
   out["outputs"] = json::object();
   for (const OutputSpec& o : scene.lab_test().outputs(scene)) {
-    json item = {{"unit", o.unit}, {"description", o.description}};
+    const Quantity q = quantity_of_unit(o.unit, "output " + o.name);
+    json item = {{"unit", o.unit}, {"description", o.description}, {"quantity", quantity_name(q)},
+                 {"stress_like", is_stress_like(q)}, {"si_factor", si_factor_of_unit(o.unit, o.name)}};
     if (!o.always) item["optional"] = true;
     out["outputs"][o.name] = item;
   }

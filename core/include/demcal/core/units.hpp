@@ -17,6 +17,8 @@ Quantity quantity_of_unit(const std::string& unit, const std::string& where);
 const char* quantity_name(Quantity q);
 // True for quantities that scale with stress (stress and stiffness).
 bool is_stress_like(Quantity q);
+// What one of the unit is in SI ("MPa" -> 1e6, "mm" -> 1e-3, "1" -> 1).
+double si_factor_of_unit(const std::string& unit, const std::string& where);
 // The units quantity_of_unit accepts, in a stable order.
 std::vector<std::string> known_units();
 
