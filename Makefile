@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean study
+.PHONY: all deps configure build test demo bench sanitize clean study calibrate
 
 all: build
 
@@ -30,6 +30,18 @@ demo: build
 STUDY ?= data/studies/demo.json
 study: build
 	@scripts/run_study.sh $(STUDY) $(BUILD) $(JOBS)
+
+# One scene and its targets, no study file (docs/calibration.md); resumable, exit 0 met, 3 unreachable, 4 budget:
+#   make calibrate SCENE=data/scenes/ucs_rock_cb.json TARGETS="sigma_u_MPa=48 E_GPa=6.5 nu=0.27"
+#                  [SPACE=...] [FIXED="R_min_m=0.00075 ..."] [TOLERANCE=0.05] [BUDGET=80] [NAME=...]
+TOLERANCE ?= 0.05
+BUDGET    ?= 80
+calibrate: build
+	@test -n "$(SCENE)" -a -n "$(TARGETS)" || { echo 'make calibrate: give SCENE=... and TARGETS="NAME=VALUE ..."' >&2; exit 2; }
+	BIN=$(BUILD)/bin JOBS=$(JOBS) CACHE=$(BUILD)/cache PYTHONPATH=python /usr/bin/python3 -m demcal_study calibrate \
+	  --scene $(SCENE) $(foreach t,$(TARGETS),--target $(t)) $(if $(SPACE),--space $(SPACE)) \
+	  $(foreach f,$(FIXED),--fixed $(f)) --tolerance $(TOLERANCE) --budget $(BUDGET) $(if $(NAME),--name $(NAME)) \
+	  --out-root $(BUILD)/calibrations
 
 bench: build
 	@scripts/bench.sh $(BUILD)

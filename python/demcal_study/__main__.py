@@ -21,6 +21,17 @@ def parser():
                        ("refine", "while verification fails: add its DEM runs, refit, re-invert, re-verify"),
                        ("report", "OUT_DIR/report.md and a self-contained report.html")):
         sub.add_parser(name, help=what).add_argument("out", metavar="OUT_DIR")
+    cal = sub.add_parser("calibrate", help="a scene and its targets to verified micro-parameters (no study file)")
+    cal.add_argument("--scene", required=True, metavar="SCENE.json")
+    cal.add_argument("--target", action="append", metavar="NAME=VALUE", help="a target (repeatable)")
+    cal.add_argument("--space", metavar="SPACE.json", help="ranges to search (default: the scene's physical bounds)")
+    cal.add_argument("--fixed", action="append", metavar="NAME=VALUE", help="a parameter held at a value")
+    cal.add_argument("--tolerance", type=float, default=0.05, help="largest relative error that passes (0.05)")
+    cal.add_argument("--budget", type=int, default=80, help="most DEM runs in all, failed ones counted (80)")
+    cal.add_argument("--scale-parameter", metavar="NAME", help="the stress-like parameter the others are ratios to")
+    cal.add_argument("--name", help="folder name under --out-root (default: the scene's name and the targets)")
+    cal.add_argument("--out-root", default="build/calibrations")
+    cal.add_argument("--quiet", action="store_true")
     return p
 
 
@@ -44,15 +55,20 @@ def run(args):
     elif args.command == "report":
         from .report import report
         report(args.out)
+    elif args.command == "calibrate":
+        from .calibrate import calibrate
+        return calibrate(args)
+    return 0
 
 
 def main(argv=None):
     args = parser().parse_args(argv)
     try:
-        run(args)
+        code = run(args)
     except StudyError as e:
         print(f"demcal_study: error: {str(e).replace(chr(10), ' ')}", file=sys.stderr)
         sys.exit(2)
+    sys.exit(code or 0)
 
 
 if __name__ == "__main__":

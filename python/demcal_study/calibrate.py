@@ -1,0 +1,422 @@
+"""calibrate: one command from a scene and targets to verified micro-parameters, no study file.
+
+    python -m demcal_study calibrate --scene S.json --target sigma_u_MPa=48 --target E_GPa=6.5 --target nu=0.27
+                                     [--space SP.json] [--fixed NAME=VALUE ...] [--tolerance 0.05] [--budget 80]
+                                     [--name NAME] [--out-root build/calibrations]
+
+The strategy (docs/calibration.md):
+1. dimensionless form (calibration_problem.py): ratios of the stress-like parameters to a scale parameter against
+   dimensionless targets; the scale factor that meets the scale target (E) is exact, so it costs no DEM run;
+2. a trust region on common specimen 1 (trust_region.py): a small space-filling design around the reference, then
+   each round one candidate (the Gauss-Newton step of a local linear model fitted with weights near the centre) and
+   one point that keeps the model's slopes determined, until specimen 1 meets the targets within a third of the
+   tolerance, or the box has shrunk;
+3. verification on fresh seeds (demcal-verify: 5 to start, seeds added until the 95 % interval is narrower than the
+   tolerance); when it fails, the offset between those specimens' mean and specimen 1 corrects the model and the
+   corrected candidate is verified on other fresh seeds, until the targets are met or the budget is spent.
+
+Exit 0 met, 3 unreachable (the report says what the model reaches), 4 budget spent. Rerunning resumes: every
+decision is a function of the stored DEM results, and the batches repeat no finished point."""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from . import calibrate_runs, commands, executables, trust_region
+from .calibration_problem import Problem
+from .errors import fail, load_json
+from .files import write_target
+
+INITIAL_RADIUS = 0.25    # coded units: +- a quarter of each coordinate's half-range (about a decade of a ratio)
+SMALLEST_RADIUS = 0.01
+# The local fit weighs points within about this many coded units even when the step box is smaller: slopes from
+# a few close points would be mostly specimen noise, and a correction step or a scale factor built on them misses.
+SMALLEST_FIT_RADIUS = 0.125
+CRN_FRACTION = 1.0 / 3.0  # specimen 1 must meet the targets within this fraction of the tolerance
+MAX_ROUNDS = 12
+FIRST_VERIFICATION_SEEDS = 5
+MAX_VERIFICATION_SEEDS = 20
+EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
+
+
+def parse_assignments(items, what):
+    out = {}
+    for item in items or []:
+        for part in item.split():
+            name, sep, value = part.partition("=")
+            try:
+                out[name] = float(value)
+            except ValueError:
+                sep = ""
+            if not sep or not name:
+                fail(f"{what}: \"{part}\" is not NAME=NUMBER")
+    return out
+
+
+def default_name(scene, targets):
+    base = os.path.splitext(os.path.basename(scene))[0]
+    return base + "_" + "_".join(f"{k}{v:g}" for k, v in sorted(targets.items()))
+
+
+class Calibration:
+    def __init__(self, config, out, tools, quiet=False):
+        self.config, self.out, self.tools, self.quiet = config, out, tools, quiet
+        self.scene = config["scene"]
+        description = executables.describe(self.scene, config.get("space"))
+        space = load_json(config["space"], "parameter space") if config.get("space") else None
+        self.problem = Problem(description, config["targets"], space=space, fixed=config.get("fixed"),
+                               scale_parameter=config.get("scale_parameter"), where=config.get("where", "calibrate"))
+        self.tolerance = config["tolerance"]
+        self.budget = config["budget"]
+        self.points = []   # every DEM point on specimen 1: {"u", "scale", "status", "outputs", "round"}
+        self.rounds = []   # what each round decided
+        self.verifications = []
+        self.runs = 0
+        self.started = time.time()
+
+    def say(self, message):
+        if not self.quiet:
+            print(f"calibrate: {message}", file=sys.stderr, flush=True)
+
+    # -- models and residuals --------------------------------------------------------------------------------------
+    def modelled(self, outputs, scale):
+        return {o: self.problem.to_model(o, outputs[o], scale) for o in self.problem.modelled_outputs()}
+
+    def usable(self):
+        rows = []
+        for p in self.points:
+            if p["status"] != "ok" or any(o not in p["outputs"] for o in self.problem.modelled_outputs()):
+                continue
+            z = self.modelled(p["outputs"], p["scale"])
+            if all(math.isfinite(v) for v in z.values()):
+                rows.append((p["u"], [z[o] for o in self.problem.modelled_outputs()]))
+        return rows
+
+    def fit(self, centre, radius):
+        rows = self.usable()
+        if len(rows) < 2:
+            fail(f"{self.out}: fewer than two DEM points ran; see the round folders for the reasons")
+        return trust_region.fit_local([r[0] for r in rows], [r[1] for r in rows], np.asarray(centre),
+                                      max(radius, SMALLEST_FIT_RADIUS))
+
+    def z_of(self, model, u, offset):
+        values = model.predict(u) + offset
+        return dict(zip(self.problem.modelled_outputs(), values))
+
+    def residuals_at(self, model, u, offset):
+        return np.asarray(self.problem.residuals(self.z_of(model, u, offset)))
+
+    def jacobian(self, model, u, offset):
+        r0 = self.residuals_at(model, u, offset)
+        cols = []
+        for i in range(len(u)):
+            e = np.array(u, float)
+            e[i] += 1.0
+            cols.append(self.residuals_at(model, e, offset) - r0)  # exact: the model is linear in u
+        return r0, np.array(cols).T if cols else np.zeros((len(r0), 0))
+
+    def residual_noise(self, model):
+        """SD of each residual on one specimen, from the local fit's scatter (responses taken as independent)."""
+        names = self.problem.modelled_outputs()
+        z0 = dict(zip(names, model.intercept))
+        r0 = np.asarray(self.problem.residuals(z0))
+        var = np.zeros(len(r0))
+        for j, name in enumerate(names):
+            z = dict(z0)
+            z[name] += 1.0
+            var += (np.asarray(self.problem.residuals(z)) - r0) ** 2 * model.sigma2[j]
+        return np.sqrt(var)
+
+    def measured_residuals(self, point):
+        if point["status"] != "ok":
+            return None
+        return np.asarray(self.problem.residuals(self.modelled(point["outputs"], point["scale"])))
+
+    def scale_at(self, model, u, offset):
+        s = self.problem.scale_for(self.z_of(model, u, offset))
+        low, high = self.problem.scale_interval(u)
+        return min(max(s, low), high), (low, high), s
+
+    # -- DEM ---------------------------------------------------------------------------------------------------------
+    def run_round(self, label, entries):
+        """entries: (u, scale). Runs them on specimen 1 and records them."""
+        if self.runs + len(entries) > self.budget:
+            entries = entries[:max(self.budget - self.runs, 0)]
+        if not entries:
+            return []
+        params = [self.problem.absolute(u, s) for u, s in entries]
+        results = calibrate_runs.run_points(self.tools, self.scene, os.path.join(self.out, "rounds", label), params,
+                                            self.quiet)
+        self.runs += len(entries)
+        added = []
+        for (u, s), r in zip(entries, results):
+            p = {"u": [float(x) for x in u], "scale": float(s), "status": r["status"], "outputs": r["outputs"],
+                 "reason": r["reason"], "round": label}
+            self.points.append(p)
+            added.append(p)
+        return added
+
+    def initial_design(self, centre):
+        d = len(centre)
+        n = 2 * d  # a linear model has d + 1 coefficients: the rest estimate the noise the slopes are judged by
+        path = os.path.join(self.out, "rounds", "design_lhs.csv")
+        if not os.path.exists(path) and d > 0:
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            cmd = [self.tools.program("demcal-doe"), "lhs", "--factors", str(d), "--runs", str(n), "--criterion",
+                   "maximin", "--seed", "1", "--out", path, "--quiet"]
+            if subprocess.run(cmd).returncode != 0:
+                fail(f"{path}: demcal-doe lhs failed")
+        if d == 0:
+            return []
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        out = []
+        for row in rows:
+            coded = np.array([float(row[f"x{i + 1}"]) for i in range(d)])
+            out.append(np.clip(centre + INITIAL_RADIUS * coded, -1.0, 1.0))
+        return out
+
+    # -- the strategy --------------------------------------------------------------------------------------------
+    def run(self):
+        p = self.problem
+        centre = np.array(p.reference_point())
+        self.say(f"{len(p.coordinates)} coordinates ({', '.join(c.name for c in p.coordinates)}), scale parameter "
+                 f"{p.scale_parameter or '-'} fitted to {p.scale_target or '-'}; dimensionless targets "
+                 + ", ".join(f"{k} {v:.4g}" for k, v in p.dimensionless_targets().items()))
+        first = self.run_round("r00_reference", [(centre, 1.0)])
+        wall = self.point_wall_s("r00_reference")
+        design = self.initial_design(centre)
+        planned = 1 + len(design) + 2 * MAX_ROUNDS
+        self.say(f"planned DEM runs: 1 reference + {len(design)} design + up to {MAX_ROUNDS} rounds of 2 on specimen 1,"
+                 f" then verification on {FIRST_VERIFICATION_SEEDS}-{MAX_VERIFICATION_SEEDS} fresh seeds per round;"
+                 f" at most {self.budget} in all. One run took {wall:.1f} s: about "
+                 f"{self.estimate_min(min(self.budget, planned + 2 * MAX_VERIFICATION_SEEDS), wall):.1f} min at most "
+                 f"with {self.tools.jobs} job(s)")
+        if first and first[0]["status"] != "ok":
+            self.say(f"the reference point failed: {first[0]['reason']}")
+        self.run_round("r01_design", [(u, 1.0) for u in design])
+        radius = INITIAL_RADIUS
+        best = self.best_point()
+        if best is None:
+            return self.finish("failed", "no DEM point of the first design ran", EXIT_UNREACHABLE)
+        centre = np.array(best["u"])
+        converged, blocked = False, False
+        reserve = min(FIRST_VERIFICATION_SEEDS + 10, self.budget // 3)
+        rejected = 0
+        for k in range(2, 2 + MAX_ROUNDS):
+            current = self.measured_residuals(best)
+            model = self.fit(centre, radius)
+            # Close enough on specimen 1: within a third of the tolerance, or within what the scatter of nearby
+            # points lets the model tell apart (the verification's offset does the rest).
+            noise = self.residual_noise(model)
+            if np.all(np.abs(current) <= np.maximum(CRN_FRACTION * self.tolerance, noise)) or (
+                    rejected >= 2 and np.max(np.abs(current)) <= self.tolerance):
+                converged = True
+                break
+            if self.runs + 2 > self.budget - reserve:
+                break
+            offset = np.zeros(len(p.modelled_outputs()))
+            r0, jac = self.jacobian(model.significant(), centre, offset)
+            delta, predicted, held = trust_region.step(r0, jac, centre, radius)
+            candidate = np.clip(centre + delta, -1, 1)
+            at_bounds = [p.coordinates[i].name for i in held if abs(candidate[i]) >= 1 - 1e-9]
+            step_length = float(np.max(np.abs(delta))) if len(delta) else 0.0
+            if at_bounds and step_length < SMALLEST_RADIUS and np.max(np.abs(predicted)) > self.tolerance:
+                blocked = True  # the model would leave the space to go on: nothing left to try inside it
+                break
+            s, _, _ = self.scale_at(model, candidate, offset)
+            poise = np.clip(candidate + radius * trust_region.poising_direction(
+                [q["u"] for q in self.points], candidate, radius), -1, 1)
+            sp, _, _ = self.scale_at(model, poise, offset)
+            added = self.run_round(f"r{k:02d}", [(candidate, s), (poise, sp)])
+            measured = self.measured_residuals(added[0])
+            phi_now = float(np.sum(current ** 2))
+            phi_new = float(np.sum(measured ** 2)) if measured is not None else math.inf
+            phi_pred = float(np.sum(np.asarray(predicted) ** 2))
+            radius, accepted = trust_region.update_radius(radius, phi_now - phi_new, phi_now - phi_pred, step_length,
+                                                          smallest=SMALLEST_RADIUS, largest=1.0)
+            if accepted:
+                centre, best = candidate, added[0]
+            rejected = 0 if accepted else rejected + 1
+            self.rounds.append({"round": k, "centre_residuals_pct": (100 * current).tolist(),
+                                "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
+                                "predicted_residuals_pct": (100 * np.asarray(predicted)).tolist(),
+                                "accepted": accepted, "radius": radius, "held_at_bounds": at_bounds,
+                                "scale": s, "runs": self.runs})
+            self.say(f"round {k}: candidate " + self.format_residuals(measured) +
+                     f" ({'accepted' if accepted else 'rejected'}), radius {radius:.3g}, {self.runs} runs")
+            blocked = bool(at_bounds) and np.max(np.abs(predicted)) > self.tolerance
+            if radius <= SMALLEST_RADIUS and not accepted:
+                break
+        self.crn = {"converged": converged, "centre": centre.tolist(), "rounds": len(self.rounds), "residuals_pct":
+                    (100 * self.measured_residuals(best)).tolist()}
+        if not converged and blocked:
+            reach = self.reachable()
+            missed = ", ".join(f"{n} from {r['lowest_error_pct']:+.0f} % to {r['highest_error_pct']:+.0f} % of its target"
+                               for n, r in reach.items() if r["lowest_error_pct"] > 100 * self.tolerance
+                               or r["highest_error_pct"] < -100 * self.tolerance) or "no single target alone"
+            return self.finish("unreachable", "the candidate sits on the bounds of the space and the model still "
+                               f"misses the targets there; the points run reach {missed}", EXIT_UNREACHABLE,
+                               centre=centre)
+        return self.verify_loop(centre, radius)
+
+    def verify_loop(self, centre, radius):
+        p = self.problem
+        offset = np.zeros(len(p.modelled_outputs()))
+        next_seed = 2  # specimen 1 made the design; verify on others
+        pooled = []    # (n, offset per modelled output)
+        k = 0
+        while True:
+            k += 1
+            left = self.budget - self.runs
+            if left < 2:
+                return self.finish("budget", f"the budget of {self.budget} DEM runs is spent", EXIT_BUDGET,
+                                   centre=centre, offset=offset)
+            model = self.fit(centre, radius)
+            scale, interval, wanted = self.scale_at(model, centre, offset)
+            if not (interval[0] * (1 - 1e-9) <= wanted <= interval[1] * (1 + 1e-9)):
+                return self.finish("unreachable", f"{p.scale_target} needs a scale factor {wanted:.4g}, outside what "
+                                   f"the bounds allow ({interval[0]:.4g} to {interval[1]:.4g})", EXIT_UNREACHABLE,
+                                   centre=centre, offset=offset)
+            params = p.absolute(centre, scale)
+            z = self.z_of(model, centre, offset)
+            predicted = {o: p.from_model(o, z[o], scale) for o in p.modelled_outputs()}
+            seeds, most = min(FIRST_VERIFICATION_SEEDS, left), min(MAX_VERIFICATION_SEEDS, left)
+            v = calibrate_runs.verify(self.tools, self.scene, os.path.join(self.out, "verify", f"v{k:02d}"), params,
+                                      p.targets, predicted, next_seed, seeds, most, self.tolerance, self.quiet)
+            used = len(v["seeds"])
+            self.runs += used
+            next_seed += used
+            met = v["passed"] and all(r["half_width_pct"] is not None and r["half_width_pct"] <= 100 * self.tolerance
+                                      for r in v["outputs"].values())
+            self.verifications.append({"round": k, "folder": os.path.join("verify", f"v{k:02d}"), "seeds": used,
+                                       "first_seed": next_seed - used, "passed": v["passed"], "verdict": v["verdict"],
+                                       "met": met, "scale": scale, "runs": self.runs,
+                                       "errors_pct": {o: r["relative_error_pct"] for o, r in v["outputs"].items()},
+                                       "half_width_pct": {o: r["half_width_pct"] for o, r in v["outputs"].items()}})
+            self.say(f"verification {k} on seeds {next_seed - used}-{next_seed - 1}: " +
+                     ", ".join(f"{o} {r['relative_error_pct']:+.1f} % (+-{r['half_width_pct']:.1f})"
+                               for o, r in v["outputs"].items()) + (" - met" if met else "") + f"; {self.runs} runs")
+            if met:
+                return self.finish("met", "every target within the tolerance, every 95 % half-width too", EXIT_MET,
+                                   centre=centre, offset=offset, verification=v)
+            if v["passed"] and used >= most:
+                wide = [o for o, r in v["outputs"].items() if r["half_width_pct"] > 100 * self.tolerance]
+                return self.finish("noisy", f"the means are within the tolerance but {', '.join(wide)} scatter too "
+                                   f"much for a {100 * self.tolerance:g} % half-width in {used} seeds: a larger "
+                                   "specimen scatters less", EXIT_BUDGET, centre=centre, offset=offset,
+                                   verification=v)
+            # The specimens' mean against specimen 1's model: an offset per response, pooled over verifications.
+            ok = [s for s in v["seeds"] if s["status"] == "ok"]
+            if len(ok) >= 2:
+                zs = np.array([[p.to_model(o, s["macro"][o], scale) for o in p.modelled_outputs()] for s in ok])
+                base = model.predict(centre)
+                pooled.append((len(ok), zs.mean(axis=0) - base))
+                offset = sum(n * b for n, b in pooled) / sum(n for n, _ in pooled)
+            r0, jac = self.jacobian(model.significant(), centre, offset)
+            delta, predicted_r, held = trust_region.step(r0, jac, centre, max(radius, 0.05))
+            centre = np.clip(centre + delta, -1, 1)
+
+    # -- bookkeeping -------------------------------------------------------------------------------------------
+    def best_point(self):
+        best, value = None, math.inf
+        for q in self.points:
+            r = self.measured_residuals(q)
+            if r is not None and np.all(np.isfinite(r)) and float(np.sum(r ** 2)) < value:
+                best, value = q, float(np.sum(r ** 2))
+        return best
+
+    def point_wall_s(self, label):
+        path = os.path.join(self.out, "rounds", label, "responses.h5.points", "run1_seed1.json")
+        try:
+            return float(load_json(path, "DEM result").get("wall_s", 0.0))
+        except Exception:
+            return 0.0
+
+    def estimate_min(self, runs, wall_s):
+        return runs * wall_s / max(int(self.tools.jobs), 1) / 60.0
+
+    def format_residuals(self, r):
+        if r is None:
+            return "failed"
+        return ", ".join(f"{n} {100 * x:+.1f} %" for n, x in zip(self.problem.residual_labels(), r))
+
+    def finish(self, status, why, code, centre=None, offset=None, verification=None):
+        p = self.problem
+        solution = {"status": status, "why": why, "exit_code": code, "dem_runs": self.runs,
+                    "budget": self.budget, "wall_s": time.time() - self.started, "targets": p.targets,
+                    "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=p.residual_labels()), "rounds": self.rounds,
+                    "verifications": self.verifications, "crn": getattr(self, "crn", None)}
+        if centre is not None:
+            model = self.fit(centre, SMALLEST_RADIUS * 10)
+            offset = np.zeros(len(p.modelled_outputs())) if offset is None else offset
+            scale, interval, wanted = self.scale_at(model, centre, offset)
+            z = self.z_of(model, centre, offset)
+            sd = model.prediction_sd(centre)
+            solution["x"] = p.absolute(centre, scale)
+            solution["scale_factor"] = scale
+            solution["scale_interval"] = list(interval)
+            solution["ratios"] = p.ratios(centre)
+            solution["predicted"] = {o: p.from_model(o, z[o], scale) for o in p.modelled_outputs()}
+            solution["prediction_interval_95"] = {
+                o: [p.from_model(o, z[o] - 1.96 * sd[i], scale), p.from_model(o, z[o] + 1.96 * sd[i], scale)]
+                for i, o in enumerate(p.modelled_outputs())}
+            solution["offset"] = dict(zip(p.modelled_outputs(), [float(x) for x in offset]))
+        solution["reachable"] = self.reachable()
+        write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")
+        if verification is None and self.verifications:
+            verification = load_json(os.path.join(self.out, self.verifications[-1]["folder"], "verification.json"),
+                                     "verification")
+        if verification is not None:
+            write_target(os.path.join(self.out, "verification.json"), json.dumps(verification, indent=1) + "\n")
+        self.say(f"{status}: {why} ({self.runs} DEM runs, {(time.time() - self.started) / 60:.1f} min)")
+        return code
+
+    def reachable(self):
+        """The range of every dimensionless target seen on specimen 1: what the model reaches."""
+        out = {}
+        names = self.problem.residual_labels()
+        for q in self.points:
+            r = self.measured_residuals(q)
+            if r is None:
+                continue
+            for n, x in zip(names, r):
+                lo, hi = out.get(n, (math.inf, -math.inf))
+                out[n] = (min(lo, 100 * x), max(hi, 100 * x))
+        return {n: {"lowest_error_pct": lo, "highest_error_pct": hi} for n, (lo, hi) in out.items()}
+
+
+def calibrate(args):
+    targets = parse_assignments(args.target, "--target")
+    if not targets:
+        fail("--target: give at least one NAME=VALUE (e.g. --target E_GPa=6.5)")
+    fixed = parse_assignments(args.fixed, "--fixed")
+    if not (0 < args.tolerance < 1):
+        fail(f"--tolerance: {args.tolerance} must lie in (0, 1)")
+    if args.budget < 10:
+        fail(f"--budget: {args.budget} DEM runs cannot hold a design and a verification (at least 10)")
+    for path, what in ((args.scene, "--scene"), (args.space, "--space")):
+        if path and not os.path.exists(path):
+            fail(f"{what}: {path} does not exist")
+    name = args.name or default_name(args.scene, targets)
+    out = os.path.join(args.out_root, name)
+    config = {"scene": args.scene, "space": args.space, "targets": targets, "fixed": fixed,
+              "tolerance": args.tolerance, "budget": args.budget, "scale_parameter": args.scale_parameter}
+    stored = os.path.join(out, "calibration.json")
+    if os.path.exists(stored):
+        before = load_json(stored, "calibration")
+        if before != config:
+            fail(f"{stored}: another calibration is stored here (different scene, targets or settings); remove "
+                 f"{out} or give --name")
+    else:
+        os.makedirs(out, exist_ok=True)
+        write_target(stored, json.dumps(config, indent=1) + "\n")
+    code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
+    from .calibrate_report import report
+    report(out)
+    return code

@@ -1,0 +1,77 @@
+"""The report of a calibration (report.md and a self-contained report.html): the problem in both forms (the scene's
+parameters and the dimensionless ratios), each round on specimen 1, each verification, the solution with the local
+model's prediction interval beside the DEM's 95 % interval, and the cost."""
+import os
+
+from .errors import load_json
+from .files import write_target
+from .to_html import to_html
+
+
+def _g(x):
+    return "-" if x is None else f"{x:.4g}"
+
+
+def report(out):
+    config = load_json(os.path.join(out, "calibration.json"), "calibration")
+    solution = load_json(os.path.join(out, "solution.json"), "calibration solution")
+    problem = solution["problem"]
+    lines = [f"# Calibration {os.path.basename(out.rstrip('/'))}", "",
+             f"Scene `{config['scene']}`" + (f", space `{config['space']}`" if config.get("space") else
+                                              " over its physical bounds") +
+             f"; tolerance {100 * config['tolerance']:g} %, budget {config['budget']} DEM runs.", "",
+             f"**Result: {solution['status']}** ({solution['why']}); exit code {solution['exit_code']}; "
+             f"{solution['dem_runs']} DEM runs, {solution['wall_s'] / 60:.1f} min.", ""]
+    lines += ["## The problem in dimensionless form", "",
+              f"Scale parameter `{problem['scale_parameter']}` (reference {_g(problem['scale_reference'])}), met "
+              f"through the scale target `{problem['scale_target']}` by an exact scale factor: every stress-like "
+              "parameter times s gives every stress output times s (docs/calibration.md).", "",
+              "| target | value |", "|---|---|"]
+    lines += [f"| {k} | {_g(v)} |" for k, v in problem["dimensionless_targets"].items()]
+    lines += ["", "| coordinate | kind | low | high | reference | coding |", "|---|---|---|---|---|---|"]
+    lines += [f"| {c['name']} | {c['kind']} | {_g(c['low'])} | {_g(c['high'])} | {_g(c['reference'])} | "
+              f"{'log' if c['log_scale'] else 'linear'} |" for c in problem["coordinates"]]
+    if problem["fixed"]:
+        lines += ["", "Fixed: " + ", ".join(f"{k} = {_g(v)}" for k, v in sorted(problem["fixed"].items())) + "."]
+    names = problem["residuals"]
+    lines += ["", "## Rounds on specimen 1 (common random numbers)", "",
+              "Errors of the dimensionless targets after the exact scale factor, in %.", "",
+              "| round | centre | candidate | predicted | accepted | radius after | runs |", "|---|---|---|---|---|---|---|"]
+
+    def errs(values):
+        return "-" if values is None else ", ".join(f"{n} {x:+.1f}" for n, x in zip(names, values))
+    for r in solution["rounds"]:
+        lines.append(f"| {r['round']} | {errs(r['centre_residuals_pct'])} | {errs(r['candidate_residuals_pct'])} | "
+                     f"{errs(r['predicted_residuals_pct'])} | {'yes' if r['accepted'] else 'no'} | {r['radius']:.3g} | "
+                     f"{r['runs']} |")
+    if solution["verifications"]:
+        lines += ["", "## Verifications on fresh seeds", "",
+                  "| verification | seeds | errors % (95 % half-width) | verdict | met | runs after |", "|---|---|---|---|---|---|"]
+        for v in solution["verifications"]:
+            e = ", ".join(f"{o} {v['errors_pct'][o]:+.2f} (+-{v['half_width_pct'][o]:.2f})" for o in v["errors_pct"])
+            lines.append(f"| {v['round']} | {v['first_seed']}-{v['first_seed'] + v['seeds'] - 1} | {e} | {v['verdict']} "
+                         f"| {'yes' if v['met'] else 'no'} | {v['runs']} |")
+    if "x" in solution:
+        lines += ["", "## Solution", "", f"Scale factor {solution['scale_factor']:.5g} (the bounds allow "
+                  f"{solution['scale_interval'][0]:.4g} to {solution['scale_interval'][1]:.4g}).", "",
+                  "| parameter | value | ratio to the scale parameter |", "|---|---|---|"]
+        for k, v in sorted(solution["x"].items()):
+            ratio = solution["ratios"].get(k)
+            lines.append(f"| {k} | {_g(v)} | {_g(ratio) if ratio is not None else ''} |")
+        lines += ["", "| output | target | local model (seed-1 model + offset) | its 95 % prediction interval (one specimen) |",
+                  "|---|---|---|---|"]
+        for o, value in sorted(solution["predicted"].items()):
+            lo, hi = solution["prediction_interval_95"][o]
+            lines.append(f"| {o} | {_g(solution['targets'][o])} | {_g(value)} | {_g(lo)} to {_g(hi)} |")
+    last = solution["verifications"][-1]["folder"] if solution["verifications"] else None
+    if last and os.path.exists(os.path.join(out, last, "verification.md")):
+        with open(os.path.join(out, last, "verification.md")) as f:
+            lines += ["", "## The final verification (DEM mean over fresh seeds, 95 % interval)", "", f.read().strip()]
+    if solution.get("reachable"):
+        lines += ["", "## What specimen 1 reached", "", "Lowest and highest error of each dimensionless target over "
+                  "every point run, in %.", "", "| target | lowest | highest |", "|---|---|---|"]
+        lines += [f"| {n} | {r['lowest_error_pct']:+.1f} | {r['highest_error_pct']:+.1f} |"
+                  for n, r in solution["reachable"].items()]
+    md = "\n".join(lines) + "\n"
+    write_target(os.path.join(out, "report.md"), md)
+    write_target(os.path.join(out, "report.html"), to_html(md, out))

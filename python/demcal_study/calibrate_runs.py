@@ -1,0 +1,73 @@
+"""The DEM runs of a calibration: one batch per round on common specimen 1 (demcal-dem batch, resumable: a rerun
+repeats no finished point) and the verifications on fresh seeds (demcal-verify). Each returns what the strategy
+needs and counts the runs it made, failed ones included."""
+import csv
+import json
+import os
+import subprocess
+
+from . import commands
+from .errors import fail, load_json
+from .files import write_target
+
+
+def run_points(tools, scene, folder, points, quiet):
+    """points: list of {parameter: value}. Returns one dict per point: {"status", "outputs"} (outputs empty when
+    the run failed), in order."""
+    os.makedirs(folder, exist_ok=True)
+    names = sorted({name for p in points for name in p})
+    design = os.path.join(folder, "design.csv")
+    text = ",".join(["run"] + names) + "\n" + "".join(
+        ",".join([str(k + 1)] + [repr(float(p[n])) for n in names]) + "\n" for k, p in enumerate(points))
+    if not (os.path.exists(design) and open(design).read() == text):
+        write_target(design, text)
+    out, table = os.path.join(folder, "responses.h5"), os.path.join(folder, "responses.csv")
+    cmd = commands.dem_batch(tools, scene, design, out, table, 1)
+    done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL if quiet else None)
+    if done.returncode not in (0, 4):  # 4: some points failed, recorded as such
+        fail(f"{folder}: demcal-dem batch failed (exit {done.returncode})")
+    results = {}
+    with open(table) as f:
+        for row in csv.DictReader(f):
+            outputs = {}
+            for key, value in row.items():
+                if key in names or key in ("run", "seed", "status") or value in ("", None):
+                    continue
+                try:
+                    outputs[key] = float(value)
+                except ValueError:
+                    pass
+            results[int(row["run"])] = {"status": row["status"], "outputs": outputs if row["status"] == "ok" else {}}
+    missing = [k + 1 for k in range(len(points)) if k + 1 not in results]
+    if missing:
+        fail(f"{table}: no result for run(s) {missing}")
+    return [dict(results[k + 1], reason=point_reason(out, k + 1)) for k in range(len(points))]
+
+
+def point_reason(out, run):
+    path = f"{out}.points/run{run}_seed1.json"
+    try:
+        with open(path) as f:
+            return json.load(f).get("reason", "")
+    except (OSError, ValueError):
+        return ""
+
+
+def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet):
+    """demcal-verify at absolute `parameters` on seeds first_seed.. (seeds to start with, up to max_seeds)."""
+    os.makedirs(folder, exist_ok=True)
+    solution = os.path.join(folder, "solution.json")
+    text = json.dumps({"status": "ok", "x": parameters, "targets": targets, "predicted": predicted}, indent=1) + "\n"
+    if not (os.path.exists(solution) and open(solution).read() == text):
+        write_target(solution, text)
+    out = os.path.join(folder, "verification.json")
+    cmd = [tools.program("demcal-verify"), "--solution", solution, "--scene", scene, "--seeds", str(seeds),
+           "--max-seeds", str(max_seeds), "--first-seed", str(first_seed), "--tolerance", repr(tolerance),
+           "--jobs", tools.jobs, "--cache", tools.cache, "--work", os.path.join(folder, "runs"),
+           "--md", os.path.join(folder, "verification.md"), "--out", out]
+    if quiet:
+        cmd.append("--quiet")
+    done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
+    if done.returncode != 0:
+        fail(f"{folder}: demcal-verify failed (exit {done.returncode})")
+    return load_json(out, "verification")

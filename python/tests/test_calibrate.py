@@ -1,0 +1,206 @@
+"""The adaptive calibration against a closed-form stand-in for the DEM that obeys the exact scaling (stress outputs
+proportional to the stress-like parameters) and has specimen-to-specimen scatter: it must meet reachable targets
+within its budget, verify on fresh seeds, correct specimen 1's bias, and call an unreachable target unreachable."""
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+
+from demcal_study import calibrate, calibrate_runs, commands, executables, trust_region
+from demcal_study.calibration_problem import Problem
+from demcal_study.calibrate_report import report
+from demcal_study.errors import StudyError
+
+DESCRIPTION = {
+    "parameters": {
+        "Ec_Pa": {"unit": "Pa", "quantity": "stress", "stress_like": True, "si_factor": 1.0, "value": 20e9,
+                  "low": 1e8, "high": 1e11, "shapes_specimen": False},
+        "sc_Pa": {"unit": "Pa", "quantity": "stress", "stress_like": True, "si_factor": 1.0, "value": 100e6,
+                  "low": 0, "high": 1e9, "shapes_specimen": False},
+        "kn_ks": {"unit": "1", "quantity": "dimensionless", "stress_like": False, "si_factor": 1.0, "value": 2.0,
+                  "low": 0.1, "high": 10, "shapes_specimen": False},
+        "mu": {"unit": "1", "quantity": "dimensionless", "stress_like": False, "si_factor": 1.0, "value": 0.5,
+               "low": 0, "high": 1, "shapes_specimen": False},
+        "R_m": {"unit": "m", "quantity": "length", "stress_like": False, "si_factor": 1.0, "value": 1e-3,
+                "low": 1e-4, "high": 1e-2, "shapes_specimen": True},
+    },
+    "outputs": {
+        "E_GPa": {"unit": "GPa", "stress_like": True, "si_factor": 1e9},
+        "sigma_u_MPa": {"unit": "MPa", "stress_like": True, "si_factor": 1e6},
+        "nu": {"unit": "1", "stress_like": False, "si_factor": 1.0},
+    },
+}
+
+# Two-sided 95 % Student t for 1..30 degrees of freedom (tables).
+T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
+        2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042]
+SCATTER = 0.02  # CV of a specimen
+
+
+def specimen(seed):
+    """A specimen's own deviations (the same for every parameter set: common random numbers)."""
+    g = np.random.default_rng(1000 + seed).normal(size=3)
+    return 1 + SCATTER * g
+
+
+def fake_dem(p, seed):
+    s = specimen(seed)
+    return {"E_GPa": s[0] * p["Ec_Pa"] / 1e9 * (0.4 + 0.4 / p["kn_ks"]),
+            "sigma_u_MPa": s[1] * p["sc_Pa"] / 1e6 * (0.8 + 0.6 * p["mu"]) * (1 + 0.1 * math.log(p["kn_ks"])),
+            "nu": s[2] * (0.12 + 0.08 * math.log(p["kn_ks"]))}
+
+
+@pytest.fixture
+def fake(monkeypatch, tmp_path):
+    calls = {"points": 0, "seeds": 0}
+
+    def run_points(tools, scene, folder, points, quiet):
+        calls["points"] += len(points)
+        return [{"status": "ok", "outputs": fake_dem(p, 1), "reason": ""} for p in points]
+
+    def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet):
+        os.makedirs(folder, exist_ok=True)
+        n = seeds
+        while True:
+            runs = [fake_dem(parameters, s) for s in range(first_seed, first_seed + n)]
+            rows, passed = {}, True
+            for o, t in targets.items():
+                x = np.array([r[o] for r in runs])
+                mean, sd = float(x.mean()), float(x.std(ddof=1))
+                hw = T975[n - 2] * sd / math.sqrt(n)
+                err = 100 * (mean - t) / abs(t)
+                rows[o] = {"mean": mean, "relative_error_pct": err, "half_width_pct": 100 * hw / abs(t),
+                           "passed": bool(abs(err) <= 100 * tolerance)}
+                passed = passed and rows[o]["passed"]
+            if n >= max_seeds or all(r["half_width_pct"] <= 100 * tolerance for r in rows.values()):
+                break
+            n += 1
+        calls["seeds"] += n
+        v = {"passed": passed, "verdict": "mean_inside_band" if passed else "outside", "outputs": rows,
+             "seeds": [{"seed": s, "status": "ok", "macro": {k: float(x) for k, x in r.items()}} for s, r in zip(range(first_seed, first_seed + n), runs)]}
+        with open(os.path.join(folder, "verification.json"), "w") as f:
+            json.dump(v, f)
+        return v
+
+    monkeypatch.setattr(calibrate_runs, "run_points", run_points)
+    monkeypatch.setattr(calibrate_runs, "verify", verify)
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: DESCRIPTION)
+    return calls
+
+
+def run_calibration(tmp_path, bin_dir, targets, budget=60):
+    out = str(tmp_path / "cal")
+    os.makedirs(out, exist_ok=True)
+    config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05,
+              "budget": budget, "scale_parameter": None}
+    with open(os.path.join(out, "calibration.json"), "w") as f:
+        json.dump(config, f)
+    tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
+    code = calibrate.Calibration(config, out, tools, quiet=True).run()
+    with open(os.path.join(out, "solution.json")) as f:
+        return code, json.load(f), out
+
+
+def test_reachable_targets_are_met_and_verified(fake, tmp_path, bin_dir):
+    targets = {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2}
+    code, solution, out = run_calibration(tmp_path, bin_dir, targets)
+    assert code == calibrate.EXIT_MET, solution["why"]
+    assert solution["status"] == "met"
+    assert solution["dem_runs"] <= 60
+    assert solution["dem_runs"] == fake["points"] + fake["seeds"]  # every run counted
+    # The solution truly meets the targets on the population mean (specimen effects averaged out).
+    mean = {o: np.mean([fake_dem(solution["x"], s)[o] for s in range(100, 400)]) for o in targets}
+    for o, t in targets.items():
+        assert abs(mean[o] / t - 1) < 0.05, (o, mean[o], t)
+    # The scale factor is exact: E is met by scaling, the ratios are what the dimensionless problem chose.
+    assert solution["x"]["Ec_Pa"] == pytest.approx(20e9 * solution["scale_factor"], rel=1e-12)
+    assert solution["x"]["sc_Pa"] == pytest.approx(solution["ratios"]["sc_Pa"] * solution["x"]["Ec_Pa"], rel=1e-12)
+    assert "R_m" not in solution["x"]  # shapes the specimen: left at the scene's default
+    report(out)
+    md = open(os.path.join(out, "report.md")).read()
+    assert "## The problem in dimensionless form" in md and "| sigma_u_MPa/E_GPa | 0.007385 |" in md
+    assert os.path.exists(os.path.join(out, "report.html"))
+
+
+def test_a_target_outside_the_bounds_is_unreachable(fake, tmp_path, bin_dir):
+    # nu = 0.12 + 0.08 ln(kn_ks) <= 0.12 + 0.08 ln 10 = 0.304 (plus a little scatter): 0.45 cannot be reached.
+    code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "nu": 0.45})
+    assert code == calibrate.EXIT_UNREACHABLE, solution["why"]
+    assert solution["status"] == "unreachable"
+    assert solution["reachable"]["nu"]["highest_error_pct"] < -25  # the best reached is far below the target
+    assert solution["dem_runs"] <= 60
+
+
+def test_problem_codes_wide_ranges_on_a_log_scale_and_fixes_what_shapes_the_specimen():
+    p = Problem(DESCRIPTION, {"E_GPa": 6.5, "sigma_u_MPa": 48, "nu": 0.2})
+    assert p.scale_parameter == "Ec_Pa" and p.scale_target == "E_GPa"
+    names = [c.name for c in p.coordinates]
+    assert names == ["kn_ks", "mu", "sc_Pa"]
+    by = {c.name: c for c in p.coordinates}
+    assert by["sc_Pa"].ratio and by["sc_Pa"].log_scale
+    assert by["sc_Pa"].low == pytest.approx(1e6 / 20e9)  # low 0 raised to 1e-3 of the high, over Ec's reference
+    assert by["mu"].log_scale and by["mu"].low == pytest.approx(1e-3)
+    assert by["kn_ks"].log_scale  # 0.1 .. 10 spans two decades
+    for c in p.coordinates:
+        assert c.decode(c.code(c.reference)) == pytest.approx(c.reference)
+    assert p.dimensionless_targets() == {"nu": 0.2, "sigma_u_MPa/E_GPa": pytest.approx(48e6 / 6.5e9)}
+    # A point at the reference and scale 2: every stress-like value doubles, ratios hold.
+    x = p.absolute(p.reference_point(), 2.0)
+    assert x["Ec_Pa"] == pytest.approx(40e9) and x["sc_Pa"] == pytest.approx(200e6) and x["mu"] == pytest.approx(0.5)
+
+
+def test_a_fixed_stress_like_parameter_turns_the_scaling_off():
+    p = Problem(DESCRIPTION, {"E_GPa": 6.5, "nu": 0.2}, fixed={"sc_Pa": 50e6})
+    assert p.scale_parameter is None and p.held_stress == ["sc_Pa"]
+    assert "Ec_Pa" in [c.name for c in p.coordinates]
+    with pytest.raises(StudyError, match="needs every stress-like value to follow"):
+        Problem(DESCRIPTION, {"E_GPa": 6.5}, fixed={"sc_Pa": 50e6}, scale_parameter="Ec_Pa")
+
+
+def test_bad_targets_name_the_field():
+    with pytest.raises(StudyError, match="target peak_MPa is not an output"):
+        Problem(DESCRIPTION, {"peak_MPa": 3})
+    with pytest.raises(StudyError, match="fixed density is not a parameter"):
+        Problem(DESCRIPTION, {"E_GPa": 3}, fixed={"density": 1})
+
+
+def test_least_norm_step_inside_the_box():
+    # One residual, three coordinates: r = 0.3 + u0 + 2 u1 (u2 has no effect). Least-norm: delta = -0.3 (1, 2, 0) / 5.
+    delta, predicted, held = trust_region.step([0.3], [[1.0, 2.0, 0.0]], np.zeros(3), 1.0)
+    assert delta == pytest.approx([-0.06, -0.12, 0.0])
+    assert predicted == pytest.approx([0.0], abs=1e-12)
+    assert held == []
+    # A box of 0.05: u1 is held at its face, u0 takes the rest: 0.3 - 0.1 + u0 = 0 -> u0 = -0.2 -> held too.
+    delta, predicted, held = trust_region.step([0.3], [[1.0, 2.0, 0.0]], np.zeros(3), 0.05)
+    assert delta == pytest.approx([-0.05, -0.05, 0.0])
+    assert predicted == pytest.approx([0.15])
+    assert held == [0, 1]
+
+
+def test_local_fit_recovers_a_linear_response_and_tells_noise_from_effects():
+    rng = np.random.default_rng(3)
+    u = rng.uniform(-1, 1, size=(40, 3))
+    z = 1.0 + u @ np.array([0.5, -0.2, 0.0]) + 0.01 * rng.normal(size=40)
+    model = trust_region.fit_local(u, z[:, None], np.zeros(3), 10.0)
+    assert model.intercept[0] == pytest.approx(1.0, abs=0.01)
+    assert model.slopes[0] == pytest.approx([0.5, -0.2, 0.0], abs=0.01)
+    kept = model.significant().slopes[0]
+    assert kept[0] != 0 and kept[1] != 0 and kept[2] == 0  # the third slope is noise
+    assert model.prediction_sd(np.zeros(3))[0] == pytest.approx(0.01, rel=0.35)
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--scene", "no_such_scene.json", "--target", "E_GPa=6.5"], "--scene: no_such_scene.json does not exist"),
+    (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa"], "--target: \"E_GPa\" is not NAME=NUMBER"),
+    (["--scene", "data/scenes/ucs_rock_cb.json"], "--target: give at least one NAME=VALUE"),
+    (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa=6.5", "--budget", "5"], "--budget: 5 DEM runs"),
+    (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa=6.5", "--tolerance", "2"], "--tolerance: 2.0"),
+])
+def test_bad_command_lines_get_one_line_errors(args, message, tmp_path):
+    from conftest import run_study_layer
+    done = run_study_layer(["calibrate", "--out-root", str(tmp_path)] + args)
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0], done.stderr
