@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean study calibrate
+.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark
 
 all: build
 
@@ -42,6 +42,11 @@ calibrate: build
 	  --scene $(SCENE) $(foreach t,$(TARGETS),--target $(t)) $(if $(SPACE),--space $(SPACE)) \
 	  $(foreach f,$(FIXED),--fixed $(f)) --tolerance $(TOLERANCE) --budget $(BUDGET) $(if $(NAME),--name $(NAME)) \
 	  --out-root $(BUILD)/calibrations
+
+# Hours: every target of data/benchmarks/calibration_targets.json (resumable; ONLY=a,b runs a part; GLOBAL=1 adds
+# the old global-surface strategy where marked). Summary: $(BUILD)/calibration_benchmark/summary.md.
+calibration-benchmark: build
+	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global)
 
 bench: build
 	@scripts/bench.sh $(BUILD)

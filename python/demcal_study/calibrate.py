@@ -416,7 +416,22 @@ def calibrate(args):
     else:
         os.makedirs(out, exist_ok=True)
         write_target(stored, json.dumps(config, indent=1) + "\n")
+    started = time.time()
     code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
+    record_wall_time(out, time.time() - started)
     from .calibrate_report import report
     report(out)
     return code
+
+
+def record_wall_time(out, seconds):
+    """A calibration run in parts: every invocation's wall time is kept, and solution.json states their sum."""
+    path = os.path.join(out, "wall_s.json")
+    parts = load_json(path, "wall times") if os.path.exists(path) else []
+    parts.append(round(seconds, 1))
+    write_target(path, json.dumps(parts) + "\n")
+    solution_path = os.path.join(out, "solution.json")
+    solution = load_json(solution_path, "calibration solution")
+    solution["wall_s_parts"] = parts
+    solution["wall_s_total"] = sum(parts)
+    write_target(solution_path, json.dumps(solution, indent=1) + "\n")

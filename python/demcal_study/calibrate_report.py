@@ -21,7 +21,9 @@ def report(out):
                                               " over its physical bounds") +
              f"; tolerance {100 * config['tolerance']:g} %, budget {config['budget']} DEM runs.", "",
              f"**Result: {solution['status']}** ({solution['why']}); exit code {solution['exit_code']}; "
-             f"{solution['dem_runs']} DEM runs, {solution['wall_s'] / 60:.1f} min.", ""]
+             f"{solution['dem_runs']} DEM runs, {solution.get('wall_s_total', solution['wall_s']) / 60:.1f} min"
+             + (f" over {len(solution['wall_s_parts'])} invocations" if len(solution.get("wall_s_parts", [])) > 1
+                else "") + ".", ""]
     lines += ["## The problem in dimensionless form", "",
               f"Scale parameter `{problem['scale_parameter']}` (reference {_g(problem['scale_reference'])}), met "
               f"through the scale target `{problem['scale_target']}` by an exact scale factor: every stress-like "
