@@ -29,6 +29,9 @@ def parser():
     cal.add_argument("--tolerance", type=float, default=0.05, help="largest relative error that passes (0.05)")
     cal.add_argument("--budget", type=int, default=80, help="most DEM runs in all, failed ones counted (80)")
     cal.add_argument("--scale-parameter", metavar="NAME", help="the stress-like parameter the others are ratios to")
+    cal.add_argument("--strategy", choices=("trust-region", "kriging"), default="trust-region",
+                     help="the search on specimen 1: local linear models in a trust region (default), or Gaussian "
+                          "processes with expected improvement")
     cal.add_argument("--name", help="folder name under --out-root (default: the scene's name and the targets)")
     cal.add_argument("--out-root", default="build/calibrations")
     cal.add_argument("--quiet", action="store_true")

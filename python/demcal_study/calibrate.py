@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-from . import calibrate_runs, commands, executables, trust_region
+from . import calibrate_runs, commands, executables, kriging, trust_region
 from .calibration_problem import Problem
 from .errors import fail, load_json
 from .files import write_target
@@ -205,16 +205,32 @@ class Calibration:
         if best is None:
             return self.finish("failed", "no DEM point of the first design ran", EXIT_UNREACHABLE)
         centre = np.array(best["u"])
+        search = self.search_kriging if self.config.get("strategy") == "kriging" else self.search_trust_region
+        centre, radius, best, converged, blocked = search(centre, best)
+        self.crn = {"converged": converged, "centre": centre.tolist(), "rounds": len(self.rounds), "residuals_pct":
+                    (100 * self.measured_residuals(best)).tolist()}
+        if not converged and blocked:
+            reach = self.reachable()
+            missed = ", ".join(f"{n} from {r['lowest_error_pct']:+.0f} % to {r['highest_error_pct']:+.0f} % of its target"
+                               for n, r in reach.items() if r["lowest_error_pct"] > 100 * self.tolerance
+                               or r["highest_error_pct"] < -100 * self.tolerance) or "no single target alone"
+            return self.finish("unreachable", "the candidate sits on the bounds of the space and the model still "
+                               f"misses the targets there; the points run reach {missed}", EXIT_UNREACHABLE,
+                               centre=centre)
+        return self.verify_loop(centre, radius)
+
+    def search_trust_region(self, centre, best):
+        """Rounds of one Gauss-Newton candidate and one poising point on specimen 1 (section 3 of the docs).
+        Returns (centre, radius, best point, converged, blocked at the bounds)."""
+        p = self.problem
         converged, blocked = False, False
-        reserve = min(FIRST_VERIFICATION_SEEDS + 10, self.budget // 3)
+        radius = INITIAL_RADIUS
+        reserve = self.verification_reserve()
         rejected = 0
         for k in range(2, 2 + MAX_ROUNDS):
             current = self.measured_residuals(best)
             model = self.fit(centre, radius)
-            # Close enough on specimen 1: within a third of the tolerance, or within what the scatter of nearby
-            # points lets the model tell apart (the verification's offset does the rest).
-            noise = self.residual_noise(model)
-            if np.all(np.abs(current) <= np.maximum(CRN_FRACTION * self.tolerance, noise)) or (
+            if self.close_enough(current, self.residual_noise(model)) or (
                     rejected >= 2 and np.max(np.abs(current)) <= self.tolerance):
                 converged = True
                 break
@@ -253,17 +269,99 @@ class Calibration:
             blocked = bool(at_bounds) and np.max(np.abs(predicted)) > self.tolerance
             if radius <= SMALLEST_RADIUS and not accepted:
                 break
-        self.crn = {"converged": converged, "centre": centre.tolist(), "rounds": len(self.rounds), "residuals_pct":
-                    (100 * self.measured_residuals(best)).tolist()}
-        if not converged and blocked:
-            reach = self.reachable()
-            missed = ", ".join(f"{n} from {r['lowest_error_pct']:+.0f} % to {r['highest_error_pct']:+.0f} % of its target"
-                               for n, r in reach.items() if r["lowest_error_pct"] > 100 * self.tolerance
-                               or r["highest_error_pct"] < -100 * self.tolerance) or "no single target alone"
-            return self.finish("unreachable", "the candidate sits on the bounds of the space and the model still "
-                               f"misses the targets there; the points run reach {missed}", EXIT_UNREACHABLE,
-                               centre=centre)
-        return self.verify_loop(centre, radius)
+        return centre, radius, best, converged, blocked
+
+    def close_enough(self, residuals, noise):
+        """Specimen 1 meets the dimensionless targets within a third of the tolerance, or within what the scatter of
+        nearby points lets a model tell apart (the verification's offset does the rest)."""
+        return bool(np.all(np.abs(residuals) <= np.maximum(CRN_FRACTION * self.tolerance, noise)))
+
+    def verification_reserve(self):
+        return min(FIRST_VERIFICATION_SEEDS + 10, self.budget // 3)
+
+    def search_kriging(self, centre, best):
+        """The alternative: Gaussian processes of the responses over every point on specimen 1, and each round the
+        two points of largest expected improvement of the misfit (the second by the kriging believer: the first
+        added at its predicted mean), inside a box of +-2 initial radii around the best point. Returns as
+        search_trust_region (the radius is the initial one: the verification's local model uses it)."""
+        p = self.problem
+        names = p.modelled_outputs()
+        a, c = self.residual_map()
+        misfit = lambda z: ((z @ a.T + c) ** 2).sum(axis=-1)  # noqa: E731
+        converged, blocked = False, False
+        reserve = self.verification_reserve()
+        half = 2 * INITIAL_RADIUS
+        d = len(centre)
+        stale = 0
+        for k in range(2, 2 + MAX_ROUNDS):
+            rows = self.usable()
+            x = np.array([r[0] for r in rows])
+            z = np.array([r[1] for r in rows])
+            current = self.measured_residuals(best)
+            gps = [kriging.fit(x, z[:, j], seed=k) for j in range(len(names))]
+            noise = np.sqrt(((a ** 2) * np.array([gp.nugget2 for gp in gps])).sum(axis=1))
+            if self.close_enough(current, noise):
+                converged = True
+                break
+            if self.runs + 2 > self.budget - reserve:
+                break
+            if stale >= 2 and self.nowhere_within_tolerance(gps, misfit, d) and np.any(np.abs(centre) >= 0.98):
+                blocked = True  # two rounds without a better point, and the GPs see nothing better anywhere
+                break
+            rng = np.random.default_rng(k)
+            low, high = np.maximum(centre - half, -1.0), np.minimum(centre + half, 1.0)
+            candidates = np.vstack([rng.uniform(low, high, size=(3000, d)),
+                                    np.clip(centre + 0.05 * rng.standard_normal((1000, d)), low, high)])
+            best_misfit = float(np.sum(current ** 2))
+            ei, mean = kriging.expected_improvement(gps, misfit, candidates, best_misfit, seed=k)
+            first = int(np.argmax(ei))
+            believed = [kriging.GP(np.vstack([x, candidates[first]]), np.append(z[:, j], mean[first, j]), gp.length,
+                                   gp.signal2, gp.nugget2) for j, gp in enumerate(gps)]
+            ei2, mean2 = kriging.expected_improvement(believed, misfit, candidates, best_misfit, seed=k)
+            ei2[first] = -1.0
+            second = int(np.argmax(ei2))
+            picks = [candidates[first], candidates[second]]
+            entries = []
+            for u in picks:
+                zu = dict(zip(names, [gp.predict(u[None, :])[0][0] for gp in gps]))
+                s = p.scale_for(zu)
+                lo, hi = p.scale_interval(u)
+                entries.append((u, min(max(s, lo), hi)))
+            added = self.run_round(f"r{k:02d}", entries)
+            improved = False
+            for q in added:
+                r = self.measured_residuals(q)
+                if r is not None and float(np.sum(r ** 2)) < float(np.sum(self.measured_residuals(best) ** 2)):
+                    best, centre, improved = q, np.array(q["u"]), True
+            stale = 0 if improved else stale + 1
+            measured = self.measured_residuals(added[0]) if added else None
+            self.rounds.append({"round": k, "centre_residuals_pct": (100 * current).tolist(),
+                                "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
+                                "predicted_residuals_pct": (100 * (mean[first] @ a.T + c)).tolist(),
+                                "accepted": improved, "radius": half, "held_at_bounds": [],
+                                "expected_improvement": float(ei[first]), "scale": entries[0][1], "runs": self.runs})
+            self.say(f"round {k}: EI points " + self.format_residuals(measured) +
+                     f" ({'improved' if improved else 'no better'}), best " +
+                     self.format_residuals(self.measured_residuals(best)) + f", {self.runs} runs")
+        return centre, INITIAL_RADIUS, best, converged, blocked
+
+    def nowhere_within_tolerance(self, gps, misfit, d):
+        """Whether the GPs' means miss the tolerance everywhere in the space (20,000 points, seeded)."""
+        anywhere = np.random.default_rng(0).uniform(-1, 1, size=(20000, d))
+        means = np.stack([gp.predict(anywhere)[0] for gp in gps], axis=1)
+        return float(np.min(misfit(means))) > self.tolerance ** 2
+
+    def residual_map(self):
+        """The residuals are affine in the modelled responses: r = A z + c."""
+        names = self.problem.modelled_outputs()
+        z0 = dict.fromkeys(names, 0.0)
+        c = np.asarray(self.problem.residuals(z0))
+        cols = []
+        for name in names:
+            z = dict(z0)
+            z[name] = 1.0
+            cols.append(np.asarray(self.problem.residuals(z)) - c)
+        return np.array(cols).T, c
 
     def verify_loop(self, centre, radius):
         p = self.problem
@@ -403,10 +501,12 @@ def calibrate(args):
     for path, what in ((args.scene, "--scene"), (args.space, "--space")):
         if path and not os.path.exists(path):
             fail(f"{what}: {path} does not exist")
-    name = args.name or default_name(args.scene, targets)
+    name = args.name or default_name(args.scene, targets) + ("_kriging" if args.strategy == "kriging" else "")
     out = os.path.join(args.out_root, name)
     config = {"scene": args.scene, "space": args.space, "targets": targets, "fixed": fixed,
               "tolerance": args.tolerance, "budget": args.budget, "scale_parameter": args.scale_parameter}
+    if args.strategy != "trust-region":  # absent for the default, so calibrations stored before the option resume
+        config["strategy"] = args.strategy
     stored = os.path.join(out, "calibration.json")
     if os.path.exists(stored):
         before = load_json(stored, "calibration")

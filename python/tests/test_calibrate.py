@@ -90,11 +90,13 @@ def fake(monkeypatch, tmp_path):
     return calls
 
 
-def run_calibration(tmp_path, bin_dir, targets, budget=60):
+def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None):
     out = str(tmp_path / "cal")
     os.makedirs(out, exist_ok=True)
     config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05,
               "budget": budget, "scale_parameter": None}
+    if strategy:
+        config["strategy"] = strategy
     with open(os.path.join(out, "calibration.json"), "w") as f:
         json.dump(config, f)
     tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
@@ -103,9 +105,10 @@ def run_calibration(tmp_path, bin_dir, targets, budget=60):
         return code, json.load(f), out
 
 
-def test_reachable_targets_are_met_and_verified(fake, tmp_path, bin_dir):
+@pytest.mark.parametrize("strategy", [None, "kriging"])
+def test_reachable_targets_are_met_and_verified(fake, tmp_path, bin_dir, strategy):
     targets = {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2}
-    code, solution, out = run_calibration(tmp_path, bin_dir, targets)
+    code, solution, out = run_calibration(tmp_path, bin_dir, targets, strategy=strategy)
     assert code == calibrate.EXIT_MET, solution["why"]
     assert solution["status"] == "met"
     assert solution["dem_runs"] <= 60
@@ -124,9 +127,10 @@ def test_reachable_targets_are_met_and_verified(fake, tmp_path, bin_dir):
     assert os.path.exists(os.path.join(out, "report.html"))
 
 
-def test_a_target_outside_the_bounds_is_unreachable(fake, tmp_path, bin_dir):
+@pytest.mark.parametrize("strategy", [None, "kriging"])
+def test_a_target_outside_the_bounds_is_unreachable(fake, tmp_path, bin_dir, strategy):
     # nu = 0.12 + 0.08 ln(kn_ks) <= 0.12 + 0.08 ln 10 = 0.304 (plus a little scatter): 0.45 cannot be reached.
-    code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "nu": 0.45})
+    code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "nu": 0.45}, strategy=strategy)
     assert code == calibrate.EXIT_UNREACHABLE, solution["why"]
     assert solution["status"] == "unreachable"
     assert solution["reachable"]["nu"]["highest_error_pct"] < -25  # the best reached is far below the target
@@ -204,3 +208,20 @@ def test_bad_command_lines_get_one_line_errors(args, message, tmp_path):
     assert done.returncode == 2, done.stderr
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and message in lines[0], done.stderr
+
+
+def test_kriging_interpolates_and_knows_where_it_has_no_data():
+    from demcal_study import kriging
+    rng = np.random.default_rng(5)
+    x = rng.uniform(-1, 1, size=(30, 2))
+    y = np.sin(2 * x[:, 0]) + 0.5 * x[:, 1]
+    gp = kriging.fit(x, y)
+    mean, sd = gp.predict(np.array([[0.1, -0.2], [0.5, 0.5]]))
+    assert mean == pytest.approx([np.sin(0.2) - 0.1, np.sin(1.0) + 0.25], abs=0.03)
+    assert np.all(sd < 0.05)
+    _, far = gp.predict(np.array([[5.0, 5.0]]))
+    assert far[0] > 10 * sd.max()  # far from every point the posterior is as wide as the prior
+    # Expected improvement of a misfit (y - 0.3)^2: largest where the mean crosses 0.3, not where y is lowest.
+    grid = np.array([[u, 0.0] for u in np.linspace(-1, 1, 201)])
+    ei, _ = kriging.expected_improvement([gp], lambda z: (z[..., 0] - 0.3) ** 2, grid, best=0.01)
+    assert abs(np.sin(2 * grid[int(np.argmax(ei)), 0]) - 0.3) < 0.05
