@@ -35,6 +35,9 @@ def study_cost(out):
     first_solution = load_json(os.path.join(out, "solution.json"), "solution")
     runs += first_solution.get("dem", {}).get("runs", 0)
     runs += len(load_json(os.path.join(out, "verification.json"), "verification")["seeds"])
+    scatter = os.path.join(out, "scatter", "verification.json")
+    if os.path.exists(scatter):  # seeds_per_point "auto" measured the scatter first
+        runs += len(load_json(scatter, "scatter verification")["seeds"])
     runs += sum(r["dem_runs"] for r in refined["rounds"])
     final = load_json(refined["final"]["verification"], "verification")
     errors = [abs(r["relative_error_pct"]) for r in final["outputs"].values()]

@@ -3,7 +3,7 @@
 import json
 import os
 
-from . import commands, executables, strategy
+from . import commands, executables, scatter, strategy
 from .commands import IN_MAKE, for_make
 from .errors import load_json
 from .files import write_if_changed
@@ -33,16 +33,28 @@ def plan(study_path, out):
                   "all: $(D)/report.md", ".PHONY: all", ".DEFAULT_GOAL := all", ""]
         return finish(out, rules)
     two_phase = any(surface["factors"] == "auto" for surface in study.get("surfaces", []))
-    if two_phase:
-        # The factors come from the screening: make always brings the screening up to date,
-        # plans again with what its ANOVA says now, then runs the other stages.
-        rules += ["all: $(D)/screening/anova.json",
+    auto_seeds = strategy.in_the_loop(study) and study.get("seeds_per_point") == "auto"
+    first_phase = (["$(D)/screening/anova.json"] if two_phase else []) + (
+        ["$(D)/scatter/verification.json"] if auto_seeds else [])
+    if auto_seeds:
+        rules += scatter_rules(study, scene, space, cfg)
+    if first_phase:
+        # The factors come from the screening, the specimens per point from the scatter: make always brings
+        # those up to date, plans again with what they say now, then runs the other stages.
+        rules += ["all: " + " ".join(first_phase),
                   "\t@" + for_make(commands.stage(IN_MAKE, "plan", study_path, "$(D)")) + " > /dev/null",
                   "\t@$(MAKE) --no-print-directory -f $(D)/plan.mk BIN=$(BIN) CACHE=$(CACHE) JOBS=$(JOBS) stages",
                   ".PHONY: all stages", ".DEFAULT_GOAL := all", ""]
-        anova = os.path.join(out, "screening", "anova.json")
-        if not os.path.exists(anova):
+        if not all(os.path.exists(f.replace("$(D)", out)) for f in first_phase):
             return finish(out, rules + ["stages: ;", ""])
+    if auto_seeds:
+        chosen_seeds = scatter.seeds_per_point(load_json(os.path.join(out, "scatter", "verification.json"),
+                                                         "scatter verification"),
+                                               float(study.get("verification", {}).get("tolerance", 0.05)))
+        write_if_changed(os.path.join(cfg, "seeds.json"), json.dumps(chosen_seeds, indent=1) + "\n")
+        study["seeds_per_point"] = chosen_seeds["seeds_per_point"]
+    if two_phase:
+        anova = os.path.join(out, "screening", "anova.json")
         chosen = choose_factors(study, space, load_json(anova, "screening ANOVA"), executables.design_kinds())
         write_if_changed(os.path.join(cfg, "factors.json"), json.dumps(chosen, indent=1) + "\n")
         for k, surface in enumerate(study["surfaces"]):
@@ -53,8 +65,8 @@ def plan(study_path, out):
         rules += surface_rules(study, scene, space, cfg, code, f"g{k + 1}", surface)
         models += surface["outputs"]
     rules += calibration_rules(study, scene, space, cfg, out, code, models)
-    rules += ["stages: $(D)/report.md", ""] if two_phase else ["all: $(D)/report.md", ".PHONY: all",
-                                                             ".DEFAULT_GOAL := all", ""]
+    rules += ["stages: $(D)/report.md", ""] if first_phase else ["all: $(D)/report.md", ".PHONY: all",
+                                                               ".DEFAULT_GOAL := all", ""]
     return finish(out, rules)
 
 
@@ -165,6 +177,24 @@ def inversion_config(study):
         inversion["dem_seeds"] = int(study.get("seeds_per_point", 1))
     inversion["extra"] = extra
     return inversion
+
+
+def scatter_rules(study, scene, space, cfg):
+    """seeds_per_point "auto": the targets over scatter.SCATTER_SEEDS specimens at the reference point."""
+    fixed = fixed_values(study, scene, space, study["factors"])
+    write_if_changed(os.path.join(cfg, "space_scatter.json"),
+                     json.dumps(subspace(space, study["factors"], fixed), indent=1) + "\n")
+    point = {"status": "ok", "x": scatter.reference_point(study, scene, space), "targets": study["targets"]}
+    write_if_changed(os.path.join(cfg, "scatter_point.json"), json.dumps(point, indent=1) + "\n")
+    n = scatter.SCATTER_SEEDS
+    verification = {"seeds": n, "max_seeds": n, "first_seed": 1,
+                    "tolerance": float(study.get("verification", {}).get("tolerance", 0.05))}
+    return [f"$(D)/scatter/verification.json: $(D)/config/scatter_point.json $(D)/config/space_scatter.json "
+            f"{study['scene']}",
+            "\t@mkdir -p $(D)/scatter",
+            "\t" + for_make(commands.verify(IN_MAKE, "$<", study["scene"], "$(D)/config/space_scatter.json",
+                                            verification, "$(D)/scatter/runs", "$@", md="$(D)/scatter/verification.md")),
+            ""]
 
 
 def calibration_rules(study, scene, space, cfg, out, code, models):

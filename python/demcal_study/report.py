@@ -89,6 +89,16 @@ def loop_lines(study, solution, out):
              + (f"; {dem['runs_reused']} of them were made by an interrupted earlier attempt and reused"
                 if dem.get("runs_reused") else "") + ". The verification below uses other specimens (seeds "
              f"{dem.get('seeds_per_point', 1) + 1} onwards) than the one(s) the optimiser saw.", ""]
+    chosen = os.path.join(out, "config", "seeds.json")
+    if os.path.exists(chosen):
+        c = load_json(chosen, "specimens per point")
+        lines += [f"The {c['seeds_per_point']} specimens per point were chosen from the scatter of the targets over "
+                  f"{c.get('scatter_seeds', 0)} specimens at the reference point (CV "
+                  + ", ".join(f"{o} {v:.1f} %" for o, v in sorted(c["cv_pct"].items()))
+                  + f"): the smallest number whose standard error is at most a third of the tolerance "
+                  f"({c.get('allowed_pct', 0):.2f} %)"
+                  + (f"; capped at {c['seeds_per_point']}, the standard error is {c['standard_error_pct']:.2f} %"
+                     if c.get("capped") else "") + ".", ""]
     history = os.path.join(out, "inversion_history.csv")
     if os.path.exists(history) and convergence_png(history, os.path.join(out, "convergence.png"),
                                                    solution.get("objective_kind", "")) is None:

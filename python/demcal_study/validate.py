@@ -13,6 +13,9 @@ def validate(study, path):
     schema.check(study, path)
     where = path
     check_strategy_fields(study, where)
+    if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):
+        fail(f"{where}: seeds_per_point \"auto\" chooses the specimens per DEM-in-the-loop evaluation; "
+             "give a number for designs")
     ver = study.get("verification", {})
     if ver.get("max_seeds", 10**9) < ver.get("seeds", 5):
         fail(f"{where}: verification.max_seeds ({ver['max_seeds']}) must be at least verification.seeds "
