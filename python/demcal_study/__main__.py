@@ -32,6 +32,8 @@ def parser():
     cal.add_argument("--strategy", choices=("trust-region", "kriging"), default="trust-region",
                      help="the search on specimen 1: local linear models in a trust region (default), or Gaussian "
                           "processes with expected improvement")
+    cal.add_argument("--check-resolution", type=float, metavar="F",
+                     help="once met, verify again with the disk radii divided by F (> 1) and report the shift")
     cal.add_argument("--name", help="folder name under --out-root (default: the scene's name and the targets)")
     cal.add_argument("--out-root", default="build/calibrations")
     cal.add_argument("--quiet", action="store_true")

@@ -53,11 +53,16 @@ def point_reason(out, run):
         return ""
 
 
-def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet):
-    """demcal-verify at absolute `parameters` on seeds first_seed.. (seeds to start with, up to max_seeds)."""
+def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet,
+           intervals=None, scale_resolution=None):
+    """demcal-verify at absolute `parameters` on seeds first_seed.. (seeds to start with, up to max_seeds);
+    `intervals` ({output: [low, high]}, the local model's 95 % prediction interval) is shown beside the DEM's."""
     os.makedirs(folder, exist_ok=True)
     solution = os.path.join(folder, "solution.json")
-    text = json.dumps({"status": "ok", "x": parameters, "targets": targets, "predicted": predicted}, indent=1) + "\n"
+    content = {"status": "ok", "x": parameters, "targets": targets, "predicted": predicted}
+    if intervals:
+        content["prediction_interval_95"] = intervals
+    text = json.dumps(content, indent=1) + "\n"
     if not (os.path.exists(solution) and open(solution).read() == text):
         write_target(solution, text)
     out = os.path.join(folder, "verification.json")
@@ -65,6 +70,8 @@ def verify(tools, scene, folder, parameters, targets, predicted, first_seed, see
            "--max-seeds", str(max_seeds), "--first-seed", str(first_seed), "--tolerance", repr(tolerance),
            "--jobs", tools.jobs, "--cache", tools.cache, "--work", os.path.join(folder, "runs"),
            "--md", os.path.join(folder, "verification.md"), "--out", out]
+    if scale_resolution:
+        cmd += ["--scale-resolution", repr(scale_resolution)]
     if quiet:
         cmd.append("--quiet")
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL)

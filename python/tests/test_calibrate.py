@@ -60,7 +60,8 @@ def fake(monkeypatch, tmp_path):
         calls["points"] += len(points)
         return [{"status": "ok", "outputs": fake_dem(p, 1), "reason": ""} for p in points]
 
-    def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet):
+    def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet,
+               intervals=None):
         os.makedirs(folder, exist_ok=True)
         n = seeds
         while True:
@@ -225,3 +226,10 @@ def test_kriging_interpolates_and_knows_where_it_has_no_data():
     grid = np.array([[u, 0.0] for u in np.linspace(-1, 1, 201)])
     ei, _ = kriging.expected_improvement([gp], lambda z: (z[..., 0] - 0.3) ** 2, grid, best=0.01)
     assert abs(np.sin(2 * grid[int(np.argmax(ei)), 0]) - 0.3) < 0.05
+
+
+def test_a_scale_beyond_the_bounds_is_unreachable_and_names_the_parameter(fake, tmp_path, bin_dir):
+    # E = Ec (0.4 + 0.4 / kn_ks) <= 4.4 Ec (kn_ks >= 0.1): 2,000 GPa needs Ec >= 455 GPa, above its bound 100 GPa.
+    code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 2000.0, "nu": 0.2})
+    assert code == calibrate.EXIT_UNREACHABLE, solution["why"]
+    assert "needs a scale factor" in solution["why"] and "Ec_Pa" in solution["why"] and "bounds 1e+08 to 1e+11" in solution["why"]
