@@ -44,6 +44,11 @@ MAX_VERIFICATION_SEEDS = 20
 EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
 
 
+def pct(value, spec):
+    """A percentage for a progress line; "-" when demcal-verify had too few runs to give one."""
+    return "-" if value is None else format(value, spec)
+
+
 def parse_assignments(items, what):
     out = {}
     for item in items or []:
@@ -77,6 +82,7 @@ class Calibration:
         self.rounds = []   # what each round decided
         self.verifications = []
         self.runs = 0
+        self.specimen_variance = 0.0  # of the modelled responses over fresh specimens, once a verification ran
         self.started = time.time()
 
     def say(self, message):
@@ -235,6 +241,7 @@ class Calibration:
                 converged = True
                 break
             if self.runs + 2 > self.budget - reserve:
+                blocked = False  # stopped by the budget, not by the bounds
                 break
             offset = np.zeros(len(p.modelled_outputs()))
             r0, jac = self.jacobian(model.significant(), centre, offset)
@@ -305,7 +312,7 @@ class Calibration:
                 break
             if self.runs + 2 > self.budget - reserve:
                 break
-            if stale >= 2 and self.nowhere_within_tolerance(gps, misfit, d) and np.any(np.abs(centre) >= 0.98):
+            if stale >= 2 and self.nowhere_within_tolerance(gps, d) and np.any(np.abs(centre) >= 0.98):
                 blocked = True  # two rounds without a better point, and the GPs see nothing better anywhere
                 break
             rng = np.random.default_rng(k)
@@ -314,12 +321,17 @@ class Calibration:
                                     np.clip(centre + 0.05 * rng.standard_normal((1000, d)), low, high)])
             best_misfit = float(np.sum(current ** 2))
             ei, mean = kriging.expected_improvement(gps, misfit, candidates, best_misfit, seed=k)
-            first = int(np.argmax(ei))
+            # No draw improves anywhere: take the lowest predicted misfit rather than an arbitrary candidate.
+            first = int(np.argmax(ei)) if np.max(ei) > 0 else int(np.argmin(misfit(mean)))
             believed = [kriging.GP(np.vstack([x, candidates[first]]), np.append(z[:, j], mean[first, j]), gp.length,
                                    gp.signal2, gp.nugget2) for j, gp in enumerate(gps)]
             ei2, mean2 = kriging.expected_improvement(believed, misfit, candidates, best_misfit, seed=k)
             ei2[first] = -1.0
-            second = int(np.argmax(ei2))
+            if np.max(ei2) > 0:
+                second = int(np.argmax(ei2))
+            else:
+                order = np.argsort(misfit(mean2))
+                second = int(order[1] if order[0] == first else order[0])
             picks = [candidates[first], candidates[second]]
             entries = []
             for u in picks:
@@ -345,11 +357,13 @@ class Calibration:
                      self.format_residuals(self.measured_residuals(best)) + f", {self.runs} runs")
         return centre, INITIAL_RADIUS, best, converged, blocked
 
-    def nowhere_within_tolerance(self, gps, misfit, d):
-        """Whether the GPs' means miss the tolerance everywhere in the space (20,000 points, seeded)."""
+    def nowhere_within_tolerance(self, gps, d):
+        """Whether the GPs' means miss the tolerance on some target everywhere in the space (20,000 points,
+        seeded): the tolerance applies to each residual."""
+        a, c = self.residual_map()
         anywhere = np.random.default_rng(0).uniform(-1, 1, size=(20000, d))
         means = np.stack([gp.predict(anywhere)[0] for gp in gps], axis=1)
-        return float(np.min(misfit(means))) > self.tolerance ** 2
+        return float(np.min(np.max(np.abs(means @ a.T + c), axis=1))) > self.tolerance
 
     def residual_map(self):
         """The residuals are affine in the modelled responses: r = A z + c."""
@@ -363,76 +377,95 @@ class Calibration:
             cols.append(np.asarray(self.problem.residuals(z)) - c)
         return np.array(cols).T, c
 
+    def point_at(self, model, centre, offset):
+        """Everything the DEM runs and the report states at coordinates `centre`: the scale factor (the bounds'
+        interval and the factor E wants), the scene parameters, the prediction (specimen 1's model plus the
+        specimens' offset) and its 95 % prediction interval for one specimen."""
+        p = self.problem
+        scale, interval, wanted = self.scale_at(model, centre, offset)
+        z = self.z_of(model, centre, offset)
+        half = model.interval_half_width(centre, self.specimen_variance)
+        return {"coordinates": [float(x) for x in centre], "scale_factor": scale, "scale_interval": list(interval),
+                "wanted_scale_factor": wanted, "x": p.absolute(centre, scale), "ratios": p.ratios(centre),
+                "predicted": {o: p.from_model(o, z[o], scale) for o in p.modelled_outputs()},
+                "prediction_interval_95": {o: [p.from_model(o, z[o] - half[i], scale),
+                                               p.from_model(o, z[o] + half[i], scale)]
+                                           for i, o in enumerate(p.modelled_outputs())},
+                "offset": dict(zip(p.modelled_outputs(), [float(x) for x in offset]))}
+
     def verify_loop(self, centre, radius):
         p = self.problem
         offset = np.zeros(len(p.modelled_outputs()))
         next_seed = 2  # specimen 1 made the design; verify on others
-        pooled = []    # (n, offset per modelled output)
+        pooled = []    # (n, offset per modelled output, variance over those specimens)
+        verified = None  # the last point a verification ran at
         k = 0
         while True:
             k += 1
             left = self.budget - self.runs
+            model = self.fit(centre, radius)
+            point = self.point_at(model, centre, offset)
             if left < 2:
                 return self.finish("budget", f"the budget of {self.budget} DEM runs is spent", EXIT_BUDGET,
-                                   centre=centre, offset=offset)
-            model = self.fit(centre, radius)
-            scale, interval, wanted = self.scale_at(model, centre, offset)
+                                   point=verified or point)
+            interval, wanted = point["scale_interval"], point["wanted_scale_factor"]
             if not (interval[0] * (1 - 1e-9) <= wanted <= interval[1] * (1 + 1e-9)):
                 at = p.absolute(centre, wanted)
                 beyond = ", ".join(f"{n} {at[n]:.4g} (bounds {lo:.4g} to {hi:.4g})"
                                    for n, (lo, hi) in sorted(p.absolute_bounds.items()) if not lo <= at[n] <= hi)
                 return self.finish("unreachable", f"{p.scale_target} needs a scale factor {wanted:.4g}, outside what "
                                    f"the bounds allow ({interval[0]:.4g} to {interval[1]:.4g}): at that factor "
-                                   f"{beyond}", EXIT_UNREACHABLE, centre=centre, offset=offset)
-            params = p.absolute(centre, scale)
-            z = self.z_of(model, centre, offset)
-            predicted = {o: p.from_model(o, z[o], scale) for o in p.modelled_outputs()}
-            sd = model.prediction_sd(centre)
-            intervals = {o: [p.from_model(o, z[o] - 1.96 * sd[i], scale), p.from_model(o, z[o] + 1.96 * sd[i], scale)]
-                         for i, o in enumerate(p.modelled_outputs())}
+                                   f"{beyond}", EXIT_UNREACHABLE, point=point)
             seeds, most = min(FIRST_VERIFICATION_SEEDS, left), min(MAX_VERIFICATION_SEEDS, left)
-            v = calibrate_runs.verify(self.tools, self.scene, os.path.join(self.out, "verify", f"v{k:02d}"), params,
-                                      p.targets, predicted, next_seed, seeds, most, self.tolerance, self.quiet,
-                                      intervals=intervals)
+            folder = os.path.join(self.out, "verify", f"v{k:02d}")
+            v = calibrate_runs.verify(self.tools, self.scene, folder, point["x"], p.targets, point["predicted"],
+                                      next_seed, seeds, most, self.tolerance, self.quiet,
+                                      intervals=point["prediction_interval_95"])
+            verified = point
             used = len(v["seeds"])
             self.runs += used
             next_seed += used
+            rows = v["outputs"]
             met = v["passed"] and all(r["half_width_pct"] is not None and r["half_width_pct"] <= 100 * self.tolerance
-                                      for r in v["outputs"].values())
+                                      for r in rows.values())
             self.verifications.append({"round": k, "folder": os.path.join("verify", f"v{k:02d}"), "seeds": used,
                                        "first_seed": next_seed - used, "passed": v["passed"], "verdict": v["verdict"],
-                                       "met": met, "scale": scale, "runs": self.runs,
-                                       "errors_pct": {o: r["relative_error_pct"] for o, r in v["outputs"].items()},
-                                       "half_width_pct": {o: r["half_width_pct"] for o, r in v["outputs"].items()}})
+                                       "met": met, "scale": point["scale_factor"], "runs": self.runs,
+                                       "errors_pct": {o: r["relative_error_pct"] for o, r in rows.items()},
+                                       "half_width_pct": {o: r["half_width_pct"] for o, r in rows.items()}})
             self.say(f"verification {k} on seeds {next_seed - used}-{next_seed - 1}: " +
-                     ", ".join(f"{o} {r['relative_error_pct']:+.1f} % (+-{r['half_width_pct']:.1f})"
-                               for o, r in v["outputs"].items()) + (" - met" if met else "") + f"; {self.runs} runs")
+                     ", ".join(f"{o} {pct(r['relative_error_pct'], '+.1f')} % (+-{pct(r['half_width_pct'], '.1f')})"
+                               for o, r in rows.items()) + (" - met" if met else "") + f"; {self.runs} runs")
             if met and self.config.get("check_resolution"):
                 # The met point again on finer specimens (the coarse runs are reused): the shift a user will see.
-                v = calibrate_runs.verify(self.tools, self.scene, os.path.join(self.out, "verify", f"v{k:02d}"), params,
-                                          p.targets, predicted, next_seed - used, seeds, most, self.tolerance,
-                                          self.quiet, intervals=intervals,
+                v = calibrate_runs.verify(self.tools, self.scene, folder, point["x"], p.targets, point["predicted"],
+                                          next_seed - used, seeds, most, self.tolerance, self.quiet,
+                                          intervals=point["prediction_interval_95"],
                                           scale_resolution=self.config["check_resolution"])
                 self.say("at disk radii / {:g}: ".format(self.config["check_resolution"]) + ", ".join(
                     f"{o} shift {s:+.1f} %" for o, s in v["finer"]["shift_pct"].items() if s is not None))
             if met:
                 return self.finish("met", "every target within the tolerance, every 95 % half-width too", EXIT_MET,
-                                   centre=centre, offset=offset, verification=v)
+                                   point=point, verification=v)
             if v["passed"] and used >= most:
-                wide = [o for o, r in v["outputs"].items() if r["half_width_pct"] > 100 * self.tolerance]
+                wide = [o for o, r in rows.items() if r["half_width_pct"] is None
+                        or r["half_width_pct"] > 100 * self.tolerance]
                 return self.finish("noisy", f"the means are within the tolerance but {', '.join(wide)} scatter too "
                                    f"much for a {100 * self.tolerance:g} % half-width in {used} seeds: a larger "
-                                   "specimen scatters less", EXIT_BUDGET, centre=centre, offset=offset,
-                                   verification=v)
-            # The specimens' mean against specimen 1's model: an offset per response, pooled over verifications.
-            ok = [s for s in v["seeds"] if s["status"] == "ok"]
-            if len(ok) >= 2:
-                zs = np.array([[p.to_model(o, s["macro"][o], scale) for o in p.modelled_outputs()] for s in ok])
-                base = model.predict(centre)
-                pooled.append((len(ok), zs.mean(axis=0) - base))
-                offset = sum(n * b for n, b in pooled) / sum(n for n, _ in pooled)
+                                   "specimen scatters less", EXIT_BUDGET, point=point, verification=v)
+            # The specimens' mean against specimen 1's model: an offset per response, pooled over verifications
+            # (weighted by seeds), and their scatter, which the prediction interval of one specimen must include.
+            zs = [[p.to_model(o, s["macro"][o], point["scale_factor"]) for o in p.modelled_outputs()]
+                  for s in v["seeds"] if s["status"] == "ok"
+                  and all(isinstance(s["macro"].get(o), (int, float)) for o in p.modelled_outputs())]
+            zs = np.array([row for row in zs if all(math.isfinite(x) for x in row)])
+            if len(zs) >= 2:
+                pooled.append((len(zs), zs.mean(axis=0) - model.predict(centre), zs.var(axis=0, ddof=1)))
+                total = sum(n for n, _, _ in pooled)
+                offset = sum(n * b for n, b, _ in pooled) / total
+                self.specimen_variance = sum((n - 1) * var for n, _, var in pooled) / max(total - len(pooled), 1)
             r0, jac = self.jacobian(model.significant(), centre, offset)
-            delta, predicted_r, held = trust_region.step(r0, jac, centre, max(radius, 0.05))
+            delta, _, _ = trust_region.step(r0, jac, centre, max(radius, 0.05))
             centre = np.clip(centre + delta, -1, 1)
 
     # -- bookkeeping -------------------------------------------------------------------------------------------
@@ -459,27 +492,18 @@ class Calibration:
             return "failed"
         return ", ".join(f"{n} {100 * x:+.1f} %" for n, x in zip(self.problem.residual_labels(), r))
 
-    def finish(self, status, why, code, centre=None, offset=None, verification=None):
+    def finish(self, status, why, code, point=None, centre=None, verification=None):
+        """solution.json (the point verified last, or `point`, or the local model's at `centre`), the final
+        verification, and the closing line."""
         p = self.problem
         solution = {"status": status, "why": why, "exit_code": code, "dem_runs": self.runs,
                     "budget": self.budget, "wall_s": time.time() - self.started, "targets": p.targets,
-                    "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=p.residual_labels()), "rounds": self.rounds,
-                    "verifications": self.verifications, "crn": getattr(self, "crn", None)}
-        if centre is not None:
-            model = self.fit(centre, SMALLEST_RADIUS * 10)
-            offset = np.zeros(len(p.modelled_outputs())) if offset is None else offset
-            scale, interval, wanted = self.scale_at(model, centre, offset)
-            z = self.z_of(model, centre, offset)
-            sd = model.prediction_sd(centre)
-            solution["x"] = p.absolute(centre, scale)
-            solution["scale_factor"] = scale
-            solution["scale_interval"] = list(interval)
-            solution["ratios"] = p.ratios(centre)
-            solution["predicted"] = {o: p.from_model(o, z[o], scale) for o in p.modelled_outputs()}
-            solution["prediction_interval_95"] = {
-                o: [p.from_model(o, z[o] - 1.96 * sd[i], scale), p.from_model(o, z[o] + 1.96 * sd[i], scale)]
-                for i, o in enumerate(p.modelled_outputs())}
-            solution["offset"] = dict(zip(p.modelled_outputs(), [float(x) for x in offset]))
+                    "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=p.residual_labels()),
+                    "rounds": self.rounds, "verifications": self.verifications, "crn": getattr(self, "crn", None)}
+        if point is None and centre is not None:
+            point = self.point_at(self.fit(centre, INITIAL_RADIUS), centre, np.zeros(len(p.modelled_outputs())))
+        if point is not None:
+            solution.update(point)
         solution["reachable"] = self.reachable()
         write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")
         if verification is None and self.verifications:
@@ -535,9 +559,13 @@ def calibrate(args):
     stored = os.path.join(out, "calibration.json")
     if os.path.exists(stored):
         before = load_json(stored, "calibration")
-        if before != config:
+        # A check after the calibration changes none of its decisions: it may be added to a finished one.
+        if {k: v for k, v in before.items() if k != "check_resolution"} != \
+                {k: v for k, v in config.items() if k != "check_resolution"}:
             fail(f"{stored}: another calibration is stored here (different scene, targets or settings); remove "
                  f"{out} or give --name")
+        if before != config:
+            write_target(stored, json.dumps(config, indent=1) + "\n")
     else:
         os.makedirs(out, exist_ok=True)
         write_target(stored, json.dumps(config, indent=1) + "\n")

@@ -8,6 +8,10 @@ from .files import write_target
 from .to_html import to_html
 
 
+def _pct(x, spec):
+    return "-" if x is None else format(x, spec)
+
+
 def _g(x):
     return "-" if x is None else f"{x:.4g}"
 
@@ -50,7 +54,8 @@ def report(out):
         lines += ["", "## Verifications on fresh seeds", "",
                   "| verification | seeds | errors % (95 % half-width) | verdict | met | runs after |", "|---|---|---|---|---|---|"]
         for v in solution["verifications"]:
-            e = ", ".join(f"{o} {v['errors_pct'][o]:+.2f} (+-{v['half_width_pct'][o]:.2f})" for o in v["errors_pct"])
+            e = ", ".join(f"{o} {_pct(v['errors_pct'][o], '+.2f')} (+-{_pct(v['half_width_pct'][o], '.2f')})"
+                          for o in v["errors_pct"])
             lines.append(f"| {v['round']} | {v['first_seed']}-{v['first_seed'] + v['seeds'] - 1} | {e} | {v['verdict']} "
                          f"| {'yes' if v['met'] else 'no'} | {v['runs']} |")
     if "x" in solution:

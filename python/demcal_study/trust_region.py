@@ -13,16 +13,35 @@ WEIGHT_RADII = 2.0
 RIDGE = 1e-8  # a tiny ridge on the slopes keeps the fit defined before there are d + 1 points near the centre
 
 
+# Two-sided 95 % points of Student's t (tables), by degrees of freedom; between them linear in 1 / dof.
+_T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228,
+         12: 2.179, 15: 2.131, 20: 2.086, 25: 2.060, 30: 2.042, 40: 2.021, 60: 2.000, 120: 1.980}
+
+
+def t975(dof):
+    """t(0.975, dof) for a real dof >= 1 (an effective sample size gives fractional ones); 1.960 at infinity."""
+    dof = max(float(dof), 1.0)
+    keys = sorted(_T975)
+    if dof >= keys[-1]:
+        a, ta, tb = 1.0 / keys[-1], _T975[keys[-1]], 1.960
+        return tb + (ta - tb) * (1.0 / dof) / a
+    for lo, hi in zip(keys, keys[1:]):
+        if lo <= dof <= hi:
+            w = (1.0 / dof - 1.0 / hi) / (1.0 / lo - 1.0 / hi)
+            return _T975[hi] + w * (_T975[lo] - _T975[hi])
+    return _T975[1]
+
+
 class LocalModel:
     """z(u) ~ intercept + slopes (u - centre), one column per modelled response; with the weighted residual
-    variance and (X' W X)^-1 for prediction intervals."""
+    variance and the coefficients' covariance (per unit variance) for slopes' t values and prediction intervals."""
 
-    def __init__(self, centre, intercept, slopes, sigma2, xtwx_inv, dof):
+    def __init__(self, centre, intercept, slopes, sigma2, cov_unscaled, dof):
         self.centre = np.asarray(centre, float)
         self.intercept = np.asarray(intercept, float)
         self.slopes = np.asarray(slopes, float)  # responses x d
         self.sigma2 = np.asarray(sigma2, float)  # per response
-        self.xtwx_inv = xtwx_inv
+        self.cov_unscaled = cov_unscaled           # Cov(beta) / sigma^2 over (1, u - centre)
         self.dof = dof
 
     def predict(self, u):
@@ -30,7 +49,7 @@ class LocalModel:
 
     def slope_t(self):
         """Each slope over its standard error (responses x d): which coordinates the data show an effect of."""
-        se = np.sqrt(np.outer(self.sigma2, np.diag(self.xtwx_inv)[1:]))
+        se = np.sqrt(np.outer(self.sigma2, np.diag(self.cov_unscaled)[1:]))
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(se > 0, np.abs(self.slopes) / se, np.inf)
 
@@ -45,12 +64,18 @@ class LocalModel:
             if not keep.any() and slopes.shape[1]:
                 keep[int(np.argmax(t[k]))] = True
             slopes[k, ~keep] = 0.0
-        return LocalModel(self.centre, self.intercept, slopes, self.sigma2, self.xtwx_inv, self.dof)
+        return LocalModel(self.centre, self.intercept, slopes, self.sigma2, self.cov_unscaled, self.dof)
 
     def prediction_sd(self, u):
         """SD of a new observation at u (one specimen): sqrt(sigma^2 (1 + x0' (X'WX)^-1 x0)) per response."""
         x0 = np.concatenate([[1.0], np.asarray(u, float) - self.centre])
-        return np.sqrt(self.sigma2 * (1.0 + x0 @ self.xtwx_inv @ x0))
+        return np.sqrt(self.sigma2 * (1.0 + x0 @ self.cov_unscaled @ x0))
+
+    def interval_half_width(self, u, extra_variance=0.0):
+        """Half-width of the 95 % prediction interval of one new observation at u (t with the fit's effective
+        degrees of freedom); extra_variance adds what the fit's points cannot see (specimen-to-specimen scatter)."""
+        sd = np.sqrt(self.prediction_sd(u) ** 2 + extra_variance)
+        return t975(self.dof) * sd
 
 
 def weights(points, centre, radius):
@@ -58,22 +83,25 @@ def weights(points, centre, radius):
     return np.exp(-(t / (WEIGHT_RADII * radius)) ** 2)
 
 
-def fit_local(points, responses, centre, radius):
-    """Weighted least squares of every response column on (1, u - centre)."""
+def fit_local(points, responses, centre, radius, w=None):
+    """Weighted least squares of every response column on (1, u - centre); `w` overrides the weights."""
     u = np.asarray(points, float)
     z = np.asarray(responses, float)
     n, d = u.shape
-    w = weights(u, centre, radius)
+    w = weights(u, centre, radius) if w is None else np.asarray(w, float)
     x = np.hstack([np.ones((n, 1)), u - centre])
     xtw = x.T * w
     xtwx = xtw @ x + RIDGE * np.diag([0.0] + [1.0] * d)
     xtwx_inv = np.linalg.pinv(xtwx)
     beta = xtwx_inv @ (xtw @ z)  # (d + 1) x responses
+    # The weights say where the model should fit, not how precise a point is: the coefficients' covariance is
+    # the sandwich A X'W^2X A (A = (X'WX)^-1) times the residual variance, unchanged when all weights scale.
+    cov_unscaled = xtwx_inv @ ((x.T * w ** 2) @ x) @ xtwx_inv
     resid = z - x @ beta
     effective = w.sum() ** 2 / max((w ** 2).sum(), 1e-300)  # Kish's effective sample size
     dof = max(effective - (d + 1), 1.0)
     sigma2 = (w[:, None] * resid ** 2).sum(axis=0) / max(w.sum(), 1e-300) * effective / dof
-    return LocalModel(centre, beta[0], beta[1:].T, sigma2, xtwx_inv, dof)
+    return LocalModel(centre, beta[0], beta[1:].T, sigma2, cov_unscaled, dof)
 
 
 def step(r0, jacobian, centre, radius, damping=0.0):

@@ -61,7 +61,7 @@ def fake(monkeypatch, tmp_path):
         return [{"status": "ok", "outputs": fake_dem(p, 1), "reason": ""} for p in points]
 
     def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet,
-               intervals=None):
+               intervals=None, scale_resolution=None):
         os.makedirs(folder, exist_ok=True)
         n = seeds
         while True:
@@ -79,8 +79,12 @@ def fake(monkeypatch, tmp_path):
                 break
             n += 1
         calls["seeds"] += n
+        with open(os.path.join(folder, "solution.json"), "w") as f:
+            json.dump({"x": parameters, "predicted": predicted, "prediction_interval_95": intervals}, f)
         v = {"passed": passed, "verdict": "mean_inside_band" if passed else "outside", "outputs": rows,
              "seeds": [{"seed": s, "status": "ok", "macro": {k: float(x) for k, x in r.items()}} for s, r in zip(range(first_seed, first_seed + n), runs)]}
+        if scale_resolution:
+            v["finer"] = {"factor": scale_resolution, "seeds": v["seeds"][:2], "shift_pct": {o: 0.0 for o in targets}}
         with open(os.path.join(folder, "verification.json"), "w") as f:
             json.dump(v, f)
         return v
@@ -91,13 +95,15 @@ def fake(monkeypatch, tmp_path):
     return calls
 
 
-def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None):
+def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None, check_resolution=None):
     out = str(tmp_path / "cal")
     os.makedirs(out, exist_ok=True)
     config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05,
               "budget": budget, "scale_parameter": None}
     if strategy:
         config["strategy"] = strategy
+    if check_resolution:
+        config["check_resolution"] = check_resolution
     with open(os.path.join(out, "calibration.json"), "w") as f:
         json.dump(config, f)
     tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
@@ -122,6 +128,13 @@ def test_reachable_targets_are_met_and_verified(fake, tmp_path, bin_dir, strateg
     assert solution["x"]["Ec_Pa"] == pytest.approx(20e9 * solution["scale_factor"], rel=1e-12)
     assert solution["x"]["sc_Pa"] == pytest.approx(solution["ratios"]["sc_Pa"] * solution["x"]["Ec_Pa"], rel=1e-12)
     assert "R_m" not in solution["x"]  # shapes the specimen: left at the scene's default
+    # The solution is the point the last verification ran at, with the interval it was shown.
+    last = solution["verifications"][-1]["folder"]
+    verified = json.load(open(os.path.join(out, last, "solution.json")))
+    assert verified["x"] == solution["x"] and verified["predicted"] == solution["predicted"]
+    assert verified["prediction_interval_95"] == solution["prediction_interval_95"]
+    for o, (lo, hi) in solution["prediction_interval_95"].items():
+        assert lo < solution["predicted"][o] < hi
     report(out)
     md = open(os.path.join(out, "report.md")).read()
     assert "## The problem in dimensionless form" in md and "| sigma_u_MPa/E_GPa | 0.007385 |" in md
@@ -233,3 +246,25 @@ def test_a_scale_beyond_the_bounds_is_unreachable_and_names_the_parameter(fake, 
     code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 2000.0, "nu": 0.2})
     assert code == calibrate.EXIT_UNREACHABLE, solution["why"]
     assert "needs a scale factor" in solution["why"] and "Ec_Pa" in solution["why"] and "bounds 1e+08 to 1e+11" in solution["why"]
+
+
+def test_check_resolution_runs_once_met_and_is_listed_apart(fake, tmp_path, bin_dir):
+    code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2},
+                                        check_resolution=2.0)
+    assert code == calibrate.EXIT_MET
+    assert solution["finer_check"]["factor"] == 2.0 and solution["finer_check"]["runs"] == 2
+
+
+def test_t_quantiles_and_weights_that_only_place_the_fit():
+    assert trust_region.t975(4) == pytest.approx(2.776, abs=1e-3)
+    assert trust_region.t975(17.5) == pytest.approx(2.105, abs=2e-3)  # between the tables' 15 and 20
+    assert trust_region.t975(1e9) == pytest.approx(1.960, abs=1e-3)
+    # Scaling every weight by 10 moves neither the slopes' t values nor the prediction interval.
+    rng = np.random.default_rng(4)
+    u = rng.uniform(-1, 1, size=(15, 3))
+    z = (0.3 + u @ np.array([0.2, -0.1, 0.05]) + 0.02 * rng.normal(size=15))[:, None]
+    w = rng.uniform(0.2, 1.0, size=15)
+    a = trust_region.fit_local(u, z, np.zeros(3), 1.0, w=w)
+    b = trust_region.fit_local(u, z, np.zeros(3), 1.0, w=0.1 * w)
+    assert a.slope_t() == pytest.approx(b.slope_t(), rel=1e-6)
+    assert a.prediction_sd(np.full(3, 0.3)) == pytest.approx(b.prediction_sd(np.full(3, 0.3)), rel=1e-6)
