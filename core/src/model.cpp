@@ -12,6 +12,8 @@ std::vector<double> Model::predict(const std::vector<double>& x) const {
   return y;
 }
 
+bool Model::prediction_interval_95(const double*, double*, double*) const { return false; }
+
 void Model::predict_batch(const std::vector<std::vector<double>>& xs, std::vector<std::vector<double>>& ys) const {
   ys.resize(xs.size());
   for (std::size_t i = 0; i < xs.size(); ++i) ys[i] = predict(xs[i]);

@@ -33,8 +33,9 @@ using nlohmann::json;
 struct Arguments {
   std::string solution, scene, space, out, csv, md, work, cache = "build/cache";
   std::vector<std::string> sets;
-  int seeds = 5, max_seeds = 20, first_seed = 1, jobs = 2;
+  int seeds = 5, max_seeds = 20, first_seed = 1, jobs = 2, finer_seeds = 5;
   double tolerance = 0.05;
+  double scale_resolution = 0.0;  // > 1: also verify with the specimen's radii divided by this
   bool quiet = false;
 };
 
@@ -54,8 +55,46 @@ std::map<std::string, double> numbers(const json& object, const std::string& whe
   return out;
 }
 
+// The results of run 1 on seeds first..first+n-1 of a finished batch.
+std::vector<inverse::SeedRun> stored_seeds(const std::string& out_path, int first, int n) {
+  std::vector<inverse::SeedRun> seeds;
+  for (int s = first; s < first + n; ++s) {
+    const json r = read_json_file(out_path + ".points/run1_seed" + std::to_string(s) + ".json", "DEM result");
+    inverse::SeedRun run;
+    run.seed = static_cast<std::uint64_t>(s);
+    run.ok = r.value("status", std::string()) == "ok";
+    run.reason = r.value("reason", std::string());
+    if (r.contains("macro"))
+      for (auto it = r.at("macro").begin(); it != r.at("macro").end(); ++it)
+        if (it.value().is_number()) run.macro[it.key()] = it.value().get<double>();
+    seeds.push_back(run);
+  }
+  return seeds;
+}
+
+std::string shift_markdown(const inverse::Verification& coarse, const inverse::Verification& finer, double factor,
+                           const json& shifts) {
+  std::string md = "\nAt a finer resolution (disk radii / " + format_double(factor) + ", " +
+                   std::to_string(finer.seeds.size()) + " seeds):\n\n| output | target | mean | finer mean | "
+                   "its 95 % interval | shift % | relative error % | within |\n|---|---|---|---|---|---|---|---|\n";
+  char buffer[512];
+  for (std::size_t i = 0; i < coarse.rows.size() && i < finer.rows.size(); ++i) {
+    const inverse::VerificationRow& c = coarse.rows[i];
+    const inverse::VerificationRow& f = finer.rows[i];
+    const json& shift = shifts.at(c.output);
+    std::snprintf(buffer, sizeof buffer, "| %s | %.4g | %.4g | %.4g | %.4g to %.4g | %+.2f | %+.2f | %s |\n",
+                  c.output.c_str(), c.target, c.mean, f.mean, f.ci95_low, f.ci95_high,
+                  shift.is_number() ? shift.get<double>() : std::nan(""), f.relative_error_pct, f.passed ? "yes" : "no");
+    md += buffer;
+  }
+  return md;
+}
+
 int run(const Arguments& a) {
   if (a.seeds < 1) throw Error("--seeds must be at least 1");
+  if (a.scale_resolution != 0.0 && !(a.scale_resolution > 1.0))
+    throw Error("--scale-resolution must be above 1 (the factor the disk radii are divided by)");
+  if (a.finer_seeds < 2) throw Error("--finer-seeds must be at least 2 (a spread needs two runs)");
   if (a.max_seeds < a.seeds)
     throw Error("--max-seeds (" + std::to_string(a.max_seeds) + ") must be at least --seeds (" + std::to_string(a.seeds) + ")");
   if (a.first_seed < 1) throw Error("--first-seed must be at least 1");
@@ -126,25 +165,24 @@ int run(const Arguments& a) {
   if (solution.contains("predicted"))
     for (auto it = solution.at("predicted").begin(); it != solution.at("predicted").end(); ++it)
       if (it.value().is_number()) predicted[it.key()] = it.value().get<double>();
+  // The surrogate's 95 % prediction interval, shown beside the DEM's interval of the mean.
+  inverse::Intervals intervals;
+  if (solution.contains("prediction_interval_95") && solution.at("prediction_interval_95").is_object())
+    for (auto it = solution.at("prediction_interval_95").begin(); it != solution.at("prediction_interval_95").end(); ++it) {
+      const json& pair = it.value();
+      if (!pair.is_array() || pair.size() != 2) throw Error(a.solution + ": prediction_interval_95." + it.key() + " must be [low, high]");
+      if (pair[0].is_null() || pair[1].is_null()) continue;  // demcal-invert writes null for a non-finite bound
+      if (!pair[0].is_number() || !pair[1].is_number())
+        throw Error(a.solution + ": prediction_interval_95." + it.key() + " must be [low, high] (numbers)");
+      intervals[it.key()] = {pair[0].get<double>(), pair[1].get<double>()};
+    }
 
   // Run n seeds (the batch resumes, so only the new ones run) and judge them.
   double wall_s = 0.0;
   auto judge = [&](int n) {
     batch.seeds = n;
     wall_s += jobs::run_batch(batch).wall_s;
-    std::vector<inverse::SeedRun> seeds;
-    for (int s = a.first_seed; s < a.first_seed + n; ++s) {
-      const json r = read_json_file(batch.out_path + ".points/run1_seed" + std::to_string(s) + ".json", "DEM result");
-      inverse::SeedRun run;
-      run.seed = static_cast<std::uint64_t>(s);
-      run.ok = r.value("status", std::string()) == "ok";
-      run.reason = r.value("reason", std::string());
-      if (r.contains("macro"))
-        for (auto it = r.at("macro").begin(); it != r.at("macro").end(); ++it)
-          if (it.value().is_number()) run.macro[it.key()] = it.value().get<double>();
-      seeds.push_back(run);
-    }
-    return inverse::verify(targets, predicted, seeds, a.tolerance);
+    return inverse::verify(targets, predicted, stored_seeds(batch.out_path, a.first_seed, n), a.tolerance, intervals);
   };
   inverse::Verification v = judge(a.seeds);
   for (;;) {
@@ -167,6 +205,36 @@ int run(const Arguments& a) {
   }
 
   json out = inverse::verification_json(v);
+  std::string finer_table;
+  if (a.scale_resolution > 1.0) {
+    // The same point on finer specimens: how far the calibration moves at the resolution a user will run.
+    const std::string finer_scene = work + "/finer_scene.json";
+    write_file_atomically(finer_scene,
+                          dem::Scene::with_finer_disks(dem::Scene::resolved_json(a.scene), a.scale_resolution, a.scene)
+                                  .dump(1) + "\n");
+    jobs::BatchOptions fine = batch;
+    fine.scene_path = finer_scene;
+    fine.out_path = work + "/finer_runs.h5";
+    fine.csv_path = work + "/finer_runs.csv";
+    fine.seeds = a.finer_seeds;
+    if (!a.quiet)
+      log::info("verification at a finer resolution: disk radii / " + format_double(a.scale_resolution) + ", " +
+                std::to_string(a.finer_seeds) + " seeds");
+    wall_s += jobs::run_batch(fine).wall_s;
+    inverse::Verification finer =
+        inverse::verify(targets, predicted, stored_seeds(fine.out_path, a.first_seed, a.finer_seeds), a.tolerance);
+    json shifts = json::object();
+    for (std::size_t i = 0; i < v.rows.size() && i < finer.rows.size(); ++i) {
+      const double shift = 100.0 * (finer.rows[i].mean - v.rows[i].mean) / std::fabs(v.rows[i].mean);
+      shifts[v.rows[i].output] = std::isfinite(shift) ? json(shift) : json(nullptr);
+    }
+    json f = inverse::verification_json(finer);
+    f["factor"] = a.scale_resolution;
+    f["scene"] = finer_scene;
+    f["shift_pct"] = shifts;
+    out["finer"] = f;
+    finer_table = shift_markdown(v, finer, a.scale_resolution, shifts);
+  }
   out["parameters"] = point;
   out["scene"] = a.scene;
   out["solution"] = a.solution;
@@ -175,7 +243,7 @@ int run(const Arguments& a) {
   out["max_seeds"] = a.max_seeds;
   write_file_atomically(a.out, out.dump(2) + "\n");
   if (!a.csv.empty()) write_file_atomically(a.csv, inverse::verification_csv(v));
-  const std::string table = inverse::verification_markdown(v);
+  const std::string table = inverse::verification_markdown(v) + finer_table;
   if (!a.md.empty()) write_file_atomically(a.md, table);
   if (!a.quiet) std::cout << table;
   return 0;
@@ -203,6 +271,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--jobs", a.jobs, "seeds run at once")->capture_default_str();
   app.add_option("--tolerance", a.tolerance, "largest relative error that passes")->capture_default_str();
+  app.add_option("--scale-resolution", a.scale_resolution,
+                 "also verify with the specimen's disk radii divided by this factor (> 1) and report the shift");
+  app.add_option("--finer-seeds", a.finer_seeds, "seeds of the finer verification")->capture_default_str();
   app.add_option("--out", a.out, "verification JSON")->required();
   app.add_option("--csv", a.csv, "verification table as CSV");
   app.add_option("--md", a.md, "verification table as Markdown");

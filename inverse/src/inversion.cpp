@@ -198,6 +198,9 @@ json solution_json(const InversionProblem& problem, const InversionSettings& set
   const std::vector<std::string>& names = problem.parameter_names();
   json predicted = json::object();
   for (const auto& [name, value] : problem.predict_all(result.x)) predicted[name] = value;
+  json intervals = json::object();
+  for (const auto& [name, range] : problem.prediction_intervals_95(result.x))
+    intervals[name] = {finite_or_null(range.first), finite_or_null(range.second)};
   json targets = json::object(), errors = json::object();
   for (std::size_t i = 0; i < problem.targets().size(); ++i) {
     targets[problem.targets()[i].output] = problem.targets()[i].value;
@@ -236,6 +239,7 @@ json solution_json(const InversionProblem& problem, const InversionSettings& set
   json out = {{"status", result.status},
               {"x", named(names, result.x)},
               {"predicted", predicted},
+              {"prediction_interval_95", intervals},
               {"objective", finite_or_null(result.objective)},
               {"objective_kind", to_string(problem.objective_kind())},
               {"targets", targets},

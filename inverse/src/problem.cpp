@@ -211,6 +211,19 @@ std::map<std::string, double> InversionProblem::predict_all(const Point& x) cons
   return all;
 }
 
+std::map<std::string, std::pair<double, double>> InversionProblem::prediction_intervals_95(const Point& x) const {
+  std::map<std::string, std::pair<double, double>> all;
+  std::vector<double> inputs;
+  for (std::size_t m = 0; m < models_.size(); ++m) {
+    model_inputs(m, x, inputs);
+    const std::size_t n = models_[m]->outputs().size();
+    std::vector<double> low(n), high(n);
+    if (!models_[m]->prediction_interval_95(inputs.data(), low.data(), high.data())) continue;
+    for (std::size_t o = 0; o < n; ++o) all.emplace(models_[m]->outputs()[o], std::make_pair(low[o], high[o]));
+  }
+  return all;
+}
+
 double InversionProblem::objective(const Point& x) const { return objective_of(predict_targets(x)); }
 
 double InversionProblem::objective_of(const std::vector<double>& predicted) const {

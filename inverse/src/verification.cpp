@@ -36,7 +36,7 @@ std::string row_verdict(const VerificationRow& r, double tolerance) {
 }  // namespace
 
 Verification verify(const std::map<std::string, double>& targets, const std::map<std::string, double>& predicted,
-                     const std::vector<SeedRun>& seeds, double tolerance) {
+                     const std::vector<SeedRun>& seeds, double tolerance, const Intervals& predicted_intervals) {
   Verification v;
   v.seeds = seeds;
   v.tolerance = tolerance;
@@ -47,6 +47,9 @@ Verification verify(const std::map<std::string, double>& targets, const std::map
     row.target = target;
     auto p = predicted.find(output);
     row.predicted = p == predicted.end() ? std::numeric_limits<double>::quiet_NaN() : p->second;
+    auto pi = predicted_intervals.find(output);
+    row.predicted_low = pi == predicted_intervals.end() ? std::numeric_limits<double>::quiet_NaN() : pi->second.first;
+    row.predicted_high = pi == predicted_intervals.end() ? std::numeric_limits<double>::quiet_NaN() : pi->second.second;
     std::vector<double> values;
     for (const SeedRun& s : seeds) {
       if (!s.ok) continue;
@@ -132,10 +135,18 @@ std::string verification_markdown(const Verification& v) {
   std::ostringstream md;
   int ok = 0;
   for (const SeedRun& s : v.seeds) ok += s.ok;
-  md << "| output | target | predicted | DEM mean | SD | CV % | 95 % interval | half-width % | relative error % | within "
-     << fixed(100 * v.tolerance, 1) << " % | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  bool any_interval = false;
+  for (const VerificationRow& r : v.rows) any_interval = any_interval || std::isfinite(r.predicted_low);
+  md << "| output | target | predicted |" << (any_interval ? " its 95 % prediction interval |" : "")
+     << " DEM mean | SD | CV % | 95 % interval of the mean | half-width % | relative error % | within "
+     << fixed(100 * v.tolerance, 1) << " % | verdict |\n|---|---|---|" << (any_interval ? "---|" : "")
+     << "---|---|---|---|---|---|---|---|\n";
   for (const VerificationRow& r : v.rows)
     md << "| " << r.output << " | " << significant(r.target) << " | " << significant(r.predicted) << " | "
+       << (any_interval ? (std::isfinite(r.predicted_low)
+                               ? significant(r.predicted_low) + " to " + significant(r.predicted_high) + " | "
+                               : std::string("- | "))
+                        : std::string())
        << significant(r.mean) << " | " << significant(r.sd) << " | " << fixed(r.cv_pct, 2) << " | "
        << (std::isfinite(r.ci95_low) ? significant(r.ci95_low) + " to " + significant(r.ci95_high) : std::string("-"))
        << " | " << fixed(r.half_width_pct, 2) << " | " << fixed(r.relative_error_pct, 2) << " | "
@@ -166,7 +177,10 @@ nlohmann::json verification_json(const Verification& v) {
   auto num = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
   json rows = json::object();
   for (const VerificationRow& r : v.rows)
-    rows[r.output] = {{"target", num(r.target)}, {"predicted", num(r.predicted)}, {"mean", num(r.mean)}, {"sd", num(r.sd)},
+    rows[r.output] = {{"target", num(r.target)}, {"predicted", num(r.predicted)},
+                      {"predicted_interval_95", std::isfinite(r.predicted_low)
+                                                    ? json::array({r.predicted_low, r.predicted_high}) : json(nullptr)},
+                      {"mean", num(r.mean)}, {"sd", num(r.sd)},
                       {"cv_pct", num(r.cv_pct)}, {"ci95_low", num(r.ci95_low)}, {"ci95_high", num(r.ci95_high)},
                       {"half_width_pct", num(r.half_width_pct)}, {"relative_error_pct", num(r.relative_error_pct)},
                       {"runs", r.runs}, {"passed", r.passed}, {"verdict", r.verdict}};

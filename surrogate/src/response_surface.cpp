@@ -148,6 +148,8 @@ SurfaceFit fit_surface(const std::vector<std::string>& factors, const Eigen::Mat
     terms.erase(terms.begin() + weakest);
   }
   result.terms = terms;
+  result.coded_covariance_unscaled = fit.unscaled_covariance;
+  result.error_df = fit.residual_df;
   const int p = static_cast<int>(terms.size());
 
   double sst = (y.array() - y.mean()).square().sum();

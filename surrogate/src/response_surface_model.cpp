@@ -1,6 +1,9 @@
 #include "demcal/surrogate/response_surface_model.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include <boost/math/distributions/students_t.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +25,36 @@ std::vector<std::string> output_names(const std::vector<ResponseSurfaceModel::Su
 
 }  // namespace
 
+namespace {
+
+// The interval's inputs when the file has them (files written before it did
+// simply give no interval).
+void read_prediction(const json& response, ResponseSurfaceModel::Surface& s, const std::vector<InputRange>& domain,
+                     const std::string& origin) {
+  if (!response.contains("prediction_interval") || response.at("prediction_interval").is_null()) return;
+  const json& pi = response.at("prediction_interval");
+  const json& rows = pi.at("coded_covariance_unscaled");
+  const auto p = static_cast<Eigen::Index>(s.terms.size());
+  if (!rows.is_array() || static_cast<Eigen::Index>(rows.size()) != p)
+    throw Error(origin + ": response " + s.output + ": prediction_interval.coded_covariance_unscaled must be " +
+                std::to_string(p) + " x " + std::to_string(p) + " (one row and column per term)");
+  s.coded_covariance.resize(p, p);
+  for (Eigen::Index i = 0; i < p; ++i) {
+    if (!rows[i].is_array() || static_cast<Eigen::Index>(rows[i].size()) != p)
+      throw Error(origin + ": response " + s.output + ": prediction_interval row " + std::to_string(i) + " has the wrong length");
+    for (Eigen::Index j = 0; j < p; ++j) s.coded_covariance(i, j) = rows[i][j].get<double>();
+  }
+  s.error_df = pi.at("error_df").get<int>();
+  s.s = response.at("s").get<double>();
+  const json& coding = response.at("coding");
+  for (const InputRange& r : domain) {
+    if (!coding.contains(r.name)) throw Error(origin + ": response " + s.output + ": no coding for input " + r.name);
+    s.coding.push_back({coding.at(r.name).at("center").get<double>(), coding.at(r.name).at("half_range").get<double>()});
+  }
+}
+
+}  // namespace
+
 ResponseSurfaceModel::ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces)
     : BoxModel(std::move(domain), output_names(surfaces)), surfaces_(std::move(surfaces)) {}
 
@@ -32,6 +65,24 @@ void ResponseSurfaceModel::predict(const double* x, double* y) const {
     for (std::size_t t = 0; t < s.terms.size(); ++t) v += s.coefficients[t] * term_value(s.terms[t], x);
     y[o] = v;
   }
+}
+
+bool ResponseSurfaceModel::prediction_interval_95(const double* x, double* low, double* high) const {
+  std::vector<double> y(surfaces_.size()), z(inputs().size());
+  predict(x, y.data());
+  for (std::size_t o = 0; o < surfaces_.size(); ++o) {
+    const Surface& s = surfaces_[o];
+    if (s.error_df < 1 || s.coding.size() != z.size()) return false;
+    for (std::size_t j = 0; j < z.size(); ++j) z[j] = (x[j] - s.coding[j].center) / s.coding[j].half_range;
+    Eigen::VectorXd f(static_cast<Eigen::Index>(s.terms.size()));
+    for (std::size_t t = 0; t < s.terms.size(); ++t) f(static_cast<Eigen::Index>(t)) = term_value(s.terms[t], z.data());
+    // A new observation: s^2 (1 + f' (Z'Z)^-1 f) (Montgomery, Design and Analysis of Experiments, 11.4).
+    const double half = boost::math::quantile(boost::math::students_t(s.error_df), 0.975) * s.s *
+                        std::sqrt(1.0 + f.dot(s.coded_covariance * f));
+    low[o] = y[o] - half;
+    high[o] = y[o] + half;
+  }
+  return true;
 }
 
 std::unique_ptr<ResponseSurfaceModel> ResponseSurfaceModel::from_json(const json& file, const std::string& origin) {
@@ -59,6 +110,7 @@ std::unique_ptr<ResponseSurfaceModel> ResponseSurfaceModel::from_json(const json
       s.coefficients.push_back(coefficients.at(term.name).get<double>());
       s.terms.push_back(term);
     }
+    read_prediction(response, s, domain, origin);
     surfaces.push_back(s);
   }
   if (surfaces.empty()) throw Error(origin + ": model has no responses");
@@ -89,6 +141,20 @@ json anova_json(const std::vector<AnovaRow>& rows) {
   return table;
 }
 
+// What the 95 % prediction interval needs: (Z'Z)^-1 over the terms in coded
+// units (rows and columns in the order of "terms") and the error's df.
+json prediction_json(const SurfaceFit& fit) {
+  const Eigen::MatrixXd& c = fit.coded_covariance_unscaled;
+  if (c.rows() != static_cast<Eigen::Index>(fit.terms.size()) || fit.error_df < 1) return nullptr;
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < c.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < c.cols(); ++j) row.push_back(c(i, j));
+    rows.push_back(row);
+  }
+  return {{"coded_covariance_unscaled", rows}, {"error_df", fit.error_df}};
+}
+
 json response_json(const SurfaceFit& fit) {
   json terms = json::array();
   for (const SurfaceTerm& t : fit.terms) {
@@ -117,6 +183,7 @@ json response_json(const SurfaceFit& fit) {
                           {"r2", json_number(fit.r2_pred)},
                           {"rmse", json_number(std::sqrt(fit.press / fit.runs))}}},
           {"anova", anova_json(fit.anova)},
+          {"prediction_interval", prediction_json(fit)},
           {"note", fit.note}};
 }
 

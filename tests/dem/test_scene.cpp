@@ -189,6 +189,19 @@ TEST(LabTests, ARunReportsExactlyTheOutputsItsTestDeclares) {
   }
 }
 
+TEST(Scene, FinerDisksDivideTheRadiiNumbersAndExpressions) {
+  json numbers = Scene::resolved_json(source("tests/data/ucs_small.json"));
+  json fine = Scene::with_finer_disks(numbers, 2.0, "x.json");
+  EXPECT_DOUBLE_EQ(fine["specimen"]["radius_min_m"].get<double>(), 1.5e-4);
+  EXPECT_DOUBLE_EQ(fine["specimen"]["radius_max_m"].get<double>(), 2.25e-4);
+  json expressions = Scene::resolved_json(source("tests/data/ucs_rock_cb_small.json"));
+  Scene rock = Scene::from_json(Scene::with_finer_disks(expressions, 2.0, "x.json"), "x.json");
+  const SpecimenSpec s = rock.specimen(rock.resolve({}), 1);
+  EXPECT_DOUBLE_EQ(s.radius_min_m, 0.00075 * 0.5);
+  EXPECT_DOUBLE_EQ(s.radius_max_m, 0.00075 * 1.5 * 0.5);
+  EXPECT_THROW(Scene::with_finer_disks(numbers, 0.5, "x.json"), demcal::Error);
+}
+
 TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   Scene scene = Scene::load(source("tests/data/ucs_small.json"));
   json d = describe_scene(scene);

@@ -147,6 +147,38 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
                         "demcal-verify", "--max-seeds (3) must be at least --seeds (5)");
 }
 
+TEST(DemcalVerify, ScaleResolutionVerifiesOnFinerSpecimensAndReportsTheShift) {
+  const std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+  const std::string solution = temp_path("verify_fine_solution.json"), out = temp_path("verify_fine.json");
+  const std::string md = temp_path("verify_fine.md");
+  {
+    std::ofstream(solution) << R"({"x": {"pb_sigma_c_MPa": 12, "pb_tau_c_MPa": 30}, "targets": {"sigma_u_MPa": 15},
+                                   "prediction_interval_95": {"sigma_u_MPa": [13, 17]}})";
+  }
+  auto r = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --max-seeds 2 " +
+                                            "--scale-resolution 1.5 --finer-seeds 2 --jobs 2 --out " + out + " --md " + md +
+                                            " --cache " + temp_path("verify_cache") + " --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json v = read_json(out);
+  ASSERT_TRUE(v.contains("finer"));
+  EXPECT_EQ(v["finer"]["factor"], 1.5);
+  EXPECT_EQ(v["finer"]["seeds"].size(), 2u);
+  const double coarse = v["outputs"]["sigma_u_MPa"]["mean"].get<double>();
+  const double fine = v["finer"]["outputs"]["sigma_u_MPa"]["mean"].get<double>();
+  EXPECT_NEAR(v["finer"]["shift_pct"]["sigma_u_MPa"].get<double>(), 100.0 * (fine - coarse) / coarse, 1e-9);
+  // Finer specimens have more disks: the runs' files say so.
+  const nlohmann::json coarse_run = read_json(temp_path("verify_fine.json.runs") + "/runs.h5.points/run1_seed1.json");
+  const nlohmann::json fine_run = read_json(temp_path("verify_fine.json.runs") + "/finer_runs.h5.points/run1_seed1.json");
+  EXPECT_GT(fine_run["particles"].get<double>(), 1.8 * coarse_run["particles"].get<double>());
+  const std::string table = demcal::test::slurp(md);
+  EXPECT_NE(table.find("At a finer resolution (disk radii / 1.5, 2 seeds)"), std::string::npos) << table;
+  EXPECT_NE(table.find("| 13 to 17 |"), std::string::npos) << table;  // the surrogate's interval beside the DEM's
+  EXPECT_EQ(v["outputs"]["sigma_u_MPa"]["predicted_interval_95"], nlohmann::json({13, 17}));
+  expect_one_line_error(run_program("demcal-verify", "--solution " + solution + " --scene " + scene +
+                                                         " --scale-resolution 0.5 --out " + out),
+                        "demcal-verify", "--scale-resolution must be above 1");
+}
+
 TEST(DemcalVerify, AddsSeedsUntilTheIntervalIsNarrowOrTheLimit) {
   // Two seeds first, to learn the mean; then a target at that mean with a
   // tolerance no spread can meet: the mean is inside the band, the interval is

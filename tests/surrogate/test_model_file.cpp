@@ -2,6 +2,7 @@
 // reported, and malformed files give errors naming the file.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -53,6 +54,33 @@ TEST(ModelFile, SeveralResponsesInOneFile) {
   std::vector<double> y = model->predict({20, 20});
   ASSERT_EQ(y.size(), 2u);
   EXPECT_NEAR(y[1], 2 * y[0], 1e-9);
+}
+
+TEST(ModelFile, PredictionIntervalOfAStraightLineMatchesTheClosedForm) {
+  // y ~ a + b x on x = 1..6: a new observation at x0 has the 95 % interval
+  // yhat -+ t(0.975, n - 2) s sqrt(1 + 1/n + (x0 - xbar)^2 / Sxx) (Montgomery & Runger, eq. 11-33).
+  Eigen::MatrixXd X(6, 1);
+  Eigen::VectorXd y(6);
+  const double ys[] = {2.1, 3.9, 6.2, 7.8, 10.1, 12.2};
+  for (int i = 0; i < 6; ++i) {
+    X(i, 0) = i + 1;
+    y(i) = ys[i];
+  }
+  SurfaceOptions linear;
+  linear.kind = SurfaceKind::Linear;
+  SurfaceFit fit = fit_surface({"x"}, X, y, "y", linear);
+  std::unique_ptr<Model> model = model_from_json(nlohmann::json::parse(surface_model_json({fit}, "line").dump()), "line");
+  const double x0 = 8.0, xbar = 3.5, sxx = 17.5, t4 = 2.7764451051977987;
+  double low = 0, high = 0;
+  ASSERT_TRUE(model->prediction_interval_95(&x0, &low, &high));
+  const double yhat = model->predict({x0})[0];
+  const double half = t4 * fit.s * std::sqrt(1.0 + 1.0 / 6.0 + (x0 - xbar) * (x0 - xbar) / sxx);
+  EXPECT_NEAR(low, yhat - half, 1e-9);
+  EXPECT_NEAR(high, yhat + half, 1e-9);
+  // A file written before intervals were kept gives none, and says so by returning false.
+  nlohmann::json old = surface_model_json({fit}, "line");
+  old["responses"][0].erase("prediction_interval");
+  EXPECT_FALSE(model_from_json(old, "old")->prediction_interval_95(&x0, &low, &high));
 }
 
 TEST(ModelFile, ErrorsNameTheFile) {

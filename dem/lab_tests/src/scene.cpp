@@ -110,6 +110,25 @@ json Scene::resolved_json(const std::string& path) {
 
 Scene Scene::load(const std::string& path) { return from_json(resolved_json(path), path); }
 
+json Scene::with_finer_disks(json scene, double factor, const std::string& origin) {
+  if (!(factor >= 1.0) || !std::isfinite(factor)) throw Error(origin + ": a finer resolution needs a factor >= 1");
+  if (!scene.contains("specimen") || !scene.at("specimen").is_object()) throw Error(origin + ": no specimen");
+  json& specimen = scene["specimen"];
+  for (const char* key : {"radius_min_m", "radius_max_m"}) {
+    if (!specimen.contains(key)) throw Error(origin + ": specimen." + key + " is missing");
+    json& r = specimen[key];
+    if (r.is_number())
+      r = r.get<double>() / factor;
+    else if (r.is_string())
+      r = r.get<std::string>() + "*" + format_double(1.0 / factor);  // expressions are products
+    else
+      throw Error(origin + ": specimen." + key + " must be a number or an expression");
+  }
+  if (scene.contains("name") && scene.at("name").is_string())
+    scene["name"] = scene.at("name").get<std::string>() + "_finer_" + format_double(factor);
+  return scene;
+}
+
 namespace {
 
 // Raise when a change of the engine changes results (2: a burst past the peak

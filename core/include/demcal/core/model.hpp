@@ -26,6 +26,10 @@ class Model {
   virtual void predict(const double* x, double* y) const = 0;
 
   std::vector<double> predict(const std::vector<double>& x) const;
+  // The two-sided 95 % prediction interval of one new observation at x (one
+  // DEM run on another specimen), per output, into low and high; false when
+  // the model cannot say (a network, the DEM itself), as by default.
+  virtual bool prediction_interval_95(const double* x, double* low, double* high) const;
   // Several points at once: a DEM-backed model runs them in parallel; the
   // default predicts them one by one. ys[i] receives outputs() values.
   virtual void predict_batch(const std::vector<std::vector<double>>& xs, std::vector<std::vector<double>>& ys) const;

@@ -4,6 +4,7 @@
 // demcal::Model; several models may share parameters. A model input is
 // either optimised (a parameter of the problem), fixed, or tied to another.
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ class InversionProblem {
   std::vector<double> predict_targets(const Point& x) const;
   // Every output of every model at x.
   std::map<std::string, double> predict_all(const Point& x) const;
+  // The 95 % prediction interval of one new run, per output of the models
+  // that can give one (response surfaces; not networks or the DEM).
+  std::map<std::string, std::pair<double, double>> prediction_intervals_95(const Point& x) const;
   // The objective at x; +infinity where the model gives no finite value.
   double objective(const Point& x) const;
   double objective_of(const std::vector<double>& predicted_targets) const;

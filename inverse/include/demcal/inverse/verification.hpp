@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -25,6 +26,8 @@ struct VerificationRow {
   std::string output;
   double target = 0.0;
   double predicted = 0.0;  // by the surrogate at the solution (NaN when unknown)
+  // The surrogate's 95 % prediction interval of one run there (NaN when it gives none).
+  double predicted_low = 0.0, predicted_high = 0.0;
   double mean = 0.0, sd = 0.0, cv_pct = 0.0, relative_error_pct = 0.0;
   int runs = 0;            // seeds that ran and gave this output
   bool passed = false;     // |relative error| <= tolerance
@@ -49,8 +52,9 @@ struct Verification {
   std::string seeds_stop_reason;  // why no more seeds were added (set by the caller that adds them)
 };
 
+using Intervals = std::map<std::string, std::pair<double, double>>;
 Verification verify(const std::map<std::string, double>& targets, const std::map<std::string, double>& predicted,
-                     const std::vector<SeedRun>& seeds, double tolerance);
+                     const std::vector<SeedRun>& seeds, double tolerance, const Intervals& predicted_intervals = {});
 
 // How many seeds in all the verification wants: the smallest n at which every
 // output's half-width t(0.975, n-1) sd / sqrt(n) would be at most the tolerance

@@ -74,6 +74,10 @@ struct SurfaceFit {
   std::vector<AnovaRow> anova;  // Model, groups and terms, Error, Lack-of-Fit, Pure Error, Total
   std::string note;             // why a usual part of the table is missing, if one is
   Eigen::VectorXd observed, fitted, press_residuals;
+  // (Z'Z)^-1 of the kept terms in coded units and the error's degrees of
+  // freedom: with s, the prediction interval of a new run anywhere.
+  Eigen::MatrixXd coded_covariance_unscaled;
+  int error_df = 0;
 };
 
 // X: runs x factors in natural units. Errors name what is wrong: constant

@@ -23,12 +23,18 @@ class ResponseSurfaceModel : public BoxModel {
     std::string output;
     std::vector<SurfaceTerm> terms;   // factor indices refer to inputs()
     std::vector<double> coefficients; // natural units, one per term
+    // For the prediction interval (empty when the file has none):
+    std::vector<FactorCoding> coding;  // per input
+    Eigen::MatrixXd coded_covariance;  // (Z'Z)^-1 over terms, coded units
+    double s = 0.0;
+    int error_df = 0;
   };
 
   ResponseSurfaceModel(std::vector<InputRange> domain, std::vector<Surface> surfaces);
   static std::unique_ptr<ResponseSurfaceModel> from_json(const nlohmann::json& file, const std::string& origin);
 
   void predict(const double* x, double* y) const override;
+  bool prediction_interval_95(const double* x, double* low, double* high) const override;
 
  private:
   std::vector<Surface> surfaces_;

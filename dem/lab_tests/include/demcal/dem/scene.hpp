@@ -83,6 +83,10 @@ class Scene {
   static Scene from_json(const nlohmann::json& json, const std::string& origin);
   // The scene's JSON with every "extends" applied (what from_json takes).
   static nlohmann::json resolved_json(const std::string& path);
+  // A whole scene's JSON with the specimen's disk radii divided by `factor`
+  // (> 1: finer, about factor^2 more disks; aggregates keep their sizes), to
+  // check a calibration made on a coarse specimen at a finer resolution.
+  static nlohmann::json with_finer_disks(nlohmann::json scene, double factor, const std::string& origin);
 
   const std::string& name() const { return name_; }
   const std::string& test() const { return test_; }
