@@ -28,6 +28,7 @@ import time
 import numpy as np
 
 from . import calibrate_runs, commands, executables, kriging, trust_region
+from .calibrate_report import pct, report
 from .calibration_problem import Problem
 from .errors import fail, load_json
 from .files import write_target
@@ -42,11 +43,6 @@ MAX_ROUNDS = 12
 FIRST_VERIFICATION_SEEDS = 5
 MAX_VERIFICATION_SEEDS = 20
 EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
-
-
-def pct(value, spec):
-    """A percentage for a progress line; "-" when demcal-verify had too few runs to give one."""
-    return "-" if value is None else format(value, spec)
 
 
 def parse_assignments(items, what):
@@ -572,7 +568,6 @@ def calibrate(args):
     started = time.time()
     code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
     record_wall_time(out, time.time() - started)
-    from .calibrate_report import report
     report(out)
     return code
 

@@ -8,8 +8,9 @@ from .files import write_target
 from .to_html import to_html
 
 
-def _pct(x, spec):
-    return "-" if x is None else format(x, spec)
+def pct(value, spec):
+    """A percentage for a table or progress line; "-" when demcal-verify had too few runs to give one."""
+    return "-" if value is None else format(value, spec)
 
 
 def _g(x):
@@ -54,7 +55,7 @@ def report(out):
         lines += ["", "## Verifications on fresh seeds", "",
                   "| verification | seeds | errors % (95 % half-width) | verdict | met | runs after |", "|---|---|---|---|---|---|"]
         for v in solution["verifications"]:
-            e = ", ".join(f"{o} {_pct(v['errors_pct'][o], '+.2f')} (+-{_pct(v['half_width_pct'][o], '.2f')})"
+            e = ", ".join(f"{o} {pct(v['errors_pct'][o], '+.2f')} (+-{pct(v['half_width_pct'][o], '.2f')})"
                           for o in v["errors_pct"])
             lines.append(f"| {v['round']} | {v['first_seed']}-{v['first_seed'] + v['seeds'] - 1} | {e} | {v['verdict']} "
                          f"| {'yes' if v['met'] else 'no'} | {v['runs']} |")
