@@ -46,9 +46,9 @@ calibrate: build
 	  --out-root $(BUILD)/calibrations
 
 # Hours: every target of data/benchmarks/calibration_targets.json (resumable; ONLY=a,b runs a part; GLOBAL=1 adds
-# the old global-surface strategy where marked). Summary: $(BUILD)/calibration_benchmark/summary.md.
+# the old global-surface strategy where marked, KRIGING=1 the kriging strategy there). Summary: $(BUILD)/calibration_benchmark/summary.md.
 calibration-benchmark: build
-	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global)
+	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global) $(if $(KRIGING),--kriging)
 
 bench: build
 	@scripts/bench.sh $(BUILD)

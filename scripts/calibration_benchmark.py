@@ -6,7 +6,11 @@ swapped in) side by side. It runs for hours: each target is resumable, finished 
 part. The summary (a Markdown table with the machine, the date and the commit) goes to
 BUILD/calibration_benchmark/summary.md.
 
-    scripts/calibration_benchmark.py [--build build] [--jobs 2] [--only NAME,NAME] [--global] [--summary-only]
+    scripts/calibration_benchmark.py [--build build] [--jobs 2] [--only NAME,NAME] [--global] [--kriging]
+                                     [--summary-only]
+
+--kriging also runs `calibrate --strategy kriging` on the targets marked global_strategy (stored as NAME_kriging), so
+the three strategies meet on the same targets.
 """
 import argparse
 import json
@@ -31,15 +35,17 @@ def environment(build, jobs):
                 PYTHONPATH=os.path.join(REPO, "python"))
 
 
-def run_target(entry, settings, build, jobs, out_root):
-    cmd = ["/usr/bin/python3", "-m", "demcal_study", "calibrate", "--scene", entry["scene"], "--name", entry["name"],
-           "--tolerance", str(settings["tolerance"]), "--budget", str(settings["budget"]), "--out-root", out_root]
+def run_target(entry, settings, build, jobs, out_root, strategy="trust-region"):
+    name = entry["name"] + ("" if strategy == "trust-region" else "_" + strategy)
+    cmd = ["/usr/bin/python3", "-m", "demcal_study", "calibrate", "--scene", entry["scene"], "--name", name,
+           "--tolerance", str(settings["tolerance"]), "--budget", str(settings["budget"]), "--out-root", out_root,
+           "--strategy", strategy]
     for k, v in entry["targets"].items():
         cmd += ["--target", f"{k}={v}"]
-    print(f"== {entry['name']}: {' '.join(cmd[3:])}", flush=True)
+    print(f"== {name}: {' '.join(cmd[3:])}", flush=True)
     code = subprocess.run(cmd, cwd=REPO, env=environment(build, jobs)).returncode
     if code not in (0, 3, 4):
-        raise SystemExit(f"calibration_benchmark: {entry['name']}: calibrate failed (exit {code})")
+        raise SystemExit(f"calibration_benchmark: {name}: calibrate failed (exit {code})")
 
 
 def run_global(entry, settings, build, jobs, out_root):
@@ -84,13 +90,11 @@ def commit():
     return (done.stdout.strip() or "unknown") + (" (with uncommitted changes)" if dirty else "")
 
 
-def summary(config, build, out_root):
-    lines = [f"Measured {time.strftime('%Y-%m-%d')} at commit {commit()} on {machine()}; "
-             f"tolerance {100 * config['settings']['tolerance']:g} %, budget {config['settings']['budget']} DEM runs.",
-             "", "| target | status | DEM runs | wall min | verified error % (95 % half-width %) | scale factor |",
+def calibration_table(entries, out_root, suffix):
+    lines = ["| target | status | DEM runs | wall min | verified error % (95 % half-width %) | scale factor |",
              "|---|---|---|---|---|---|"]
-    for entry in config["targets"]:
-        path = os.path.join(out_root, entry["name"], "solution.json")
+    for entry in entries:
+        path = os.path.join(out_root, entry["name"] + suffix, "solution.json")
         if not os.path.exists(path):
             lines.append(f"| {entry['name']} | not run | | | | |")
             continue
@@ -102,6 +106,17 @@ def summary(config, build, out_root):
         wall = s.get("wall_s_total", s.get("wall_s", 0)) / 60
         scale = f"{s['scale_factor']:.3g}" if "scale_factor" in s else "-"
         lines.append(f"| {entry['name']} | {s['status']} | {s['dem_runs']} | {wall:.1f} | {errors} | {scale} |")
+    return lines
+
+
+def summary(config, build, out_root):
+    lines = [f"Measured {time.strftime('%Y-%m-%d')} at commit {commit()} on {machine()}; "
+             f"tolerance {100 * config['settings']['tolerance']:g} %, budget {config['settings']['budget']} DEM runs.",
+             ""] + calibration_table(config["targets"], out_root, "")
+    marked = [e for e in config["targets"] if e.get("global_strategy")]
+    if any(os.path.exists(os.path.join(out_root, e["name"] + "_kriging", "solution.json")) for e in marked):
+        lines += ["", "The kriging strategy (`calibrate --strategy kriging`) on the targets marked global_strategy:", ""]
+        lines += calibration_table(marked, out_root, "_kriging")
     rows = []
     for entry in config["targets"]:
         out = os.path.join(build, "studies", f"global_{entry['name']}")
@@ -131,6 +146,7 @@ def main():
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--only", help="comma-separated target names")
     p.add_argument("--global", dest="with_global", action="store_true", help="also the old strategy where marked")
+    p.add_argument("--kriging", action="store_true", help="also calibrate --strategy kriging where marked")
     p.add_argument("--summary-only", action="store_true")
     args = p.parse_args()
     config = load_json(TARGETS, "benchmark targets")
@@ -145,6 +161,10 @@ def main():
         for entry in config["targets"]:
             if entry["name"] in only:
                 run_target(entry, config["settings"], build, args.jobs, out_root)
+        if args.kriging:
+            for entry in config["targets"]:
+                if entry["name"] in only and entry.get("global_strategy"):
+                    run_target(entry, config["settings"], build, args.jobs, out_root, "kriging")
         if args.with_global:
             for entry in config["targets"]:
                 if entry["name"] in only and entry.get("global_strategy"):
