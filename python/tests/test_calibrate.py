@@ -268,3 +268,14 @@ def test_t_quantiles_and_weights_that_only_place_the_fit():
     b = trust_region.fit_local(u, z, np.zeros(3), 1.0, w=0.1 * w)
     assert a.slope_t() == pytest.approx(b.slope_t(), rel=1e-6)
     assert a.prediction_sd(np.full(3, 0.3)) == pytest.approx(b.prediction_sd(np.full(3, 0.3)), rel=1e-6)
+
+
+def test_the_noise_allowance_never_reaches_the_tolerance():
+    # close_enough only reads the tolerance: a bare instance is enough.
+    c = calibrate.Calibration.__new__(calibrate.Calibration)
+    c.tolerance = 0.05
+    assert c.close_enough([0.015, -0.01], [0.0, 0.0])        # within a third of the tolerance
+    assert c.close_enough([0.022, 0.0], [0.03, 0.0])          # within the measured noise
+    assert not c.close_enough([0.055, 0.0], [0.08, 0.0])      # noise above the tolerance is capped at half of it
+    assert c.close_enough([0.024, 0.0], [0.08, 0.0])
+    assert not c.close_enough([0.026, 0.0], [0.08, 0.0])
