@@ -35,8 +35,13 @@ def environment(build, jobs):
                 PYTHONPATH=os.path.join(REPO, "python"))
 
 
+def stored_name(entry, strategy):
+    """Where a target's calibration is stored: its name, suffixed by any strategy but the default."""
+    return entry["name"] + ("" if strategy == "trust-region" else "_" + strategy)
+
+
 def run_target(entry, settings, build, jobs, out_root, strategy="trust-region"):
-    name = entry["name"] + ("" if strategy == "trust-region" else "_" + strategy)
+    name = stored_name(entry, strategy)
     cmd = ["/usr/bin/python3", "-m", "demcal_study", "calibrate", "--scene", entry["scene"], "--name", name,
            "--tolerance", str(settings["tolerance"]), "--budget", str(settings["budget"]), "--out-root", out_root,
            "--strategy", strategy]
@@ -90,11 +95,11 @@ def commit():
     return (done.stdout.strip() or "unknown") + (" (with uncommitted changes)" if dirty else "")
 
 
-def calibration_table(entries, out_root, suffix):
+def calibration_table(entries, out_root, strategy):
     lines = ["| target | status | DEM runs | wall min | verified error % (95 % half-width %) | scale factor |",
              "|---|---|---|---|---|---|"]
     for entry in entries:
-        path = os.path.join(out_root, entry["name"] + suffix, "solution.json")
+        path = os.path.join(out_root, stored_name(entry, strategy), "solution.json")
         if not os.path.exists(path):
             lines.append(f"| {entry['name']} | not run | | | | |")
             continue
@@ -112,11 +117,11 @@ def calibration_table(entries, out_root, suffix):
 def summary(config, build, out_root):
     lines = [f"Measured {time.strftime('%Y-%m-%d')} at commit {commit()} on {machine()}; "
              f"tolerance {100 * config['settings']['tolerance']:g} %, budget {config['settings']['budget']} DEM runs.",
-             ""] + calibration_table(config["targets"], out_root, "")
+             ""] + calibration_table(config["targets"], out_root, "trust-region")
     marked = [e for e in config["targets"] if e.get("global_strategy")]
-    if any(os.path.exists(os.path.join(out_root, e["name"] + "_kriging", "solution.json")) for e in marked):
+    if any(os.path.exists(os.path.join(out_root, stored_name(e, "kriging"), "solution.json")) for e in marked):
         lines += ["", "The kriging strategy (`calibrate --strategy kriging`) on the targets marked global_strategy:", ""]
-        lines += calibration_table(marked, out_root, "_kriging")
+        lines += calibration_table(marked, out_root, "kriging")
     rows = []
     for entry in config["targets"]:
         out = os.path.join(build, "studies", f"global_{entry['name']}")
