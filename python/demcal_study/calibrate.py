@@ -83,6 +83,9 @@ class Calibration:
         self.verifications = []
         self.runs = 0
         self.specimen_variance = 0.0  # of the modelled responses over fresh specimens, once a verification ran
+        # Set when the scale factor the scale target wants leaves the bounds: the search then goes on with the
+        # scale held at its bound and the scale target as one more residual (bounded_scale_residual).
+        self.bounded_scale = False
         self.started = time.time()
 
     def say(self, message):
@@ -115,7 +118,18 @@ class Calibration:
         return dict(zip(self.problem.modelled_outputs(), values))
 
     def residuals_at(self, model, u, offset):
-        return np.asarray(self.problem.residuals(self.z_of(model, u, offset)))
+        z = self.z_of(model, u, offset)
+        r = self.problem.residuals(z)
+        if self.bounded_scale:
+            r.append(self.bounded_scale_residual(z, u))
+        return np.asarray(r)
+
+    def bounded_scale_residual(self, z, u):
+        """The scale target's relative error (log) once the scale factor it wants is clipped to what the bounds
+        allow at u: zero inside the bounds, and a residual like the others outside them."""
+        wanted = self.problem.scale_for(z)
+        low, high = self.problem.scale_interval(u)
+        return math.log(min(max(wanted, low), high) / wanted)
 
     def jacobian(self, model, u, offset):
         r0 = self.residuals_at(model, u, offset)
@@ -123,7 +137,15 @@ class Calibration:
         for i in range(len(u)):
             e = np.array(u, float)
             e[i] += 1.0
-            cols.append(self.residuals_at(model, e, offset) - r0)  # exact: the model is linear in u
+            col = self.residuals_at(model, e, offset) - r0  # exact for the model, which is linear in u
+            if self.bounded_scale:
+                # The clipped scale term is not linear in u (the bounds move with the ratios): its slope where it
+                # stands, one-sided like the clip itself.
+                h = 1e-4
+                e = np.array(u, float)
+                e[i] += h
+                col[-1] = (self.residuals_at(model, e, offset)[-1] - r0[-1]) / h
+            cols.append(col)
         return r0, np.array(cols).T if cols else np.zeros((len(r0), 0))
 
     def residual_noise(self, model):
@@ -136,12 +158,22 @@ class Calibration:
             z = dict(z0)
             z[name] += 1.0
             var += (np.asarray(self.problem.residuals(z)) - r0) ** 2 * model.sigma2[j]
+        if self.bounded_scale:  # log(E / s) itself: its own scatter
+            var = np.append(var, model.sigma2[self.problem.modelled_outputs().index(self.problem.scale_target)])
         return np.sqrt(var)
 
     def measured_residuals(self, point):
         if point["status"] != "ok":
             return None
-        return np.asarray(self.problem.residuals(self.modelled(point["outputs"], point["scale"])))
+        z = self.modelled(point["outputs"], point["scale"])
+        r = self.problem.residuals(z)
+        if self.bounded_scale:
+            r.append(self.bounded_scale_residual(z, point["u"]))
+        return np.asarray(r)
+
+    def residual_labels(self):
+        labels = self.problem.residual_labels()
+        return labels + [f"{self.problem.scale_target} at the bounded scale"] if self.bounded_scale else labels
 
     def scale_at(self, model, u, offset):
         s = self.problem.scale_for(self.z_of(model, u, offset))
@@ -225,9 +257,9 @@ class Calibration:
                                centre=centre)
         return self.verify_loop(centre, radius)
 
-    def search_trust_region(self, centre, best):
-        """Rounds of one Gauss-Newton candidate and one poising point on specimen 1 (section 3 of the docs).
-        Returns (centre, radius, best point, converged, blocked at the bounds)."""
+    def search_trust_region(self, centre, best, label="r"):
+        """Rounds of one Gauss-Newton candidate and one poising point on specimen 1 (section 3 of the docs), stored
+        as rounds/LABEL02, LABEL03, ... Returns (centre, radius, best point, converged, blocked at the bounds)."""
         p = self.problem
         converged, blocked = False, False
         radius = INITIAL_RADIUS
@@ -256,7 +288,7 @@ class Calibration:
             poise = np.clip(candidate + radius * trust_region.poising_direction(
                 [q["u"] for q in self.points], candidate, radius), -1, 1)
             sp, _, _ = self.scale_at(model, poise, offset)
-            added = self.run_round(f"r{k:02d}", [(candidate, s), (poise, sp)])
+            added = self.run_round(f"{label}{k:02d}", [(candidate, s), (poise, sp)])
             measured = self.measured_residuals(added[0])
             phi_now = float(np.sum(current ** 2))
             phi_new = float(np.sum(measured ** 2)) if measured is not None else math.inf
@@ -266,11 +298,12 @@ class Calibration:
             if accepted:
                 centre, best = candidate, added[0]
             rejected = 0 if accepted else rejected + 1
-            self.rounds.append({"round": k, "centre_residuals_pct": (100 * current).tolist(),
+            self.rounds.append({"round": k if label == "r" else f"{label}{k}",
+                                "centre_residuals_pct": (100 * current).tolist(),
                                 "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
                                 "predicted_residuals_pct": (100 * np.asarray(predicted)).tolist(),
                                 "accepted": accepted, "radius": radius, "held_at_bounds": at_bounds,
-                                "scale": s, "runs": self.runs})
+                                "scale": s, "runs": self.runs, "bounded_scale": self.bounded_scale})
             self.say(f"round {k}: candidate " + self.format_residuals(measured) +
                      f" ({'accepted' if accepted else 'rejected'}), radius {radius:.3g}, {self.runs} runs")
             blocked = bool(at_bounds) and np.max(np.abs(predicted)) > self.tolerance
@@ -411,7 +444,32 @@ class Calibration:
                 return self.finish("budget", f"the budget of {self.budget} DEM runs is spent", EXIT_BUDGET,
                                    point=verified or point)
             interval, wanted = point["scale_interval"], point["wanted_scale_factor"]
-            if not (interval[0] * (1 - 1e-9) <= wanted <= interval[1] * (1 + 1e-9)):
+            outside = not (interval[0] * (1 - 1e-9) <= wanted <= interval[1] * (1 + 1e-9))
+            if outside and not self.bounded_scale:
+                # The dimensionless solution found is one of many; others may want a scale the bounds allow. Search
+                # on from here with the scale held at its bound and the scale target as one more residual.
+                self.bounded_scale = True
+                self.say(f"{p.scale_target} wants a scale factor {wanted:.4g} here, outside what the bounds allow "
+                         f"({interval[0]:.4g} to {interval[1]:.4g}): searching on with the scale at its bound and "
+                         f"{p.scale_target} as a residual")
+                best = self.best_point()  # by the residuals with the scale term now
+                centre, radius, best, converged, blocked = self.search_trust_region(np.array(best["u"]), best,
+                                                                                    label="b")
+                self.crn = dict(self.crn or {}, bounded={
+                    "converged": converged, "centre": centre.tolist(), "residuals_pct":
+                    None if self.measured_residuals(best) is None else (100 * self.measured_residuals(best)).tolist()})
+                if not converged and blocked:
+                    reach = self.reachable()
+                    lo, hi = p.absolute_bounds[p.scale_parameter]
+                    return self.finish("unreachable", f"{p.scale_target} needs a scale factor outside the bounds at "
+                                       f"the first solution, and searching on with the scale at its bound "
+                                       f"({p.scale_parameter} bounds {lo:.4g} to {hi:.4g}, or a ratio's) ends on the "
+                                       "bounds of the space still missing the targets; the points run reach " +
+                                       ", ".join(f"{n} {r['lowest_error_pct']:+.0f} % to {r['highest_error_pct']:+.0f} %"
+                                                 for n, r in reach.items()), EXIT_UNREACHABLE, centre=centre)
+                k -= 1
+                continue
+            if outside and abs(math.log(point["scale_factor"] / wanted)) > self.tolerance:
                 at = p.absolute(centre, wanted)
                 beyond = ", ".join(f"{n} {at[n]:.4g} (bounds {lo:.4g} to {hi:.4g})"
                                    for n, (lo, hi) in sorted(p.absolute_bounds.items()) if not lo <= at[n] <= hi)
@@ -492,7 +550,7 @@ class Calibration:
     def format_residuals(self, r):
         if r is None:
             return "failed"
-        return ", ".join(f"{n} {100 * x:+.1f} %" for n, x in zip(self.problem.residual_labels(), r))
+        return ", ".join(f"{n} {100 * x:+.1f} %" for n, x in zip(self.residual_labels(), r))
 
     def finish(self, status, why, code, point=None, centre=None, verification=None):
         """solution.json (the point verified last, or `point`, or the local model's at `centre`), the final
@@ -500,7 +558,8 @@ class Calibration:
         p = self.problem
         solution = {"status": status, "why": why, "exit_code": code, "dem_runs": self.runs,
                     "budget": self.budget, "wall_s": time.time() - self.started, "targets": p.targets,
-                    "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=p.residual_labels()),
+                    "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=self.residual_labels()),
+                    "bounded_scale": self.bounded_scale,
                     "rounds": self.rounds, "verifications": self.verifications, "crn": getattr(self, "crn", None)}
         if point is None and centre is not None:
             point = self.point_at(self.fit(centre, INITIAL_RADIUS), centre, np.zeros(len(p.modelled_outputs())))
@@ -525,7 +584,7 @@ class Calibration:
     def reachable(self):
         """The range of every dimensionless target seen on specimen 1: what the model reaches."""
         out = {}
-        names = self.problem.residual_labels()
+        names = self.residual_labels()
         for q in self.points:
             r = self.measured_residuals(q)
             if r is None:

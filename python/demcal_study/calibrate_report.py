@@ -42,7 +42,10 @@ def report(out):
         lines += ["", "Fixed: " + ", ".join(f"{k} = {_g(v)}" for k, v in sorted(problem["fixed"].items())) + "."]
     names = problem["residuals"]
     lines += ["", "## Rounds on specimen 1 (common random numbers)", "",
-              "Errors of the dimensionless targets after the exact scale factor, in %.", "",
+              "Errors of the dimensionless targets after the exact scale factor, in %." +
+              (f" Rounds b2, b3, ...: the scale factor {problem['scale_target']} wanted left the bounds, so the search "
+               f"went on with the scale at its bound and {problem['scale_target']} as one more residual (log)."
+               if solution.get("bounded_scale") else ""), "",
               "| round | centre | candidate | predicted | accepted | radius after | runs |", "|---|---|---|---|---|---|---|"]
 
     def errs(values):
