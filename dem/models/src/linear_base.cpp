@@ -1,5 +1,6 @@
 #include "demcal/dem/linear_base.hpp"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "demcal/dem/linear_law.hpp"
@@ -30,7 +31,9 @@ void LinearBase::wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, 
 
 void LinearBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
                            double& rotational_nm_rad) const {
-  translational_n_m = c.column[kNormalStiffness][k];
+  // The stiffer of the two springs bounds translation (kn/ks may be below 1);
+  // the shear spring acts at the contact point, `arm_m` from the centre.
+  translational_n_m = std::max(c.column[kNormalStiffness][k], c.column[kShearStiffness][k]);
   rotational_nm_rad = c.column[kShearStiffness][k] * arm_m * arm_m;
 }
 
@@ -38,8 +41,8 @@ double LinearBase::normal_force_n(const ConstPairBlock& c, std::size_t k, double
   return c.column[kNormalStiffness][k] * overlap_m;
 }
 
-double LinearBase::normal_stiffness_estimate(double radius_m, double thickness_m) const {
-  return deformability_kn(modulus_pa_, radius_m, radius_m, false, thickness_m);
+double LinearBase::stiffness_estimate(double radius_m, double thickness_m) const {
+  return deformability_kn(modulus_pa_, radius_m, radius_m, false, thickness_m) * std::max(1.0, 1.0 / kn_ks_);
 }
 
 }  // namespace demcal::dem

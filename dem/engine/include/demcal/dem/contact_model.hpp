@@ -67,9 +67,9 @@ class ContactModel {
   // Normal force the block's pair k carries at `overlap_m` (for the
   // equilibrium measure of material genesis), N.
   virtual double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const = 0;
-  // Normal stiffness of a contact between two disks of radius r, for a disk
-  // that has no neighbour yet (time step bound).
-  virtual double normal_stiffness_estimate(double radius_m, double thickness_m) const = 0;
+  // The stiffer spring (normal or shear) of a contact between two disks of
+  // radius r, for a disk that has no neighbour yet (time step bound).
+  virtual double stiffness_estimate(double radius_m, double thickness_m) const = 0;
 };
 
 using ContactModelFactory =

@@ -25,7 +25,7 @@ class LinearBase : public ContactModel {
   void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
                  double& rotational_nm_rad) const override;
   double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const override;
-  double normal_stiffness_estimate(double radius_m, double thickness_m) const override;
+  double stiffness_estimate(double radius_m, double thickness_m) const override;
 
  protected:
   double modulus_pa_, kn_ks_, friction_;
