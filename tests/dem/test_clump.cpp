@@ -116,3 +116,28 @@ TEST(Clump, BadClumpsAreRejected) {
   std::size_t free_disk = world.bodies.add_disk(1, 1, 1e-3, 2650, 1, 0);
   EXPECT_THROW(world.add_clump({free_disk}, 0.0, 1.0, 1, 1), demcal::Error);
 }
+
+TEST(Clump, DensityScalingReachesTheRequestedStepWithClumps) {
+  // Natural step of a 1 mm disk on a 1 GPa contact: about 1e-7 s; ask for 100 times that.
+  const double requested_dt_s = 1e-5;
+  WorldSettings settings;
+  settings.density_scaling_dt_s = requested_dt_s;
+  World world(settings);
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                        "linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.5}, {"friction", 0.5}}, "test")));
+  add_rod(world, 0, 0, 1e-3, 1e-10);
+  world.bodies.add_disk(3.4e-3, 0, 1e-3, 2650, 1, 0);   // touching the rod's right member
+  world.bodies.add_disk(0, 1.95e-3, 1e-3, 2650, 1, 0);  // touching its middle member
+  world.refresh();
+  EXPECT_NEAR(world.dt_s(), requested_dt_s, 1e-12 * requested_dt_s);
+  const Clump& rod = world.clumps()[0];
+  EXPECT_GT(rod.mass, 1e-3);  // raised: the clump, not its members, is what moves
+  EXPECT_GT(rod.inertia, 1e-10);
+}
+
+TEST(Clump, DensityScalingRefusesGravity) {
+  WorldSettings settings;
+  settings.density_scaling_dt_s = 1e-5;
+  settings.gravity_y_m_s2 = -9.81;
+  EXPECT_THROW(World{settings}, demcal::Error);
+}

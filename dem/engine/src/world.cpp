@@ -15,6 +15,9 @@ World::World(WorldSettings settings) : settings_(settings) {
   if (settings_.damping < 0 || settings_.damping >= 1) throw Error("local damping must lie in [0, 1)");
   if (!(settings_.safety_factor > 0) || settings_.safety_factor > 1)
     throw Error("time-step safety factor must lie in (0, 1]");
+  // Scaled masses are inertial only; gravity would act on them too.
+  if (settings_.density_scaling_dt_s > 0 && (settings_.gravity_x_m_s2 != 0 || settings_.gravity_y_m_s2 != 0))
+    throw Error("density scaling and gravity cannot be combined (gravity would act on the scaled masses)");
 }
 
 std::uint8_t World::add_model(std::unique_ptr<ContactModel> model) {
@@ -125,7 +128,7 @@ void World::update_time_step() {
     if (bodies.fixed[i]) continue;
     if (kt[i] <= 0) {
       // No neighbour yet: bound the step by one contact of the stiffest model.
-      for (const auto& m : models_) kt[i] = std::max(kt[i], m->normal_stiffness_estimate(bodies.radius[i], settings_.thickness_m));
+      for (const auto& m : models_) kt[i] = std::max(kt[i], m->stiffness_estimate(bodies.radius[i], settings_.thickness_m));
       kr[i] = kt[i] * bodies.radius[i] * bodies.radius[i];
     }
     if (scaled_step > 0) {
@@ -137,13 +140,18 @@ void World::update_time_step() {
     if (kr[i] > 0) dt = std::min(dt, std::sqrt(bodies.inertia[i] / kr[i]));
   }
   // A clump: the stiffness of all its disks' contacts, rotational stiffness
-  // about its centre of mass.
-  for (const Clump& c : clumps_) {
+  // about its centre of mass. It moves with its own mass and inertia (its
+  // members' are never used), so density scaling raises those.
+  for (Clump& c : clumps_) {
     double ct = 0, cr = 0;
     for (std::size_t k = 0; k < c.members.size(); ++k) {
       const std::size_t i = c.members[k];
       ct += kt[i];
       cr += kr[i] + kt[i] * (c.offset_x[k] * c.offset_x[k] + c.offset_y[k] * c.offset_y[k]);
+    }
+    if (scaled_step > 0) {
+      c.mass = std::max(c.mass, ct * scaled_step * scaled_step);
+      c.inertia = std::max(c.inertia, cr * scaled_step * scaled_step);
     }
     if (ct > 0) dt = std::min(dt, std::sqrt(c.mass / ct));
     if (cr > 0) dt = std::min(dt, std::sqrt(c.inertia / cr));
