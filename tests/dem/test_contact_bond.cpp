@@ -88,3 +88,53 @@ TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {
   imposed_step(world, 0, 0, 0);
   EXPECT_NEAR(world.bodies.fx[0], kKn * 1e-6, 1e-6 * kKn * 1e-6);
 }
+
+// PFC's linearcbond: a bond that fails in shear leaves this step's forces as
+// they are, so the shear force carries one increment per step (not two on the
+// breaking step), and the Coulomb limit applies from the next step.
+TEST(ContactBond, TheBreakingStepAddsTheShearIncrementOnce) {
+  const double tau_c = 1e5, v = 1.0, ks = kKn / kKnKs;
+  World world = bonded_pair(1e9, tau_c);
+  world.bodies.x[1] -= 1e-5;  // pressed: mu Fn = 0.3 x 8000 N stays far above the 250 N shear strength force
+  world.refresh();
+  int steps = 0;
+  while (world.breaks().empty() && steps < 100000) {
+    imposed_step(world, 0, v, 0);
+    ++steps;
+  }
+  ASSERT_EQ(world.breaks().size(), 1u);
+  EXPECT_EQ(world.breaks()[0].mode, BreakMode::Shear);
+  EXPECT_NEAR(std::abs(world.pair_state(0, "shear_force_n")), ks * v * kDt * steps, 1e-6 * ks * v * kDt * steps);
+  // The normal force stands too (the shear motion tilts the normal by about 3e-4 rad).
+  EXPECT_NEAR(world.bodies.fx[0], -kKn * 1e-5, 1e-4 * kKn * 1e-5);
+}
+
+// A bond glued across a gap keeps that gap as its reference when it breaks:
+// pressed half-way shut, the pair carries kn x (half the gap) before and after
+// a shear break, where forgetting the reference would drop it to zero.
+TEST(ContactBond, ABrokenBondKeepsTheGapItWasGluedAcross) {
+  const double gap = 1e-6, tau_c = 1e5, v = 1.0;
+  World world = bonded_pair(1e9, tau_c, gap);
+  world.bodies.x[1] -= 0.5 * gap;
+  world.refresh();
+  imposed_step(world, 0, 0, 0);
+  EXPECT_NEAR(world.bodies.fx[0], -kKn * 0.5 * gap, 1e-6 * kKn * gap);  // bonded, compressed
+  // Tolerance below: the shear motion tilts the normal by about 3e-4 rad.
+  int steps = 0;
+  while (world.breaks().empty() && steps < 100000) {
+    imposed_step(world, 0, v, 0);
+    ++steps;
+  }
+  ASSERT_EQ(world.breaks().size(), 1u);
+  ASSERT_EQ(world.breaks()[0].mode, BreakMode::Shear);
+  for (int s = 0; s < 3; ++s) {
+    imposed_step(world, 0, 0, 0);
+    EXPECT_NEAR(world.bodies.fx[0], -kKn * 0.5 * gap, 1e-3 * kKn * 0.5 * gap) << "step " << s << " after the break";
+    // Sliding is now limited by friction on that normal force.
+    EXPECT_LE(std::abs(world.pair_state(0, "shear_force_n")), 0.3 * kKn * 0.5 * gap * (1 + 1e-12));
+  }
+  // Opened past the reference gap, it lets go.
+  for (int s = 0; s < 100; ++s) imposed_step(world, gap / (100 * kDt), 0, 0);
+  imposed_step(world, 0, 0, 0);
+  EXPECT_EQ(world.bodies.fx[0], 0.0);
+}

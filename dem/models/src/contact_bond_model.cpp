@@ -1,7 +1,8 @@
 // Contact bond (PFC's linearcbond): a linear contact glued at a point. While
 // bonded it carries tension and unlimited shear; it breaks when the tensile
 // force reaches the normal strength or the shear force the shear strength,
-// and then slides with Coulomb friction like the linear model.
+// and then slides with Coulomb friction like the linear model, from the
+// overlap it was glued at (its reference gap stays, as in PFC).
 //   parameters: {"modulus_pa", "kn_ks", "friction",
 //                "tensile_strength_pa", "tensile_strength_std_pa" (default 0),
 //                "shear_strength_pa", "shear_strength_std_pa" (default 0)}
@@ -9,6 +10,9 @@
 // with R_mean = (R_i + R_j) / 2, drawn per bond from a normal distribution
 // truncated at zero. A bond installed across a small gap (or overlap) is
 // force-free there: while bonded, F_n = kn (overlap - overlap at installation).
+// Breaking follows PFC's linearcbond: in tension both forces drop to zero; in
+// shear the step's forces stand and the Coulomb limit applies from the next
+// step.
 //   state: the linear columns, then the bond's normal and shear strengths
 //   (forces, N) and the overlap at installation (m).
 #include <cmath>
@@ -71,20 +75,31 @@ class ContactBondModel : public LinearBase {
     for_disk_pairs(
         c, b,
         [&](std::size_t k, const Geometry& g) {
-          if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
+          if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt, installed_overlap[k]);
           PairForce f;
           f.fn = kn[k] * (g.overlap - installed_overlap[k]);  // negative in tension
           fs[k] -= ks[k] * g.vs * dt;
           f.fs = fs[k];
           const bool tension = -f.fn >= strength_n[k];
-          if (tension || std::abs(f.fs) >= strength_s[k]) {
-            break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
-            return linear_force(c, k, g, dt);
+          if (tension) {
+            break_bond(c, k, g, b, step, BreakMode::Tension);
+            release(c, k);
+            return PairForce{};
+          }
+          if (std::abs(f.fs) >= strength_s[k]) {
+            break_bond(c, k, g, b, step, BreakMode::Shear);
+            if (f.fn <= 0) {  // a bond that held the pair in tension: nothing is left to press it
+              release(c, k);
+              return PairForce{};
+            }
+            c.flags[k] |= kTouching;
+            return f;  // this step's shear increment is in fs already
           }
           c.flags[k] = static_cast<std::uint8_t>(g.overlap > 0 ? (c.flags[k] | kTouching) : (c.flags[k] & ~kTouching));
           return f;
         },
-        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
+        // A broken bond's pair touches until its gap passes the reference gap.
+        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap + installed_overlap[k]); });
   }
 
  private:

@@ -36,16 +36,21 @@ inline bool skip_apart(const PairBlock& c, std::size_t k, double gap) {
   return true;
 }
 
-// Normal force kn * overlap, shear force updated incrementally and capped at
-// mu * fn. Pairs that do not overlap carry no force and forget their shear.
-inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt) {
+// Normal force kn * (overlap - reference), shear force updated incrementally
+// and capped at mu * fn. The reference overlap is zero for a plain contact; a
+// broken contact bond keeps the overlap it was glued at (PFC's reference gap,
+// g_r = -reference), so its force does not jump when the bond fails. Pairs
+// past the reference carry no force and forget their shear.
+inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt,
+                              double reference_overlap_m = 0.0) {
   PairForce f;
-  if (g.overlap <= 0) {
+  const double overlap = g.overlap - reference_overlap_m;
+  if (overlap <= 0) {
     release(c, k);
     return f;
   }
   c.flags[k] |= kTouching;
-  f.fn = c.column[kNormalStiffness][k] * g.overlap;
+  f.fn = c.column[kNormalStiffness][k] * overlap;
   double fs = c.column[kShearForce][k] - c.column[kShearStiffness][k] * g.vs * dt;
   const double limit = c.column[kFriction][k] * f.fn;
   if (std::abs(fs) > limit) fs = std::copysign(limit, fs);
