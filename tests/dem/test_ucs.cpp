@@ -4,6 +4,8 @@
 
 #include <unistd.h>
 
+#include <cmath>
+
 #include "demcal/core/error.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/brazilian_test.hpp"
@@ -31,6 +33,28 @@ TEST(UcsMacroValues, MatchAHandWorkedCurve) {
   EXPECT_NEAR(m.at("nu"), 0.25, 1e-12);
   EXPECT_DOUBLE_EQ(m.at("peak_strain"), 1e-3);
   EXPECT_THROW(ucs_macro_values({curve[0], curve[1]}), demcal::Error);
+}
+
+TEST(UcsMacroValues, EAndNuAreTangentsOverTheSameWindow) {
+  // sigma = E0 e (1 - e / (2 e_p)) peaks at e_p; eps_lat = a e + b e^2. Least
+  // squares over a window centred on a point gives a quadratic's exact
+  // derivative there, so E = E0 (1 - e_h / e_p) and nu = a + 2 b e_h at the
+  // first point e_h of at least half the peak; the secant nu, a + b e_h, is
+  // about 11 % lower here.
+  const double E0 = 30e9, e_p = 1e-3, a = 0.1, b = 50.0, de = 1e-5;
+  std::vector<CurvePoint> curve;
+  for (int k = 0; k <= 130; ++k) {
+    const double e = de * k;
+    const double stress = k <= 100 ? E0 * e * (1 - e / (2 * e_p)) : E0 * e_p / 2 * (1 - 0.01 * (k - 100));
+    curve.push_back({e, stress, a * e + b * e * e, 0});
+  }
+  std::size_t half = 0;
+  while (curve[half].stress_pa < 0.25 * E0 * e_p) ++half;
+  const double e_h = curve[half].axial_strain;
+  auto m = ucs_macro_values(curve);
+  EXPECT_NEAR(m.at("E_GPa"), E0 * (1 - e_h / e_p) / 1e9, 1e-6);
+  EXPECT_NEAR(m.at("nu"), a + 2 * b * e_h, 1e-9);
+  EXPECT_GT(std::abs(m.at("nu") - (a + b * e_h)), 0.01);  // the secant would not pass
 }
 
 TEST(UcsScene, SmallBondedSpecimenGivesPlausibleMacroValues) {

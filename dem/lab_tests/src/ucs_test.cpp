@@ -13,10 +13,39 @@
 namespace demcal::dem {
 namespace {
 
+// Median x-displacement of a gauge set since the start: one disk group that
+// spalls off the face (an early edge crack) moves the median little, the mean
+// a lot.
+double median_shift_x(const Bodies& b, const std::vector<std::size_t>& ids, const std::vector<double>& x0,
+                      std::vector<double>& scratch) {
+  scratch.resize(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) scratch[k] = b.x[ids[k]] - x0[k];
+  const std::size_t mid = scratch.size() / 2;
+  std::nth_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(mid), scratch.end());
+  if (scratch.size() % 2) return scratch[mid];
+  const double upper = scratch[mid];
+  return 0.5 * (upper + *std::max_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
 double mean_x(const Bodies& b, const std::vector<std::size_t>& ids) {
   double sum = 0;
   for (std::size_t i : ids) sum += b.x[i];
   return sum / static_cast<double>(ids.size());
+}
+
+// Least-squares slope of y(point) on the axial strain over curve[from..to].
+template <typename Y>
+double slope_on_axial_strain(const std::vector<CurvePoint>& curve, std::size_t from, std::size_t to, Y y) {
+  double se = 0, sy = 0, see = 0, sey = 0;
+  const double n = static_cast<double>(to - from + 1);
+  for (std::size_t k = from; k <= to; ++k) {
+    const double e = curve[k].axial_strain, v = y(curve[k]);
+    se += e;
+    sy += v;
+    see += e * e;
+    sey += e * v;
+  }
+  return (n * sey - se * sy) / (n * see - se * se);
 }
 
 }  // namespace
@@ -29,23 +58,15 @@ std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& cu
   const double sigma_u = curve[peak].stress_pa;
   std::size_t half = 0;
   while (half < peak && curve[half].stress_pa < 0.5 * sigma_u) ++half;
-  // Tangent at the half-peak point: least-squares slope over its neighbours.
+  // Tangents at the half-peak point, E and nu over the same window: a
+  // least-squares slope over its neighbours.
   const std::size_t window = std::max<std::size_t>(2, peak / 20);
   const std::size_t from = half > window ? half - window : 0, to = std::min(peak, half + window);
-  double se = 0, ss = 0, see = 0, ses = 0;
-  const double n = static_cast<double>(to - from + 1);
-  for (std::size_t k = from; k <= to; ++k) {
-    se += curve[k].axial_strain;
-    ss += curve[k].stress_pa;
-    see += curve[k].axial_strain * curve[k].axial_strain;
-    ses += curve[k].axial_strain * curve[k].stress_pa;
-  }
-  const double slope = (n * ses - se * ss) / (n * see - se * se);
   std::map<std::string, double> macro;
   macro["sigma_u_MPa"] = sigma_u / 1e6;
-  macro["E_GPa"] = slope / 1e9;
+  macro["E_GPa"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.stress_pa; }) / 1e9;
   macro["E50_GPa"] = curve[half].stress_pa / curve[half].axial_strain / 1e9;
-  macro["nu"] = curve[half].lateral_strain / curve[half].axial_strain;
+  macro["nu"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.lateral_strain; });
   macro["peak_strain"] = curve[peak].axial_strain;
   return macro;
 }
@@ -71,6 +92,9 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   }
   if (left.empty() || right.empty()) throw Error("specimen too small to measure lateral strain");
   const double width0 = mean_x(world.bodies, right) - mean_x(world.bodies, left);
+  std::vector<double> left_x0, right_x0, scratch;
+  for (std::size_t i : left) left_x0.push_back(world.bodies.x[i]);
+  for (std::size_t i : right) right_x0.push_back(world.bodies.x[i]);
 
   TestResult result;
   result.specimen_info = specimen_info;
@@ -88,7 +112,8 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
     CurvePoint point;
     point.axial_strain = strain;
     point.stress_pa = platen_force(world) / (W * specimen.thickness_m);
-    point.lateral_strain = (mean_x(world.bodies, right) - mean_x(world.bodies, left) - width0) / width0;
+    point.lateral_strain = (median_shift_x(world.bodies, right, right_x0, scratch) -
+                            median_shift_x(world.bodies, left, left_x0, scratch)) / width0;
     point.cracks = world.breaks().size();
     if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
   }
@@ -117,9 +142,10 @@ class UcsTest : public LabTest {
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out = {
         {"sigma_u_MPa", "MPa", "peak axial stress (platen force / (W t))"},
-        {"E_GPa", "GPa", "tangent Young's modulus where the stress first reaches half the peak"},
+        {"E_GPa", "GPa", "tangent Young's modulus where the stress first reaches half the peak (least squares over "
+                         "the neighbouring points)"},
         {"E50_GPa", "GPa", "secant modulus at half the peak"},
-        {"nu", "1", "Poisson's ratio: lateral over axial strain at half the peak"},
+        {"nu", "1", "tangent Poisson's ratio d eps_lat / d eps_ax over the same window as E (median gauge disks)"},
         {"peak_strain", "1", "axial strain at the peak"},
         {"reached_strain_limit", "1", "1 when the test ended at loading.strain_limit before the post-peak stop",
          false},
