@@ -87,8 +87,9 @@ TEST(Placement, InsideTheSpecimenApartAndReproducible) {
   AggregateSpec spec;
   spec.min_gap_m = 0.001;
   AggregatePlacement a = place_aggregates(spec, 0.1, 0.2, 7);
-  ASSERT_EQ(a.polygons.size(), 114u);  // 59 + 28 + 15 + 8 + 4
-  EXPECT_EQ(a.requested, 114);
+  // More than the 59 + 28 + 15 + 8 + 4 circles: polygons inscribed in them fill less.
+  EXPECT_GT(a.polygons.size(), 114u);
+  EXPECT_EQ(a.requested, static_cast<int>(a.polygons.size()));
   for (std::size_t i = 0; i < a.polygons.size(); ++i) {
     const Polygon& p = a.polygons[i];
     for (std::size_t v = 0; v < p.x.size(); ++v) {
@@ -102,12 +103,31 @@ TEST(Placement, InsideTheSpecimenApartAndReproducible) {
     }
     for (std::size_t j = 0; j < i; ++j) EXPECT_GE(polygon_distance(p, a.polygons[j]), spec.min_gap_m);
   }
-  EXPECT_GT(a.area_fraction, 0.1);
-  EXPECT_LT(a.area_fraction, 0.29);  // polygons fill less than their circles
   AggregatePlacement b = place_aggregates(spec, 0.1, 0.2, 7);
   EXPECT_EQ(a.polygons.back().x, b.polygons.back().x);
   AggregatePlacement c = place_aggregates(spec, 0.1, 0.2, 8);
   EXPECT_NE(a.polygons.back().x, c.polygons.back().x);
+}
+
+TEST(Placement, EachSizeBinFillsWalravensShareOfThePublishedSection) {
+  // Su et al. 2021's 100 x 200 mm section, 5-15 mm, P_k = 0.75, 1 mm mortar gap.
+  // Walraven: P_c = 0.287 over the range, 0.02-0.10 per bin. Goal (issue 14):
+  // within 0.02 of it per bin; filling by polygon area stays within half the
+  // largest polygon's area (0.0037 of the section), checked at 0.005.
+  AggregateSpec spec;
+  spec.min_gap_m = 0.001;
+  for (std::uint64_t seed : {1u, 7u, 8u}) {
+    AggregatePlacement a = place_aggregates(spec, 0.1, 0.2, seed);
+    EXPECT_NEAR(a.target_area_fraction, 0.75 * (0.998 - walraven_fraction_below(0.005, 0.015, 1.0)), 1e-12);
+    double sum = 0;
+    for (const SizeBin& bin : a.bins) {
+      EXPECT_NEAR(bin.placed_area_fraction, bin.area_fraction, 0.005)
+          << "seed " << seed << ", bin " << bin.d_low_m * 1000 << "-" << bin.d_high_m * 1000 << " mm";
+      sum += bin.placed_area_fraction;
+    }
+    EXPECT_NEAR(sum, a.area_fraction, 1e-12);
+    EXPECT_NEAR(a.area_fraction, a.target_area_fraction, 0.01) << "seed " << seed;
+  }
 }
 
 TEST(Placement, ImpossibleFractionSaysHowFarItGot) {
@@ -147,6 +167,24 @@ TEST(ConcreteSpecimen, DisksInsideAPolygonFormOneClumpWithThePolygonsMassAndIner
   for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ(world.bodies.group[i], kAggregateGroup);
   EXPECT_EQ(world.bodies.group[9], 0);
   EXPECT_EQ(world.bodies.clump[10], -1);
+}
+
+TEST(ConcreteSpecimen, APolygonHoldingNoDiskCentreTakesTheNearestFreeDisk) {
+  World world;
+  world.bodies.add_disk(0.0504, 0.05, 0.001, 2000, 1, 0);  // 0.4 mm off the small square's centre: outside it, inside its circle
+  world.bodies.add_disk(0.0530, 0.05, 0.001, 2000, 1, 0);
+  world.bodies.add_disk(0.0700, 0.05, 0.001, 2000, 1, 0);
+  AggregatePlacement placement;
+  placement.polygons = {square(0.0003, 0.05, 0.05), square(0.0003, 0.060, 0.05)};  // the second has no disk near
+  placement.requested = 2;
+  AggregateSummary s = make_aggregate_clumps(world, placement, 2650, 1);
+  EXPECT_EQ(s.single_disk, 1);
+  EXPECT_EQ(s.clumps, 1);
+  EXPECT_EQ(s.without_disks, 1);
+  EXPECT_EQ(world.bodies.group[0], kAggregateGroup);
+  EXPECT_EQ(world.bodies.group[1], 0);
+  ASSERT_EQ(world.clumps().size(), 1u);
+  EXPECT_NEAR(world.clumps()[0].mass, 2650 * 0.0006 * 0.0006, 1e-9 * 2650 * 0.0006 * 0.0006);
 }
 
 }  // namespace

@@ -25,10 +25,10 @@ TEST(ConcreteUcs, SmallSpecimenGivesPlausibleMacroValues) {
   EXPECT_TRUE(std::isfinite(E) && E > 1.0) << E;
   EXPECT_GT(nu, 0.0);
   EXPECT_LT(nu, 0.5);
-  // 40 x 80 mm: 9 + 4 + 2 + 1 + 1 = 17 aggregates by the gradation; the packed specimen is a
-  // little larger than asked (the genesis walls settle outward), so a few more. All are placed.
-  EXPECT_GE(r.specimen_info.at("aggregates_requested"), 17.0);
-  EXPECT_LE(r.specimen_info.at("aggregates_requested"), 21.0);
+  // 40 x 80 mm: the polygons fill Walraven's P_c (0.287 over 5-15 mm) within half the largest
+  // polygon's area (0.023 of this small section), and all are placed.
+  EXPECT_NEAR(r.specimen_info.at("aggregate_area_fraction_target"), 0.287, 0.001);
+  EXPECT_NEAR(r.specimen_info.at("aggregate_area_fraction"), r.specimen_info.at("aggregate_area_fraction_target"), 0.03);
   EXPECT_EQ(r.specimen_info.at("aggregates_placed"), r.specimen_info.at("aggregates_requested"));
   EXPECT_EQ(r.specimen_info.at("aggregates_without_disks"), 0.0);
   EXPECT_GT(r.specimen_info.at("aggregate_disks"), 50.0);

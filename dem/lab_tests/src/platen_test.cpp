@@ -64,9 +64,11 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
       (*info)["aggregates_requested"] = s.requested;
       (*info)["aggregates_placed"] = s.placed;
       (*info)["aggregate_clumps"] = s.clumps;
+      (*info)["aggregates_single_disk"] = s.single_disk;
       (*info)["aggregates_without_disks"] = s.without_disks;
       (*info)["aggregate_disks"] = static_cast<double>(s.aggregate_disks);
       (*info)["aggregate_area_fraction"] = s.area_fraction;
+      (*info)["aggregate_area_fraction_target"] = s.target_area_fraction;
     }
   }
 

@@ -145,25 +145,47 @@ double polygon_distance(const Polygon& a, const Polygon& b) {
 AggregatePlacement place_aggregates(const AggregateSpec& spec, double width_m, double height_m, std::uint64_t seed) {
   spec.validate("aggregates");
   AggregatePlacement placement;
-  placement.bins = aggregate_counts(spec, width_m * height_m);
+  const double section_m2 = width_m * height_m;
+  placement.bins = aggregate_counts(spec, section_m2);
   Rng rng(seed, 0xa66e /* "agg" */);
-  // Diameters drawn uniformly inside each bin, then placed largest first.
-  std::vector<double> diameters;
-  for (const SizeBin& bin : placement.bins)
-    for (int k = 0; k < bin.count; ++k) diameters.push_back(rng.uniform(bin.d_low_m, bin.d_high_m));
-  std::sort(diameters.rbegin(), diameters.rend());
-  placement.requested = static_cast<int>(diameters.size());
-  double placed_area = 0, requested_area = 0;
-  for (double d : diameters) requested_area += M_PI * d * d / 4;
+  // Shapes drawn at the origin, bin by bin, diameters uniform in the bin.
+  struct Shape {
+    Polygon polygon;
+    std::size_t bin;
+  };
+  std::vector<Shape> shapes;
+  double requested_area = 0;
+  for (std::size_t b = 0; b < placement.bins.size(); ++b) {
+    SizeBin& bin = placement.bins[b];
+    placement.target_area_fraction += bin.area_fraction;
+    const double target_m2 = bin.area_fraction * section_m2;
+    double drawn_m2 = 0;
+    for (;;) {
+      const int sides = spec.sides_min + static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.sides_max - spec.sides_min + 1)));
+      Polygon p = random_polygon(sides, rng.uniform(bin.d_low_m, bin.d_high_m), 0.0, 0.0, rng);
+      const double a = p.area();
+      if (drawn_m2 + 0.5 * a > target_m2) break;  // it would overshoot by more than it fills
+      drawn_m2 += a;
+      shapes.push_back({std::move(p), b});
+    }
+    requested_area += drawn_m2;
+  }
+  std::stable_sort(shapes.begin(), shapes.end(),
+                   [](const Shape& a, const Shape& b) { return a.polygon.diameter_m > b.polygon.diameter_m; });
+  placement.requested = static_cast<int>(shapes.size());
+  double placed_area = 0;
   const double gap = spec.min_gap_m;
-  for (double d : diameters) {
-    const int sides = spec.sides_min + static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.sides_max - spec.sides_min + 1)));
+  for (const Shape& shape : shapes) {
+    const double r = shape.polygon.radius;
     bool placed = false;
     for (int attempt = 0; attempt < spec.max_attempts && !placed; ++attempt) {
-      const double r = 0.5 * d;
       if (width_m <= 2 * (r + gap) || height_m <= 2 * (r + gap)) break;
       const double cx = rng.uniform(r + gap, width_m - r - gap), cy = rng.uniform(r + gap, height_m - r - gap);
-      Polygon p = random_polygon(sides, d, cx, cy, rng);
+      Polygon p = shape.polygon;
+      for (double& x : p.x) x += cx;
+      for (double& y : p.y) y += cy;
+      p.cx = cx;
+      p.cy = cy;
       bool clear = true;
       for (const Polygon& other : placement.polygons) {
         if (std::hypot(cx - other.cx, cy - other.cy) >= r + other.radius + gap) continue;  // bounding circles apart
@@ -173,21 +195,21 @@ AggregatePlacement place_aggregates(const AggregateSpec& spec, double width_m, d
         }
       }
       if (!clear) continue;
-      placement.polygons.push_back(p);
-      placed_area += p.area();
+      const double a = p.area();
+      placement.polygons.push_back(std::move(p));
+      placed_area += a;
+      placement.bins[shape.bin].placed += 1;
+      placement.bins[shape.bin].placed_area_fraction += a / section_m2;
       placed = true;
     }
-    if (!placed) {
-      double fraction_placed = 0;
-      for (const Polygon& p : placement.polygons) fraction_placed += M_PI * p.radius * p.radius;
+    if (!placed)
       throw Error("aggregates: placed " + std::to_string(placement.polygons.size()) + " of " +
-                  std::to_string(placement.requested) + " (" + format_double(std::round(1000 * fraction_placed / requested_area) / 10) +
-                  " % of the requested area) before one of diameter " + format_double(d * 1000) +
+                  std::to_string(placement.requested) + " (" + format_double(std::round(1000 * placed_area / requested_area) / 10) +
+                  " % of the requested area) before one of diameter " + format_double(shape.polygon.diameter_m * 1000) +
                   " mm found no free spot in " + std::to_string(spec.max_attempts) +
                   " tries; lower coarse_fraction or min_gap_m, or enlarge the specimen");
-    }
   }
-  placement.area_fraction = placed_area / (width_m * height_m);
+  placement.area_fraction = placed_area / section_m2;
   return placement;
 }
 

@@ -30,12 +30,16 @@ double walraven_fraction_below(double d0_m, double d_max_m, double coarse_fracti
 
 struct SizeBin {
   double d_low_m = 0, d_high_m = 0;
-  int count = 0;            // aggregates in this bin for the section
-  double area_fraction = 0; // P_c(d_high) - P_c(d_low)
+  int count = 0;            // circle-equivalent count for the section (what Su et al. 2021 publish)
+  double area_fraction = 0; // P_c(d_high) - P_c(d_low), the share placement fills
+  int placed = 0;                  // polygons placed in this bin
+  double placed_area_fraction = 0; // their area / section area
 };
 
 // Aggregates per bin for a section of `area_m2`: area fraction of the bin
-// over the area of a circle of the bin's mean diameter, rounded.
+// over the area of a circle of the bin's mean diameter, rounded. Polygons
+// inscribed in those circles fill less, so placement fills each bin's area
+// instead and places more of them.
 std::vector<SizeBin> aggregate_counts(const AggregateSpec& spec, double area_m2);
 
 struct Polygon {
@@ -62,13 +66,16 @@ struct AggregatePlacement {
   std::vector<Polygon> polygons;  // largest first
   std::vector<SizeBin> bins;
   int requested = 0;
-  double area_fraction = 0;       // placed polygon area / section area
+  double area_fraction = 0;         // placed polygon area / section area
+  double target_area_fraction = 0;  // Walraven's P_c over the size range
 };
 
-// Places the aggregates of `spec` in [0, width] x [0, height], largest first,
-// at random positions, each at least min_gap from the boundary and from every
-// other polygon (bounding circles first, then the exact polygon distance).
-// Throws, naming the fraction placed, when one cannot be placed.
+// Draws polygons per size bin until their area meets the bin's Walraven share
+// (the last one kept while it brings the bin closer to it), then places them
+// in [0, width] x [0, height], largest first, at random positions, each at
+// least min_gap from the boundary and from every other polygon (bounding
+// circles first, then the exact polygon distance). Throws, naming the
+// fraction placed, when one cannot be placed.
 AggregatePlacement place_aggregates(const AggregateSpec& spec, double width_m, double height_m, std::uint64_t seed);
 
 }  // namespace demcal::dem
