@@ -79,7 +79,7 @@ TEST(ExactScaling, AtTheSamePlatenVelocityTheOutputsStayWithinTheSeedNoise) {
   // Common specimens (seeds 1-4) at k = 1, 2 and 10. The run is then
   // sqrt(k) times slower relative to the specimen's wave time, which moves
   // the outputs by far less than the seed-to-seed scatter. Measured on this
-  // scene (seeds 1-6, 2026-12-01): mean paired shifts sigma_u +0.1 % (k = 2)
+  // scene (seeds 1-6, 2026-12-01, before issue 14's genesis): mean paired shifts sigma_u +0.1 % (k = 2)
   // and -0.9 % (k = 10), E +0.8 % and +0.7 %, nu 0.0 %; seed-to-seed CV 12 %.
   const nlohmann::json j = scene_json("ucs_rock_cb_small.json");
   const Scene base = scaled_scene(j, 1.0, 1.0);

@@ -1,6 +1,7 @@
-// Material genesis: the packing reaches the porosity, stays inside the box,
-// carries no locked-in overlap, has no floaters, depends only on geometry and
-// seed, and survives the HDF5 cache unchanged.
+// Material genesis: the packing reaches the porosity asked (overlaps and all,
+// as PFC counts it), stays inside the box, has no floaters, depends only on
+// geometry and seed, and survives the HDF5 cache unchanged. That bonding makes
+// it force-free is test_force_free_installation.cpp.
 #include <gtest/gtest.h>
 
 #include "../common/scratch.hpp"
@@ -36,21 +37,57 @@ TEST(Genesis, PackingMeetsItsSpecification) {
   EXPECT_EQ(spec.disk_count(), static_cast<std::size_t>(std::floor(0.01 * 0.02 * 0.84 / (M_PI * 3.75e-4 * 3.75e-4))));
   EXPECT_EQ(s.size() + s.floaters_removed, spec.disk_count());
   EXPECT_LT(s.floaters_removed, spec.disk_count() / 20);
-  // The servo walls relax the expansion's stress, so the box grows a little.
-  EXPECT_NEAR(s.width_m, 0.01, 0.03 * 0.01);
-  EXPECT_NEAR(s.height_m, 0.02, 0.03 * 0.02);
-  EXPECT_NEAR(s.porosity, 0.16, 0.04);
-  double worst_overlap = 0;
+  // The vessel stays fixed, so the porosity (PFC's count: overlaps not
+  // subtracted) is the one asked, less what the floaters took away.
+  EXPECT_EQ(s.width_m, 0.01);
+  EXPECT_EQ(s.height_m, 0.02);
+  EXPECT_NEAR(s.porosity, 0.16, 0.005);
+  double solid = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) solid += M_PI * s.radius[i] * s.radius[i];
+  EXPECT_NEAR(s.porosity, 1 - solid / (0.01 * 0.02), 1e-12);
   for (std::size_t i = 0; i < s.size(); ++i) {
-    EXPECT_GE(s.x[i] - s.radius[i], -1e-12);
-    EXPECT_LE(s.x[i] + s.radius[i], s.width_m + 1e-12);
-    EXPECT_GE(s.y[i] - s.radius[i], -1e-12);
-    EXPECT_LE(s.y[i] + s.radius[i], s.height_m + 1e-12);
+    // Centres inside the box; a disk may press into a wall by a small overlap.
+    EXPECT_GE(s.x[i] - s.radius[i], -0.05 * s.radius[i]);
+    EXPECT_LE(s.x[i] + s.radius[i], s.width_m + 0.05 * s.radius[i]);
+    EXPECT_GE(s.y[i] - s.radius[i], -0.05 * s.radius[i]);
+    EXPECT_LE(s.y[i] + s.radius[i], s.height_m + 0.05 * s.radius[i]);
     EXPECT_GT(s.radius[i], 0.95 * 3e-4);
-    for (std::size_t j = i + 1; j < s.size(); ++j)
-      worst_overlap = std::max(worst_overlap, s.radius[i] + s.radius[j] - std::hypot(s.x[j] - s.x[i], s.y[j] - s.y[i]));
   }
-  EXPECT_LE(worst_overlap, 1e-12);  // no locked-in force
+  // A jammed 2D packing: every kept disk has at least 3 contacts, so at least
+  // 3 per disk on average, with overlaps a small fraction of a radius.
+  EXPECT_GE(s.coordination_number, 3.0);
+  EXPECT_LT(s.coordination_number, 6.0);
+  EXPECT_GT(s.mean_overlap_ratio, 0.0);
+  EXPECT_LT(s.mean_overlap_ratio, 0.05);
+}
+
+TEST(Genesis, BelowRandomClosePackingThePorosityComesFromOverlaps) {
+  // 0.12 lies below the random close packing of these disks (about 0.16):
+  // PFC reaches it with overlapping disks, and so does genesis now.
+  SpecimenSpec spec = small_spec(2);
+  spec.porosity = 0.12;
+  Specimen dense = pack_specimen(spec);
+  Specimen loose = pack_specimen(small_spec(2));
+  EXPECT_NEAR(dense.porosity, 0.12, 0.005);
+  EXPECT_GT(dense.mean_overlap_ratio, loose.mean_overlap_ratio);
+  EXPECT_GT(dense.coordination_number, loose.coordination_number);
+}
+
+TEST(Genesis, ServoWallsMakeThePorosityAnOutcome) {
+  // With an isotropic stress asked for (Potyondy & Cundall 2004), servo walls
+  // move until the walls carry it: at 0.12 asked the box opens up towards
+  // random close packing, and the porosity reported is what it became.
+  SpecimenSpec spec = small_spec(2);
+  spec.porosity = 0.12;
+  spec.isotropic_stress_pa = 1e5;
+  Specimen s = pack_specimen(spec);
+  EXPECT_GT(s.width_m * s.height_m, 1.02 * 0.01 * 0.02);
+  EXPECT_GT(s.porosity, 0.14);
+  double solid = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) solid += M_PI * s.radius[i] * s.radius[i];
+  EXPECT_NEAR(s.porosity, 1 - solid / (s.width_m * s.height_m), 1e-12);
+  spec.isotropic_stress_pa = -1;
+  EXPECT_THROW(spec.validate(), demcal::Error);
 }
 
 TEST(Genesis, SameSeedSamePackingOtherSeedAnother) {
@@ -68,6 +105,8 @@ TEST(Genesis, CacheStoresAndReloadsTheSamePacking) {
   EXPECT_EQ(packed.x, loaded.x);
   EXPECT_EQ(packed.radius, loaded.radius);
   EXPECT_EQ(packed.porosity, loaded.porosity);
+  EXPECT_EQ(packed.coordination_number, loaded.coordination_number);
+  EXPECT_EQ(packed.mean_overlap_ratio, loaded.mean_overlap_ratio);
   // A different spec does not hit the same entry; a stale key is refused.
   SpecimenSpec other = small_spec(6);
   EXPECT_NE(spec.cache_key(), other.cache_key());

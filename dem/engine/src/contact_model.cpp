@@ -6,6 +6,8 @@
 
 namespace demcal::dem {
 
+void ContactModel::make_force_free(PairBlock&, std::size_t, double) const {}
+
 bool ContactModel::install_bond(PairBlock&, std::size_t, const PairInfo&, double, Rng&) const { return false; }
 
 void ContactModelRegistry::add(const std::string& name, ContactModelFactory factory) {

@@ -66,15 +66,19 @@ std::size_t World::add_clump(const std::vector<std::size_t>& members, double mas
   return clumps_.size() - 1;
 }
 
-std::size_t World::install_bonds(double tolerance_m, std::uint64_t seed) {
+std::size_t World::install_bonds(double tolerance_m, std::uint64_t seed, double locked_in_fraction) {
+  if (!(locked_in_fraction >= 0 && locked_in_fraction <= 1))
+    throw Error("install_bonds: the locked-in fraction must lie in [0, 1]");
   rebuild();
   std::size_t installed = 0;
   for (std::uint8_t m : run_models_) {
     PairBlock block = pairs_.block(m);
     for (std::size_t k = 0; k < block.size; ++k) {
       const std::size_t i = static_cast<std::size_t>(block.i[k]), j = static_cast<std::size_t>(block.j[k]);
-      const double gap =
-          std::hypot(bodies.x[j] - bodies.x[i], bodies.y[j] - bodies.y[i]) - bodies.radius[i] - bodies.radius[j];
+      // The overlap as the force loop computes it, so a force-free pair is exactly force-free.
+      const double dx = bodies.x[j] - bodies.x[i], dy = bodies.y[j] - bodies.y[i];
+      const double gap = -(bodies.radius[i] + bodies.radius[j] - std::sqrt(dx * dx + dy * dy));
+      if (gap < 0) models_[m]->make_force_free(block, k, -gap * (1 - locked_in_fraction));
       if (gap > tolerance_m) continue;
       PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false, -gap};
       const std::uint32_t a = bodies.id[i], b = bodies.id[j];
@@ -84,6 +88,16 @@ std::size_t World::install_bonds(double tolerance_m, std::uint64_t seed) {
   }
   update_time_step();  // bonds stiffen the disks
   return installed;
+}
+
+void World::start_test() {
+  breaks_.clear();
+  steps_ = 0;
+  time_s_ = 0;
+  std::fill(bodies.vx.begin(), bodies.vx.end(), 0.0);
+  std::fill(bodies.vy.begin(), bodies.vy.end(), 0.0);
+  std::fill(bodies.w.begin(), bodies.w.end(), 0.0);
+  for (Clump& clump : clumps_) clump.vx = clump.vy = clump.w = 0;
 }
 
 double World::pair_state(std::size_t k, const std::string& column) const {

@@ -29,16 +29,19 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
               std::abs(square.y[i] - cy) + square.radius[i] <= flat;
     kept += keep[i];
   }
-  World world = make_platen_world(scene, parameters, square, options.seed, &keep);
+  std::map<std::string, double> specimen_info;
+  World world = make_platen_world(scene, parameters, square, options.seed, &keep, &specimen_info);
   const double t = square.thickness_m;
   const double gap0 = world.walls[1].y0 - world.walls[0].y0;
 
   TestResult result;
+  result.specimen_info = specimen_info;
   result.particles = kept;
   result.porosity = square.porosity;
   const auto loading_start = std::chrono::steady_clock::now();
   double next_record = 0;
-  LoadingMonitor monitor(loading, options, start);
+  // sigma = 2 F / (pi D t) and the approach over D: F d(approach) = sigma d(approach / D) pi D^2 t / 2.
+  LoadingMonitor monitor(loading, options, start, 0.5 * M_PI * D * D * t);
   for (;;) {
     world.step();
     const double approach = (gap0 - (world.walls[1].y0 - world.walls[0].y0)) / D;

@@ -183,7 +183,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
   scene.specimen_ = root.at("specimen");
   require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
-                              "radius_max_m", "density_kg_m3", "isotropic_stress_pa"},
+                              "radius_max_m", "density_kg_m3", "isotropic_stress_pa", "locked_in_stress_pa"},
             origin + ": specimen");
 
   if (root.contains("parameters")) {
@@ -390,13 +390,15 @@ SpecimenSpec Scene::specimen(const std::map<std::string, double>& parameters, st
   field("radius_max_m", spec.radius_max_m);
   field("density_kg_m3", spec.density_kg_m3);
   field("isotropic_stress_pa", spec.isotropic_stress_pa);
+  field("locked_in_stress_pa", spec.locked_in_stress_pa);
   spec.seed = seed;
   return spec;
 }
 
 bool Scene::shapes_specimen(const std::string& parameter) const {
   for (auto it = specimen_.begin(); it != specimen_.end(); ++it) {
-    if (!it.value().is_string()) continue;
+    // The locked-in stress is applied when bonding, after (and apart from) the packing.
+    if (!it.value().is_string() || it.key() == "locked_in_stress_pa") continue;
     std::stringstream stream(it.value().get<std::string>());
     std::string factor;
     while (std::getline(stream, factor, '*'))

@@ -102,7 +102,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   result.particles = specimen.size();
   result.porosity = specimen.porosity;
   double next_record = 0;
-  LoadingMonitor monitor(loading, options, start);
+  LoadingMonitor monitor(loading, options, start, W * H0 * specimen.thickness_m);
   for (;;) {
     world.step();
     const double height = world.walls[1].y0 - world.walls[0].y0;

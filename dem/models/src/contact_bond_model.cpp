@@ -13,8 +13,10 @@
 // Breaking follows PFC's linearcbond: in tension both forces drop to zero; in
 // shear the step's forces stand and the Coulomb limit applies from the next
 // step.
-//   state: the linear columns, then the bond's normal and shear strengths
-//   (forces, N) and the overlap at installation (m).
+//   state: the linear columns (whose reference overlap is the overlap at
+//   installation, negative across a gap, less any locked-in share), then the
+//   bond's normal and shear strengths (forces, N).
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -31,7 +33,6 @@ namespace {
 enum BondColumn : std::size_t {
   kNormalStrength = kLinearColumns,  // N
   kShearStrength,                    // N
-  kInstalledOverlap,                 // m
 };
 
 class ContactBondModel : public LinearBase {
@@ -50,7 +51,7 @@ class ContactBondModel : public LinearBase {
 
   std::vector<std::string> state_columns() const override {
     std::vector<std::string> columns = LinearBase::state_columns();
-    for (const char* c : {"bond_normal_strength_n", "bond_shear_strength_n", "bond_overlap_m"}) columns.emplace_back(c);
+    for (const char* c : {"bond_normal_strength_n", "bond_shear_strength_n"}) columns.emplace_back(c);
     return columns;
   }
 
@@ -59,7 +60,10 @@ class ContactBondModel : public LinearBase {
     const double width = (pair.radius_i + pair.radius_j) * thickness_m;  // 2 R_mean t
     c.column[kNormalStrength][k] = draw_strength(sigma_c_, sigma_c_std_, rng) * width;
     c.column[kShearStrength][k] = draw_strength(tau_c_, tau_c_std_, rng) * width;
-    c.column[kInstalledOverlap][k] = pair.overlap;  // glued as it lies: no force at installation
+    // Glued as it lies, across a gap too (PFC sets a contact bond's reference
+    // gap to its gap): no force at installation, unless the world kept a
+    // locked-in share of an overlap (its reference is then below the overlap).
+    c.column[kReferenceOverlap][k] = std::min(c.column[kReferenceOverlap][k], pair.overlap);
     c.flags[k] |= kBonded;
     return true;
   }
@@ -71,11 +75,11 @@ class ContactBondModel : public LinearBase {
     double* fs = c.column[kShearForce];
     double* strength_n = c.column[kNormalStrength];
     double* strength_s = c.column[kShearStrength];
-    double* installed_overlap = c.column[kInstalledOverlap];
+    double* installed_overlap = c.column[kReferenceOverlap];
     for_disk_pairs(
         c, b,
         [&](std::size_t k, const Geometry& g) {
-          if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt, installed_overlap[k]);
+          if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
           PairForce f;
           f.fn = kn[k] * (g.overlap - installed_overlap[k]);  // negative in tension
           fs[k] -= ks[k] * g.vs * dt;
@@ -99,7 +103,7 @@ class ContactBondModel : public LinearBase {
           return f;
         },
         // A broken bond's pair touches until its gap passes the reference gap.
-        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap + installed_overlap[k]); });
+        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
   }
 
  private:

@@ -14,7 +14,7 @@ LinearBase::LinearBase(const nlohmann::json& p, const std::string& where)
       friction_(non_negative(p, "friction", where)) {}
 
 std::vector<std::string> LinearBase::state_columns() const {
-  return {"kn_n_m", "ks_n_m", "friction", "shear_force_n"};
+  return {"kn_n_m", "ks_n_m", "friction", "shear_force_n", "reference_overlap_m"};
 }
 
 void LinearBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const {
@@ -22,6 +22,11 @@ void LinearBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair, d
   c.column[kNormalStiffness][k] = kn;
   c.column[kShearStiffness][k] = kn / kn_ks_;
   c.column[kFriction][k] = friction_;
+  c.column[kReferenceOverlap][k] = 0.0;
+}
+
+void LinearBase::make_force_free(PairBlock& c, std::size_t k, double overlap_m) const {
+  c.column[kReferenceOverlap][k] = overlap_m;
 }
 
 void LinearBase::wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, const StepContext& step) const {
@@ -38,7 +43,7 @@ void LinearBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m,
 }
 
 double LinearBase::normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const {
-  return c.column[kNormalStiffness][k] * overlap_m;
+  return c.column[kNormalStiffness][k] * std::max(0.0, overlap_m - c.column[kReferenceOverlap][k]);
 }
 
 double LinearBase::stiffness_estimate(double radius_m, double thickness_m) const {

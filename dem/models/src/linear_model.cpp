@@ -1,6 +1,7 @@
 // Linear contact model: stiffness by the deformability method, Coulomb friction.
 //   parameters: {"modulus_pa": E_c, "kn_ks": kn/ks, "friction": mu}
-//   state: the linear columns only (kn_n_m, ks_n_m, friction, shear_force_n).
+//   state: the linear columns only (kn_n_m, ks_n_m, friction, shear_force_n,
+//   reference_overlap_m).
 #include <nlohmann/json.hpp>
 
 #include "demcal/dem/builtin_models.hpp"

@@ -10,36 +10,13 @@
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/rng.hpp"
+#include "demcal/dem/equilibrium.hpp"
 #include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
 namespace {
 
 constexpr std::uint8_t kDiskGroup = 0, kWallGroup = 1;
-
-// Mean unbalanced force over mean contact force: PFC's measure of equilibrium.
-double force_ratio(const World& world) {
-  const Bodies& b = world.bodies;
-  double unbalanced = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) unbalanced += std::hypot(b.fx[i], b.fy[i]);
-  double contact = 0;
-  std::size_t touching = 0;
-  const ContactSet& pairs = world.pairs();
-  for (std::size_t k = 0; k < pairs.size();) {
-    const std::uint8_t m = pairs.model[k];
-    const ConstPairBlock c = pairs.block(m);
-    for (std::size_t local = 0; local < c.size; ++local, ++k) {
-      const std::size_t i = static_cast<std::size_t>(c.i[local]), j = static_cast<std::size_t>(c.j[local]);
-      const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
-      if (overlap > 0) {
-        contact += world.model(m).normal_force_n(c, local, overlap);
-        ++touching;
-      }
-    }
-  }
-  if (touching == 0 || b.size() == 0) return 0.0;
-  return (unbalanced / static_cast<double>(b.size())) / (contact / static_cast<double>(touching));
-}
 
 // Contacts per disk, walls included, from the current overlaps.
 std::vector<int> contact_counts(const World& world) {
@@ -65,14 +42,6 @@ void set_radius(Bodies& b, std::size_t i, double radius, double density, double 
   b.inertia[i] = 0.5 * b.mass[i] * radius * radius;
 }
 
-// Cycles until the force ratio falls below `ratio` (checked every 50 steps).
-void cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps) {
-  for (std::uint64_t done = 0; done < max_steps; done += 50) {
-    world.run(50);
-    if (force_ratio(world) < ratio) return;
-  }
-}
-
 Wall make_wall(double x0, double y0, double x1, double y1, double nx, double ny) {
   Wall wall;
   wall.x0 = x0;
@@ -85,6 +54,37 @@ Wall make_wall(double x0, double y0, double x1, double y1, double nx, double ny)
   return wall;
 }
 
+// Servo-controlled walls bring the mean wall stress to the spec's isotropic stress.
+void servo_to_isotropic_stress(World& world, const SpecimenSpec& spec) {
+  const double r_mean = 0.5 * (spec.radius_min_m + spec.radius_max_m);
+  for (Wall& wall : world.walls) {
+    wall.servo = true;
+    wall.servo_target_stress_pa = spec.isotropic_stress_pa;
+    // Each step closes about 5 % of the stress error (wall stiffness ~ E t L / R).
+    wall.servo_gain_m_s_per_pa = 0.05 * r_mean / (spec.genesis_modulus_pa * world.dt_s());
+    wall.servo_max_speed_m_s = 0.01 * r_mean / world.dt_s();
+  }
+  auto wall_stress = [&](const Wall& wall, double loaded_length) {
+    return -(wall.fx * wall.inward_nx + wall.fy * wall.inward_ny) / (loaded_length * spec.thickness_m);
+  };
+  for (int round = 0; round < 400; ++round) {
+    const double w_now = world.walls[3].x0 - world.walls[2].x0, h_now = world.walls[1].y0 - world.walls[0].y0;
+    world.walls[0].servo_length_m = world.walls[1].servo_length_m = w_now;
+    world.walls[2].servo_length_m = world.walls[3].servo_length_m = h_now;
+    world.run(50);
+    bool reached = true;
+    for (int w = 0; w < 4; ++w) {
+      double s = wall_stress(world.walls[static_cast<std::size_t>(w)], w < 2 ? w_now : h_now);
+      reached = reached && std::abs(s - spec.isotropic_stress_pa) <= spec.stress_tolerance * spec.isotropic_stress_pa;
+    }
+    if (reached && force_ratio(world) < 1e-3) break;
+  }
+  for (Wall& wall : world.walls) {
+    wall.servo = false;
+    wall.vx = wall.vy = 0;
+  }
+}
+
 }  // namespace
 
 std::size_t SpecimenSpec::disk_count() const {
@@ -94,7 +94,7 @@ std::size_t SpecimenSpec::disk_count() const {
 
 std::string SpecimenSpec::cache_key() const {
   std::ostringstream key;
-  key << "genesis-v2 W=" << format_double(width_m) << " H=" << format_double(height_m)
+  key << "genesis-v3 W=" << format_double(width_m) << " H=" << format_double(height_m)
       << " t=" << format_double(thickness_m) << " n=" << format_double(porosity) << " Rmin=" << format_double(radius_min_m)
       << " Rmax=" << format_double(radius_max_m) << " rho=" << format_double(density_kg_m3)
       << " E=" << format_double(genesis_modulus_pa) << " s0=" << format_double(isotropic_stress_pa)
@@ -113,6 +113,11 @@ void SpecimenSpec::validate() const {
   positive(radius_max_m, "radius_max_m");
   positive(density_kg_m3, "density_kg_m3");
   positive(genesis_modulus_pa, "genesis_modulus_pa");
+  if (!(locked_in_stress_pa >= 0) || !std::isfinite(locked_in_stress_pa))
+    throw Error("specimen: locked_in_stress_pa must be zero or positive (got " + format_double(locked_in_stress_pa) + ")");
+  if (!(isotropic_stress_pa >= 0) || !std::isfinite(isotropic_stress_pa))
+    throw Error("specimen: isotropic_stress_pa must be zero (a fixed vessel) or positive (got " +
+                format_double(isotropic_stress_pa) + ")");
   if (!(porosity > 0.05 && porosity < 0.5))
     throw Error("specimen: porosity must lie in (0.05, 0.5) for a 2D disk packing (got " + format_double(porosity) + ")");
   if (radius_max_m < radius_min_m) throw Error("specimen: radius_max_m must be >= radius_min_m");
@@ -171,90 +176,90 @@ Specimen pack_specimen(const SpecimenSpec& spec) {
     cycle_to_equilibrium(world, stage < stages ? 2e-2 : 1e-3, 20000);
   }
 
-  // Isotropic stress by servo-controlled walls.
-  const double r_mean = 0.5 * (spec.radius_min_m + spec.radius_max_m);
-  for (Wall& wall : world.walls) {
-    wall.servo = true;
-    wall.servo_target_stress_pa = spec.isotropic_stress_pa;
-    // Each step closes about 5 % of the stress error (wall stiffness ~ E t L / R).
-    wall.servo_gain_m_s_per_pa = 0.05 * r_mean / (spec.genesis_modulus_pa * world.dt_s());
-    wall.servo_max_speed_m_s = 0.01 * r_mean / world.dt_s();
-  }
-  auto wall_stress = [&](const Wall& wall, double loaded_length) {
-    return -(wall.fx * wall.inward_nx + wall.fy * wall.inward_ny) / (loaded_length * spec.thickness_m);
-  };
-  for (int round = 0; round < 400; ++round) {
-    const double w_now = world.walls[3].x0 - world.walls[2].x0, h_now = world.walls[1].y0 - world.walls[0].y0;
-    world.walls[0].servo_length_m = world.walls[1].servo_length_m = w_now;
-    world.walls[2].servo_length_m = world.walls[3].servo_length_m = h_now;
-    world.run(50);
-    bool reached = true;
-    for (int w = 0; w < 4; ++w) {
-      double s = wall_stress(world.walls[static_cast<std::size_t>(w)], w < 2 ? w_now : h_now);
-      reached = reached && std::abs(s - spec.isotropic_stress_pa) <= spec.stress_tolerance * spec.isotropic_stress_pa;
-    }
-    if (reached && force_ratio(world) < 1e-3) break;
-  }
-  for (Wall& wall : world.walls) {
-    wall.servo = false;
-    wall.vx = wall.vy = 0;
-  }
+  // Optional (P&C 2004): servo walls install an isotropic stress; the box
+  // then moves, so the porosity becomes an outcome. Without it the vessel
+  // stays fixed, as in PFC's `ball distribute`, and the porosity is the one asked.
+  if (spec.isotropic_stress_pa > 0) servo_to_isotropic_stress(world, spec);
 
   // Floaters: grow them a little at a time; drop the few that still float.
-  std::vector<int> count = contact_counts(world);
-  for (int round = 0; round < 10; ++round) {
-    bool any = false;
-    for (std::size_t i = 0; i < n; ++i)
-      if (count[i] < spec.min_contacts && world.bodies.radius[i] < 1.05 * final_radius[i]) {
-        set_radius(world.bodies, i, world.bodies.radius[i] * 1.005, spec.density_kg_m3, spec.thickness_m);
-        any = true;
-      }
-    if (!any) break;
-    world.refresh();
-    world.run(200);
+  // In a fixed vessel the dropped disks' area would raise the porosity (each
+  // is about 1 / N of the solid) and the grown ones' lower it, so the kept
+  // disks then scale together to the porosity asked, and the floaters are
+  // looked for again.
+  std::vector<int> count;
+  for (int pass = 0; pass < 4; ++pass) {
     count = contact_counts(world);
+    for (int round = 0; round < 10; ++round) {
+      bool any = false;
+      for (std::size_t i = 0; i < n; ++i)
+        if (count[i] < spec.min_contacts && world.bodies.radius[i] < 1.05 * final_radius[i]) {
+          set_radius(world.bodies, i, world.bodies.radius[i] * 1.005, spec.density_kg_m3, spec.thickness_m);
+          any = true;
+        }
+      if (!any) break;
+      world.refresh();
+      world.run(200);
+      count = contact_counts(world);
+    }
+    if (spec.isotropic_stress_pa > 0) break;  // the porosity is an outcome there
+    double kept_solid = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (count[i] >= spec.min_contacts) kept_solid += M_PI * world.bodies.radius[i] * world.bodies.radius[i];
+    const double target_solid = (1 - spec.porosity) * area;
+    if (std::abs(kept_solid / target_solid - 1) < 1e-3) break;
+    const double grow = std::sqrt(target_solid / kept_solid);
+    for (std::size_t i = 0; i < n; ++i)
+      if (count[i] >= spec.min_contacts)
+        set_radius(world.bodies, i, world.bodies.radius[i] * grow, spec.density_kg_m3, spec.thickness_m);
+    world.refresh();
+    cycle_to_equilibrium(world, 1e-3, 20000);
   }
 
-  // Release the locked-in overlaps: shrink every disk by half its largest
-  // overlap with a disk (all of it with a wall), so no contact overlaps. The
-  // test's stiffness differs from the packing's; stored overlaps would
-  // otherwise turn into forces of the test's stiffness at its first step.
-  std::vector<double> shrink(n, 0.0);
-  const Bodies& b = world.bodies;
-  const ContactSet& pairs = world.pairs();
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const std::size_t i = static_cast<std::size_t>(pairs.i[k]), j = static_cast<std::size_t>(pairs.j[k]);
-    const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
-    shrink[i] = std::max(shrink[i], 0.5 * overlap);
-    shrink[j] = std::max(shrink[j], 0.5 * overlap);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    shrink[i] = std::max(shrink[i], b.radius[i] - (b.x[i] - world.walls[2].x0));
-    shrink[i] = std::max(shrink[i], b.radius[i] - (world.walls[3].x0 - b.x[i]));
-    shrink[i] = std::max(shrink[i], b.radius[i] - (b.y[i] - world.walls[0].y0));
-    shrink[i] = std::max(shrink[i], b.radius[i] - (world.walls[1].y0 - b.y[i]));
-  }
-
+  // The disks keep their radii and overlaps: the overlaps are the packing's
+  // locked-in state at the genesis stiffness, and bond installation makes
+  // each pair force-free as it lies (World::install_bonds), so they never
+  // become forces of the test's stiffness.
   Specimen out;
+  const Bodies& b = world.bodies;
   const double x0 = world.walls[2].x0, y0 = world.walls[0].y0;
   out.width_m = world.walls[3].x0 - x0;
   out.height_m = world.walls[1].y0 - y0;
   out.thickness_m = spec.thickness_m;
   out.density_kg_m3 = spec.density_kg_m3;
+  std::vector<std::int64_t> kept_index(n, -1);
   double kept_solid = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (count[i] < spec.min_contacts) {
       ++out.floaters_removed;
       continue;
     }
-    const double radius = b.radius[i] - shrink[i];
+    kept_index[i] = static_cast<std::int64_t>(out.x.size());
     out.x.push_back(b.x[i] - x0);
     out.y.push_back(b.y[i] - y0);
-    out.radius.push_back(radius);
-    kept_solid += M_PI * radius * radius;
+    out.radius.push_back(b.radius[i]);
+    kept_solid += M_PI * b.radius[i] * b.radius[i];
   }
+  // Porosity as PFC counts it: overlaps are not subtracted.
   out.porosity = 1 - kept_solid / (out.width_m * out.height_m);
+  // Contacts between kept disks: how many per disk and how deep.
+  std::size_t contacts = 0;
+  double overlap_ratio_sum = 0;
+  const ContactSet& pairs = world.pairs();
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(pairs.i[k]), j = static_cast<std::size_t>(pairs.j[k]);
+    if (kept_index[i] < 0 || kept_index[j] < 0) continue;
+    const double overlap = b.radius[i] + b.radius[j] - std::hypot(b.x[j] - b.x[i], b.y[j] - b.y[i]);
+    if (overlap <= 0) continue;
+    ++contacts;
+    overlap_ratio_sum += overlap / std::min(b.radius[i], b.radius[j]);
+  }
+  out.coordination_number = out.size() ? 2.0 * static_cast<double>(contacts) / static_cast<double>(out.size()) : 0.0;
+  out.mean_overlap_ratio = contacts ? overlap_ratio_sum / static_cast<double>(contacts) : 0.0;
   out.steps = world.steps_done();
+  if (spec.isotropic_stress_pa == 0 && std::abs(out.porosity - spec.porosity) > 0.005)
+    throw Error("specimen: genesis reached porosity " + format_double(out.porosity) + ", not the " +
+                format_double(spec.porosity) + " asked (" + std::to_string(out.floaters_removed) +
+                " floaters removed); use a wider size range or another porosity");
   return out;
 }
 

@@ -27,6 +27,8 @@ void save_specimen(const Specimen& s, const std::string& key, const std::string&
     group.set_attribute("thickness_m", s.thickness_m);
     group.set_attribute("density_kg_m3", s.density_kg_m3);
     group.set_attribute("porosity", s.porosity);
+    group.set_attribute("coordination_number", s.coordination_number);
+    group.set_attribute("mean_overlap_ratio", s.mean_overlap_ratio);
     group.set_attribute("floaters_removed", static_cast<std::int64_t>(s.floaters_removed));
     group.set_attribute("steps", static_cast<std::int64_t>(s.steps));
     file.flush();
@@ -51,6 +53,8 @@ Specimen load_specimen(const std::string& path, const std::string& key) {
   s.thickness_m = group.double_attribute("thickness_m");
   s.density_kg_m3 = group.double_attribute("density_kg_m3");
   s.porosity = group.double_attribute("porosity");
+  s.coordination_number = group.double_attribute("coordination_number");
+  s.mean_overlap_ratio = group.double_attribute("mean_overlap_ratio");
   s.floaters_removed = static_cast<std::size_t>(group.integer_attribute("floaters_removed"));
   s.steps = static_cast<std::uint64_t>(group.integer_attribute("steps"));
   return s;

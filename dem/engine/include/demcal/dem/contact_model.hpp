@@ -52,6 +52,12 @@ class ContactModel {
 
   // Sets the constants of the block's pair k (stiffness, friction) when it enters the list.
   virtual void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const = 0;
+  // Material genesis, before bonds are installed: the block's overlapping
+  // pair k carries no force at `overlap_m` (its reference overlap; PFC's
+  // "remove overlap only" sets the reference gap to the gap). The world passes
+  // the pair's whole overlap, or less of it to keep a locked-in share. A model
+  // without a reference ignores it.
+  virtual void make_force_free(PairBlock& c, std::size_t k, double overlap_m) const;
   // Installs a bond on the block's pair k (material genesis); false when the model has none.
   virtual bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const;
 

@@ -62,12 +62,21 @@ class World {
   void run(std::uint64_t steps);
   // Rebuilds the neighbour list now (after bodies were moved or added by hand).
   void refresh();
-  // Material genesis: bonds every disk pair whose gap is at most `tolerance_m`
-  // and whose model has a bond. Each bond draws its random strengths from a
+  // Material genesis: makes every overlapping disk pair force-free at its
+  // overlap (PFC's "remove overlap only"), so the packing carries no
+  // locked-in force whatever stiffness the test gives it, then bonds every
+  // disk pair whose gap is at most `tolerance_m` and whose model has a bond.
+  // With `locked_in_fraction` f > 0 each overlapping pair keeps f of its
+  // overlap as force instead (a locked-in stress that the bonds then hold). Each bond draws its random strengths from a
   // generator keyed by `seed` and the ids of its two disks, so a bond's
   // strength does not depend on the order of the disks or of the pairs.
   // Returns the number of bonds installed.
-  std::size_t install_bonds(double tolerance_m, std::uint64_t seed);
+  std::size_t install_bonds(double tolerance_m, std::uint64_t seed,
+                            double locked_in_fraction = 0.0);
+  // Clears the break log and the step and time counters, and stops every
+  // body: what came before (relaxing a locked-in stress) prepared the
+  // specimen and is not part of the test.
+  void start_test();
 
   double time_s() const { return time_s_; }
   std::uint64_t steps_done() const { return steps_; }

@@ -25,12 +25,17 @@ BoundaryRole platen_role();
 std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
 
 // Disks of `specimen` (only those with keep[i] when `keep` is given), the
-// scene's contact models, a bottom and a top platen touching the lowest and
-// highest disk and moving towards each other at the loading velocity, and
-// bonds on every pair closer than the scene's tolerance. Walls: [0] bottom, [1] top.
+// scene's contact models, bonds on every pair closer than the scene's
+// tolerance with every overlapping pair force-free as it lies, and a bottom
+// and a top platen touching the lowest and highest disk and moving towards
+// each other at the loading velocity. Walls: [0] bottom, [1] top.
 // A scene with aggregates also places them (seeded by `seed`), makes their
-// clumps and binds the mortar, interface and aggregate contacts; `info`, when
-// given, receives what the specimen holds (aggregates placed, disks in them).
+// clumps and binds the mortar, interface and aggregate contacts. With
+// specimen.locked_in_stress_pa the contacts keep that mean stress instead and
+// the specimen relaxes, without walls, until the bonds hold it; the test's
+// counters start after that. `info`, when given, receives what the specimen
+// holds (aggregates placed, disks in them, the packing's coordination number
+// and overlaps, bonds per disk, the contacts' locked-in stress).
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
                         std::map<std::string, double>* info = nullptr);
@@ -51,9 +56,18 @@ void snapshot(const World& world, const RunOptions& options, std::size_t points,
 // peak (bonds have broken and the stress has fallen below the stop fraction
 // of the peak a few points later, so an elastic dip does not count), at the
 // strain limit, on instability or on timeout. Draws the progress line.
+//
+// A disk faster than 1000 x the platen speed is either a brittle burst (the
+// stored strain energy turning into motion as bonds break, at or after the
+// peak) or a numerical instability (energy out of nothing). The energy budget
+// tells them apart: the kinetic energy can never exceed the work the platens
+// have done, so it is a burst when bonds are breaking (within the last three
+// recorded points) and it does not, and the peak so far is the result. `work_m3` turns the curve into that work: the
+// platen force times its approach is stress x strain x work_m3.
 class LoadingMonitor {
  public:
-  LoadingMonitor(const LoadingSpec& loading, const RunOptions& options, std::chrono::steady_clock::time_point start);
+  LoadingMonitor(const LoadingSpec& loading, const RunOptions& options, std::chrono::steady_clock::time_point start,
+                 double work_m3);
   ~LoadingMonitor();
   // Adds `point`; false when the run ends (result.ok set when it ended as
   // planned, result.reason when it failed; `where` says where, for the reason).
@@ -68,6 +82,8 @@ class LoadingMonitor {
   int shown_ = 0;
   double peak_ = 0;
   std::size_t peak_index_ = 0;
+  double work_m3_ = 0;
+  double work_j_ = 0;  // done by the platens so far
 };
 
 // Fills in what every run reports at its end: steps, time step, wall times

@@ -17,9 +17,11 @@ class LinearBase : public ContactModel {
   // Reads "modulus_pa", "kn_ks" and "friction" from `p`.
   LinearBase(const nlohmann::json& p, const std::string& where);
 
-  // kn_n_m, ks_n_m, friction, shear_force_n.
+  // kn_n_m, ks_n_m, friction, shear_force_n, reference_overlap_m.
   std::vector<std::string> state_columns() const override;
   void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const override;
+  // `overlap_m` becomes the pair's reference overlap.
+  void make_force_free(PairBlock& c, std::size_t k, double overlap_m) const override;
   // Disk-wall pairs are linear contacts in every built-in model.
   void wall_forces(PairBlock& c, Bodies& b, std::vector<Wall>& walls, const StepContext& step) const override;
   void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,

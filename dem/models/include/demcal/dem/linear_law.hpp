@@ -13,6 +13,7 @@ enum LinearColumn : std::size_t {
   kShearStiffness,       // ks, N/m
   kFriction,             // mu
   kShearForce,           // along t = (-n_y, n_x), N
+  kReferenceOverlap,     // overlap at which the contact is force-free (PFC: -rgap), m
   kLinearColumns
 };
 
@@ -29,22 +30,24 @@ inline void release(const PairBlock& c, std::size_t k) {
   c.flags[k] &= static_cast<std::uint8_t>(~kTouching);
 }
 
-// Skip rule of unbonded contacts: a pair apart carries nothing this step.
+// Skip rule of unbonded contacts: a pair that does not reach its reference
+// overlap (zero unless genesis set one) carries nothing this step.
 inline bool skip_apart(const PairBlock& c, std::size_t k, double gap) {
-  if (gap < 0) return false;
+  if (gap + c.column[kReferenceOverlap][k] < 0) return false;
   release(c, k);
   return true;
 }
 
 // Normal force kn * (overlap - reference), shear force updated incrementally
-// and capped at mu * fn. The reference overlap is zero for a plain contact; a
-// broken contact bond keeps the overlap it was glued at (PFC's reference gap,
-// g_r = -reference), so its force does not jump when the bond fails. Pairs
-// past the reference carry no force and forget their shear.
-inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt,
-                              double reference_overlap_m = 0.0) {
+// and capped at mu * fn. The reference overlap (PFC's reference gap, g_r =
+// -reference) is zero for a contact that formed during the test; genesis sets
+// it to the overlap a pair has when the specimen is bonded, so the packing
+// starts force-free whatever stiffness the test gives it, and a contact bond
+// keeps the overlap it was glued at after it breaks. Pairs short of the
+// reference carry no force and forget their shear.
+inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt) {
   PairForce f;
-  const double overlap = g.overlap - reference_overlap_m;
+  const double overlap = g.overlap - c.column[kReferenceOverlap][k];
   if (overlap <= 0) {
     release(c, k);
     return f;

@@ -1,0 +1,25 @@
+#pragma once
+// Measures of a packing at rest, as PFC users know them: the mean unbalanced
+// force ratio (equilibrium), cycling until it is reached, and the mean stress
+// the contacts carry (the locked-in stress of a bonded specimen).
+#include <cstdint>
+
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+
+// Mean unbalanced force over mean contact normal force (PFC's ratio); 0 when
+// nothing touches.
+double force_ratio(const World& world);
+
+// Cycles in blocks of 50 steps until force_ratio < `ratio`; false when
+// `max_steps` pass first.
+bool cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps);
+
+// Mean normal stress the disk-disk contacts carry by their models'
+// normal_force_n (the contact springs, not the bonds), by the Love-Weber
+// average sigma = sum(F_n d) / (2 V) over a volume V = area x thickness, Pa.
+// Compression positive.
+double contact_mean_stress_pa(const World& world, double area_m2);
+
+}  // namespace demcal::dem

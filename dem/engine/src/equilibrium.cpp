@@ -1,0 +1,61 @@
+#include "demcal/dem/equilibrium.hpp"
+
+#include <cmath>
+
+namespace demcal::dem {
+namespace {
+
+// Calls f(model, block, local index, overlap m, centre distance m) for every disk pair.
+template <typename F>
+void for_each_disk_pair(const World& world, F f) {
+  const Bodies& b = world.bodies;
+  const ContactSet& pairs = world.pairs();
+  for (std::size_t k = 0; k < pairs.size();) {
+    const std::uint8_t m = pairs.model[k];
+    const ConstPairBlock c = pairs.block(m);
+    for (std::size_t local = 0; local < c.size; ++local, ++k) {
+      const std::size_t i = static_cast<std::size_t>(c.i[local]), j = static_cast<std::size_t>(c.j[local]);
+      const double dx = b.x[j] - b.x[i], dy = b.y[j] - b.y[i];
+      const double distance = std::sqrt(dx * dx + dy * dy);
+      f(world.model(m), c, local, b.radius[i] + b.radius[j] - distance, distance);
+    }
+  }
+}
+
+}  // namespace
+
+double force_ratio(const World& world) {
+  const Bodies& b = world.bodies;
+  double unbalanced = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) unbalanced += std::hypot(b.fx[i], b.fy[i]);
+  double contact = 0;
+  std::size_t touching = 0;
+  for_each_disk_pair(world, [&](const ContactModel& model, const ConstPairBlock& c, std::size_t k, double overlap, double) {
+    if (overlap <= 0) return;
+    const double fn = model.normal_force_n(c, k, overlap);
+    if (fn <= 0) return;
+    contact += fn;
+    ++touching;
+  });
+  if (touching == 0 || b.size() == 0) return 0.0;
+  return (unbalanced / static_cast<double>(b.size())) / (contact / static_cast<double>(touching));
+}
+
+bool cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps) {
+  for (std::uint64_t done = 0; done < max_steps; done += 50) {
+    world.run(50);
+    if (force_ratio(world) < ratio) return true;
+  }
+  return false;
+}
+
+double contact_mean_stress_pa(const World& world, double area_m2) {
+  double sum = 0;
+  for_each_disk_pair(world, [&](const ContactModel& model, const ConstPairBlock& c, std::size_t k, double overlap,
+                                double distance) {
+    if (overlap > 0) sum += model.normal_force_n(c, k, overlap) * distance;
+  });
+  return sum / (2.0 * area_m2 * world.settings().thickness_m);
+}
+
+}  // namespace demcal::dem
