@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark
+.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark
 
 all: build
 
@@ -49,6 +49,10 @@ calibrate: build
 # the old global-surface strategy where marked, KRIGING=1 the kriging strategy there). Summary: $(BUILD)/calibration_benchmark/summary.md.
 calibration-benchmark: build
 	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global) $(if $(KRIGING),--kriging)
+
+# Our DEM at published PFC2D parameter sets (docs/fidelity.md); hours, resumable.
+fidelity-benchmark: build
+	scripts/fidelity_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(FIGURE),--figure $(FIGURE))
 
 bench: build
 	@scripts/bench.sh $(BUILD)
