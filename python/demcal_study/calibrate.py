@@ -445,6 +445,10 @@ class Calibration:
                                    point=verified or point)
             interval, wanted = point["scale_interval"], point["wanted_scale_factor"]
             outside = not (interval[0] * (1 - 1e-9) <= wanted <= interval[1] * (1 + 1e-9))
+            if outside and not self.bounded_scale and pooled:
+                # A verification's offset moved the wanted factor out: the correction steps carry the scale term
+                # from here on (a search on specimen 1 alone would drop that offset).
+                self.bounded_scale = True
             if outside and not self.bounded_scale:
                 # The dimensionless solution found is one of many; others may want a scale the bounds allow. Search
                 # on from here with the scale held at its bound and the scale target as one more residual.

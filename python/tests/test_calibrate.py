@@ -266,7 +266,8 @@ def test_a_scale_beyond_the_bounds_at_the_first_solution_is_searched_on_with_the
     code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 70.0, "nu": 0.2}, budget=80)
     assert code == calibrate.EXIT_MET, solution["why"]
     assert solution["bounded_scale"] is True
-    assert solution["x"]["Ec_Pa"] <= 1e11 * (1 + 1e-9)
+    # Where it ended, the bounds allow the factor E wants (within the tolerance): the first solution's did not.
+    assert solution["wanted_scale_factor"] <= 1.05 * solution["scale_interval"][1]
     assert solution["x"]["mu"] > 0.6  # it moved along the free coordinate that raises E / Ec
     assert any(r.get("bounded_scale") for r in solution["rounds"])
 
