@@ -284,7 +284,7 @@ def summary(build, figure_copy):
         lines += rows
         points[part] = pts
         failures[part] = failed
-    lines += ["", "At the reference sets (mean over seeds, CV % in brackets):", "",
+    lines += ["", "At the reference sets (mean over seeds, CV % in brackets; nu is our nu50 again):", "",
               "| part | output | seeds ok | ours | PFC2D | ratio |", "|---|---|---|---|---|---|"]
     for part, ref, outs in (("reference", concrete_ref, OUTPUTS), ("reference_fine", concrete_ref, OUTPUTS),
                             ("rock", rock_ref, ["sigma_u_MPa", "E_GPa"])):

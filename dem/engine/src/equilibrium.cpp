@@ -26,8 +26,8 @@ void for_each_disk_pair(const World& world, F f) {
 
 double force_ratio(const World& world) {
   const Bodies& b = world.bodies;
-  // Per free body: a disk, or a clump as one (its members' own forces do not
-  // balance, the clump's sum does).
+  // Per body: each disk not in a clump (fixed ones included), and each clump
+  // as one (its members' own forces do not balance, the clump's sum does).
   double unbalanced = 0;
   std::size_t free_bodies = 0;
   for (std::size_t i = 0; i < b.size(); ++i)

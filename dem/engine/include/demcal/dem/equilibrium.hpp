@@ -8,7 +8,7 @@
 
 namespace demcal::dem {
 
-// Mean unbalanced force per free body (a disk, or a clump as a whole) over
+// Mean unbalanced force per body (a disk not in a clump, or a clump as a whole) over
 // the mean contact normal force (PFC's ratio); 0 when nothing touches.
 double force_ratio(const World& world);
 
