@@ -39,6 +39,9 @@ CONCRETE = os.path.join(REPO, "data", "scenes", "ucs_concrete.json")
 CONCRETE_FINE = os.path.join(REPO, "data", "scenes", "bench", "ucs_concrete_fine.json")
 ROCK = os.path.join(REPO, "data", "scenes", "ucs_rock_cb.json")
 OUTPUTS = ["sigma_u_MPa", "E_GPa", "nu"]
+# Our output compared with each published one: Su et al. 2021 define nu as the secant at half the peak (our nu50;
+# our nu is the tangent there).
+OURS = {"sigma_u_MPa": "sigma_u_MPa", "E_GPa": "E_GPa", "nu": "nu50"}
 PARTS = ["l64", "l64_fine", "reference", "reference_fine", "rock"]
 
 
@@ -151,7 +154,7 @@ def results(part, build):
             if row["status"] != "ok":  # "failed: <reason>"
                 failed.append((row["run"], row["seed"], row["status"].removeprefix("failed: ")))
                 continue
-            values = {o: float(row[o]) for o in OUTPUTS if row.get(o) not in (None, "")}
+            values = {o: float(row[OURS[o]]) for o in OUTPUTS if row.get(OURS[o]) not in (None, "")}
             by_run.setdefault(row["run"], []).append({o: v for o, v in values.items() if math.isfinite(v)})
     return by_run, failed
 
@@ -271,7 +274,8 @@ def summary(build, figure_copy):
                 commits[part] = sorted({line.split()[1] for line in f if line.strip()})
     lines = [f"Summary written {time.strftime('%Y-%m-%d')} on {machine()}. Runs made at: " +
              "; ".join(f"{p} {', '.join(c)}" for p, c in commits.items()) + ".", "",
-             "At the L64 parameter sets (ratio = our seed mean / PFC2D's published value):", "",
+             "At the L64 parameter sets (ratio = our seed mean / PFC2D's published value; nu is our secant nu50, "
+             "as Su et al. 2021 define theirs):", "",
              "| part | output | points | median ratio | IQR of the ratio | correlation | our seed CV % |",
              "|---|---|---|---|---|---|---|"]
     points, failures = {}, {}
@@ -280,7 +284,7 @@ def summary(build, figure_copy):
         lines += rows
         points[part] = pts
         failures[part] = failed
-    lines += ["", "At the reference sets (mean over seeds, CV % in brackets):", "",
+    lines += ["", "At the reference sets (mean over seeds, CV % in brackets; nu is our nu50 again):", "",
               "| part | output | seeds ok | ours | PFC2D | ratio |", "|---|---|---|---|---|---|"]
     for part, ref, outs in (("reference", concrete_ref, OUTPUTS), ("reference_fine", concrete_ref, OUTPUTS),
                             ("rock", rock_ref, ["sigma_u_MPa", "E_GPa"])):

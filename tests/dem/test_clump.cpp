@@ -8,6 +8,7 @@
 #include "demcal/core/error.hpp"
 
 #include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/equilibrium.hpp"
 #include "demcal/dem/world.hpp"
 
 using namespace demcal::dem;
@@ -106,6 +107,23 @@ TEST(Clump, AnOffCentreImpactSetsItSpinning) {
   // An upward push left of the centre turns the rod clockwise (w < 0).
   EXPECT_LT(world.clumps()[0].w, 0.0);
   EXPECT_NEAR(member_distance(world, 0, 2), 3e-3, 1e-12 * 3e-3);
+}
+
+TEST(Clump, TheForceRatioCountsAClumpAsOneBody) {
+  // A rod (three disks from -1.5 to +1.5 mm) squeezed between two fixed
+  // disks that overlap its ends equally: its members carry +F and -F, the rod
+  // as a whole nothing. Free bodies: the two outer disks (|F| each) and the
+  // rod (0), so PFC's ratio is (2F / 3) / F; counting members alone it never
+  // falls, and a clumped specimen never reaches equilibrium.
+  World world = world_with_linear(0.8);
+  add_rod(world, 0, 0, 1e-3, 1e-9);
+  const double overlap = 1e-5;
+  for (double side : {-1.0, 1.0}) {
+    const std::size_t d = world.bodies.add_disk(side * (3.5e-3 - overlap), 0, 1e-3, 2650, 1, 0);
+    world.bodies.fixed[d] = 1;
+  }
+  world.step();
+  EXPECT_NEAR(force_ratio(world), 2.0 / 3.0, 1e-9);
 }
 
 TEST(Clump, BadClumpsAreRejected) {

@@ -37,6 +37,16 @@ World bonded_pair(double sigma_c, double tau_c, double gap = 0.0) {
   return world;
 }
 
+// Slides disk 1 along y at v until the bond breaks (at most 100,000 steps); the steps taken.
+int shear_until_break(World& world, double v) {
+  int steps = 0;
+  while (world.breaks().empty() && steps < 100000) {
+    imposed_step(world, 0, v, 0);
+    ++steps;
+  }
+  return steps;
+}
+
 }  // namespace
 
 TEST(ContactBond, TensionIsKnDeltaUntilTheNormalStrengthForce) {
@@ -65,11 +75,7 @@ TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
   World world = bonded_pair(1e9, tau_c);
   world.bodies.x[1] -= 1e-6;  // a small overlap so friction has a normal force afterwards
   world.refresh();
-  int steps = 0;
-  while (world.breaks().empty() && steps < 100000) {
-    imposed_step(world, 0, v, 0);
-    ++steps;
-  }
+  const int steps = shear_until_break(world, v);
   ASSERT_EQ(world.breaks().size(), 1u);
   EXPECT_EQ(world.breaks()[0].mode, BreakMode::Shear);
   EXPECT_NEAR(ks * v * kDt * steps, tau_c * kWidth, 1.01 * ks * v * kDt);
@@ -97,11 +103,7 @@ TEST(ContactBond, TheBreakingStepAddsTheShearIncrementOnce) {
   World world = bonded_pair(1e9, tau_c);
   world.bodies.x[1] -= 1e-5;  // pressed: mu Fn = 0.3 x 8000 N stays far above the 250 N shear strength force
   world.refresh();
-  int steps = 0;
-  while (world.breaks().empty() && steps < 100000) {
-    imposed_step(world, 0, v, 0);
-    ++steps;
-  }
+  const int steps = shear_until_break(world, v);
   ASSERT_EQ(world.breaks().size(), 1u);
   EXPECT_EQ(world.breaks()[0].mode, BreakMode::Shear);
   EXPECT_NEAR(std::abs(world.pair_state(0, "shear_force_n")), ks * v * kDt * steps, 1e-6 * ks * v * kDt * steps);
@@ -120,11 +122,7 @@ TEST(ContactBond, ABrokenBondKeepsTheGapItWasGluedAcross) {
   imposed_step(world, 0, 0, 0);
   EXPECT_NEAR(world.bodies.fx[0], -kKn * 0.5 * gap, 1e-6 * kKn * gap);  // bonded, compressed
   // Tolerance below: the shear motion tilts the normal by about 3e-4 rad.
-  int steps = 0;
-  while (world.breaks().empty() && steps < 100000) {
-    imposed_step(world, 0, v, 0);
-    ++steps;
-  }
+  const int steps = shear_until_break(world, v);
   ASSERT_EQ(world.breaks().size(), 1u);
   ASSERT_EQ(world.breaks()[0].mode, BreakMode::Shear);
   for (int s = 0; s < 3; ++s) {

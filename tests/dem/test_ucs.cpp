@@ -36,6 +36,7 @@ TEST(UcsMacroValues, MatchAHandWorkedCurve) {
   EXPECT_NEAR(m.at("E_GPa"), 20.0, 1e-9);
   EXPECT_NEAR(m.at("E50_GPa"), 20.0, 1e-9);
   EXPECT_NEAR(m.at("nu"), 0.25, 1e-12);
+  EXPECT_NEAR(m.at("nu50"), 0.25, 1e-12);
   EXPECT_DOUBLE_EQ(m.at("peak_strain"), 1e-3);
   EXPECT_THROW(ucs_macro_values({curve[0], curve[1]}), demcal::Error);
 }
@@ -60,6 +61,7 @@ TEST(UcsMacroValues, EAndNuAreTangentsOverTheSameWindow) {
   EXPECT_NEAR(m.at("E_GPa"), E0 * (1 - e_h / e_p) / 1e9, 1e-6);
   EXPECT_NEAR(m.at("nu"), a + 2 * b * e_h, 1e-9);
   EXPECT_GT(std::abs(m.at("nu") - (a + b * e_h)), 0.01);  // the secant would not pass
+  EXPECT_NEAR(m.at("nu50"), a + b * e_h, 1e-12);           // ... and is reported apart
 }
 
 TEST(UcsScene, SmallBondedSpecimenGivesPlausibleMacroValues) {

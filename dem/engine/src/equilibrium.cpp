@@ -26,8 +26,24 @@ void for_each_disk_pair(const World& world, F f) {
 
 double force_ratio(const World& world) {
   const Bodies& b = world.bodies;
+  // Per body: each disk not in a clump (fixed ones included), and each clump
+  // as one (its members' own forces do not balance, the clump's sum does).
   double unbalanced = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) unbalanced += std::hypot(b.fx[i], b.fy[i]);
+  std::size_t free_bodies = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.clump[i] < 0) {
+      unbalanced += std::hypot(b.fx[i], b.fy[i]);
+      ++free_bodies;
+    }
+  for (const Clump& clump : world.clumps()) {
+    double fx = 0, fy = 0;
+    for (std::size_t i : clump.members) {
+      fx += b.fx[i];
+      fy += b.fy[i];
+    }
+    unbalanced += std::hypot(fx, fy);
+    ++free_bodies;
+  }
   double contact = 0;
   std::size_t touching = 0;
   for_each_disk_pair(world, [&](const ContactModel& model, const ConstPairBlock& c, std::size_t k, double overlap, double) {
@@ -37,8 +53,8 @@ double force_ratio(const World& world) {
     contact += fn;
     ++touching;
   });
-  if (touching == 0 || b.size() == 0) return 0.0;
-  return (unbalanced / static_cast<double>(b.size())) / (contact / static_cast<double>(touching));
+  if (touching == 0 || free_bodies == 0) return 0.0;
+  return (unbalanced / static_cast<double>(free_bodies)) / (contact / static_cast<double>(touching));
 }
 
 bool cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps) {

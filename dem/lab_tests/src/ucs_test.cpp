@@ -67,6 +67,8 @@ std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& cu
   macro["E_GPa"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.stress_pa; }) / 1e9;
   macro["E50_GPa"] = curve[half].stress_pa / curve[half].axial_strain / 1e9;
   macro["nu"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.lateral_strain; });
+  // The secant at the same point, as Su et al. 2021 define their nu (E50's partner).
+  macro["nu50"] = curve[half].lateral_strain / curve[half].axial_strain;
   macro["peak_strain"] = curve[peak].axial_strain;
   return macro;
 }
@@ -146,6 +148,8 @@ class UcsTest : public LabTest {
                          "the neighbouring points)"},
         {"E50_GPa", "GPa", "secant modulus at half the peak"},
         {"nu", "1", "tangent Poisson's ratio d eps_lat / d eps_ax over the same window as E (median gauge disks)"},
+        {"nu50", "1", "secant Poisson's ratio eps_lat / eps_ax where the stress first reaches half the peak (the "
+                      "definition of Su et al. 2021)"},
         {"peak_strain", "1", "axial strain at the peak"},
         {"reached_strain_limit", "1", "1 when the test ended at loading.strain_limit before the post-peak stop",
          false},

@@ -63,7 +63,9 @@ void snapshot(const World& world, const RunOptions& options, std::size_t points,
 // tells them apart: the kinetic energy can never exceed the work the platens
 // have done, so it is a burst when bonds are breaking (within the last three
 // recorded points) and it does not, and the peak so far is the result. `work_m3` turns the curve into that work: the
-// platen force times its approach is stress x strain x work_m3.
+// platen force times its approach is stress x strain x work_m3. (A
+// specimen.locked_in_stress_pa adds energy the platens did not put in; a
+// large one may make a burst look like an instability.)
 class LoadingMonitor {
  public:
   LoadingMonitor(const LoadingSpec& loading, const RunOptions& options, std::chrono::steady_clock::time_point start,
