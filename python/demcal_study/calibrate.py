@@ -118,7 +118,11 @@ class Calibration:
         return dict(zip(self.problem.modelled_outputs(), values))
 
     def residuals_at(self, model, u, offset):
-        z = self.z_of(model, u, offset)
+        return self.residuals_of(self.z_of(model, u, offset), u)
+
+    def residuals_of(self, z, u):
+        """The search's residuals for modelled responses z at coordinates u: the dimensionless targets', and the
+        bounded scale term once it is on."""
         r = self.problem.residuals(z)
         if self.bounded_scale:
             r.append(self.bounded_scale_residual(z, u))
@@ -165,11 +169,7 @@ class Calibration:
     def measured_residuals(self, point):
         if point["status"] != "ok":
             return None
-        z = self.modelled(point["outputs"], point["scale"])
-        r = self.problem.residuals(z)
-        if self.bounded_scale:
-            r.append(self.bounded_scale_residual(z, point["u"]))
-        return np.asarray(r)
+        return self.residuals_of(self.modelled(point["outputs"], point["scale"]), point["u"])
 
     def residual_labels(self):
         labels = self.problem.residual_labels()
