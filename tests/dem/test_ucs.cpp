@@ -205,16 +205,16 @@ TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) 
 
 TEST(UcsScene, ABrittleSpecimenThatBurstsAfterItsPeakIsAResultNotAFailure) {
   // When the bonds fail, the stored strain energy throws disks off at tens of
-  // m/s, as in a laboratory burst. At a platen speed of 0.02 m/s that passes
-  // the 1000 x platen speed check (20 m/s) on this specimen (seed 2); the
+  // m/s, as in a laboratory burst. At a platen speed of 0.01 m/s that passes
+  // the 1000 x platen speed check (10 m/s) on this specimen (seed 1); the
   // kinetic energy stays below the work the platens did, so past the peak it
   // ends the test with the peak values.
   std::ifstream file(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_rock_cb_small.json");
   nlohmann::json json = nlohmann::json::parse(file);
-  json["loading"]["platen_velocity_m_s"] = 0.02;
+  json["loading"]["platen_velocity_m_s"] = 0.01;
   Scene scene = Scene::from_json(json, "ucs_rock_cb_small.json");
   RunOptions options;
-  options.seed = 2;
+  options.seed = 1;
   TestResult r = run_ucs(scene, scene.resolve({}), options);
   ASSERT_TRUE(r.ok) << r.reason;
   EXPECT_EQ(r.ended_by.rfind("burst after the peak (a disk moves faster than 1000 x the platen speed", 0), 0u) << r.ended_by;
