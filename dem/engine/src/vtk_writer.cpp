@@ -10,7 +10,7 @@ void write_vtk_disks(const World& world, const std::string& path) {
   const Bodies& b = world.bodies;
   const ContactSet& c = world.pairs();
   std::size_t bonds = 0;
-  for (std::uint8_t f : c.flags) bonds += (f & kBonded) != 0;
+  for (PairFlags f : c.flags) bonds += (f & kBonded) != 0;
   std::ostringstream out;
   out.precision(9);
   out << "# vtk DataFile Version 3.0\ndemcal disks at t = " << world.time_s() << " s\nASCII\nDATASET POLYDATA\n";

@@ -192,32 +192,42 @@ void World::integrate() {
   const std::size_t n = bodies.size();
   const double dt = dt_s_, alpha = settings_.damping;
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
-  double* x = bodies.x.data();
-  double* y = bodies.y.data();
-  double* vx = bodies.vx.data();
-  double* vy = bodies.vy.data();
-  double* w = bodies.w.data();
+  // Local pointers, so they stay in registers through the loop.
+  double* __restrict x = bodies.x.data();
+  double* __restrict y = bodies.y.data();
+  double* __restrict vx = bodies.vx.data();
+  double* __restrict vy = bodies.vy.data();
+  double* __restrict w = bodies.w.data();
+  const double* __restrict force_x = bodies.fx.data();
+  const double* __restrict force_y = bodies.fy.data();
+  const double* __restrict moment = bodies.moment.data();
+  const double* __restrict mass = bodies.mass.data();
+  const double* __restrict inertia = bodies.inertia.data();
+  const double* __restrict x_built = x_built_.data();
+  const double* __restrict y_built = y_built_.data();
+  const std::uint8_t* __restrict fixed = bodies.fixed.data();
+  const std::int32_t* __restrict clump = bodies.clump.data();
   double max_move2 = max_disk_move2_;
   for (std::size_t i = 0; i < n; ++i) {
-    if (bodies.fixed[i]) {
+    if (fixed[i]) {
       vx[i] = vy[i] = w[i] = 0;
       continue;
     }
-    if (bodies.clump[i] >= 0) continue;  // moved with its clump
-    const double m = bodies.mass[i];
+    if (clump[i] >= 0) continue;  // moved with its clump
+    const double m = mass[i];
     // Local non-viscous damping opposes the velocity with a fraction of the force.
-    const double fx = bodies.fx[i] + m * gx;
-    const double fy = bodies.fy[i] + m * gy;
-    const double mz = bodies.moment[i];
+    const double fx = force_x[i] + m * gx;
+    const double fy = force_y[i] + m * gy;
+    const double mz = moment[i];
     const double sx = vx[i] > 0 ? 1.0 : (vx[i] < 0 ? -1.0 : 0.0);
     const double sy = vy[i] > 0 ? 1.0 : (vy[i] < 0 ? -1.0 : 0.0);
     const double sw = w[i] > 0 ? 1.0 : (w[i] < 0 ? -1.0 : 0.0);
     vx[i] += (fx - alpha * std::abs(fx) * sx) / m * dt;
     vy[i] += (fy - alpha * std::abs(fy) * sy) / m * dt;
-    w[i] += (mz - alpha * std::abs(mz) * sw) / bodies.inertia[i] * dt;
+    w[i] += (mz - alpha * std::abs(mz) * sw) / inertia[i] * dt;
     x[i] += vx[i] * dt;
     y[i] += vy[i] * dt;
-    const double ddx = x[i] - x_built_[i], ddy = y[i] - y_built_[i];
+    const double ddx = x[i] - x_built[i], ddy = y[i] - y_built[i];
     max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
   }
   integrate_clumps(max_move2);
@@ -308,7 +318,7 @@ double World::kinetic_energy() const {
 
 std::size_t World::touching_pairs() const {
   std::size_t count = 0;
-  for (std::uint8_t f : pairs_.flags) count += (f & kTouching) != 0;
+  for (PairFlags f : pairs_.flags) count += (f & kTouching) != 0;
   return count;
 }
 

@@ -35,12 +35,21 @@ struct PairForce {
 // ignored this step at separation `gap` (> 0 apart).
 template <typename Law, typename Skip>
 inline void for_disk_pairs(const PairBlock& c, Bodies& b, Law law, Skip skip) {
-  const std::int32_t* ci = c.i;
-  const std::int32_t* cj = c.j;
-  const double* x = b.x.data();
-  const double* y = b.y.data();
-  const double* r = b.radius.data();
-  for (std::size_t k = 0; k < c.size; ++k) {
+  // Local pointers: the loop reads and writes through them only, so the
+  // compiler keeps them in registers instead of reloading them from the vectors.
+  const std::int32_t* __restrict ci = c.i;
+  const std::int32_t* __restrict cj = c.j;
+  const double* __restrict x = b.x.data();
+  const double* __restrict y = b.y.data();
+  const double* __restrict r = b.radius.data();
+  const double* __restrict vx = b.vx.data();
+  const double* __restrict vy = b.vy.data();
+  const double* __restrict w = b.w.data();
+  double* __restrict fx_sum = b.fx.data();
+  double* __restrict fy_sum = b.fy.data();
+  double* __restrict moment_sum = b.moment.data();
+  const std::size_t size = c.size;
+  for (std::size_t k = 0; k < size; ++k) {
     const std::int32_t i = ci[k], j = cj[k];
     const double dx = x[j] - x[i], dy = y[j] - y[i];
     const double distance = std::sqrt(dx * dx + dy * dy);
@@ -55,19 +64,19 @@ inline void for_disk_pairs(const PairBlock& c, Bodies& b, Law law, Skip skip) {
     g.arm_j = r[j] - 0.5 * overlap;
     g.cx = x[i] + g.nx * g.arm_i;
     g.cy = y[i] + g.ny * g.arm_i;
-    const double dvx = b.vx[j] - b.vx[i], dvy = b.vy[j] - b.vy[i];
+    const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i];
     g.vn = dvx * g.nx + dvy * g.ny;
-    g.vs = -dvx * g.ny + dvy * g.nx - (g.arm_i * b.w[i] + g.arm_j * b.w[j]);
-    g.relative_w = b.w[j] - b.w[i];
+    g.vs = -dvx * g.ny + dvy * g.nx - (g.arm_i * w[i] + g.arm_j * w[j]);
+    g.relative_w = w[j] - w[i];
     const PairForce f = law(k, g);
     const double fx = f.fn * g.nx - f.fs * g.ny;
     const double fy = f.fn * g.ny + f.fs * g.nx;
-    b.fx[j] += fx;
-    b.fy[j] += fy;
-    b.fx[i] -= fx;
-    b.fy[i] -= fy;
-    b.moment[i] += -g.arm_i * f.fs - f.moment;
-    b.moment[j] += -g.arm_j * f.fs + f.moment;
+    fx_sum[j] += fx;
+    fy_sum[j] += fy;
+    fx_sum[i] -= fx;
+    fy_sum[i] -= fy;
+    moment_sum[i] += -g.arm_i * f.fs - f.moment;
+    moment_sum[j] += -g.arm_j * f.fs + f.moment;
   }
 }
 

@@ -19,7 +19,12 @@
 
 namespace demcal::dem {
 
-enum ContactFlags : std::uint8_t {
+// Per-pair flags. Not a character type on purpose: a store through a
+// uint8_t* may alias anything, so the compiler would reload every pointer of
+// the force loop after each flag update.
+using PairFlags = std::uint32_t;
+
+enum ContactFlags : PairFlags {
   kTouching = 1,   // overlapped in the last step
   kBonded = 2,     // an intact bond (contact or parallel)
 };
@@ -40,7 +45,7 @@ constexpr std::size_t kMaxStateColumns = 24;
 // loop works on. column[c][k] is state column c of the block's pair k.
 template <typename T>
 struct BasicPairBlock {
-  using Flag = std::conditional_t<std::is_const_v<T>, const std::uint8_t, std::uint8_t>;
+  using Flag = std::conditional_t<std::is_const_v<T>, const PairFlags, PairFlags>;
   std::size_t size = 0;
   const std::int32_t* i = nullptr;
   const std::int32_t* j = nullptr;
@@ -54,7 +59,7 @@ class ContactSet {
  public:
   std::vector<std::int32_t> i, j;
   std::vector<std::uint8_t> model;   // index into the world's model table
-  std::vector<std::uint8_t> flags;
+  std::vector<PairFlags> flags;
 
   // The number of state columns of each model index; the set is emptied.
   void set_layout(const std::vector<std::size_t>& columns_per_model);

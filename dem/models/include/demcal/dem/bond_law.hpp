@@ -19,7 +19,7 @@ inline void break_bond(const PairBlock& c, std::size_t k, const Geometry& g, con
   if (step.breaks)
     step.breaks->push_back({step.time_s, g.cx, g.cy, mode, b.group[static_cast<std::size_t>(c.i[k])],
                             b.group[static_cast<std::size_t>(c.j[k])]});
-  c.flags[k] &= static_cast<std::uint8_t>(~kBonded);
+  c.flags[k] &= ~static_cast<PairFlags>(kBonded);
 }
 
 }  // namespace demcal::dem

@@ -27,7 +27,7 @@ inline double deformability_kn(double modulus_pa, double radius_i_m, double radi
 
 inline void release(const PairBlock& c, std::size_t k) {
   c.column[kShearForce][k] = 0.0;
-  c.flags[k] &= static_cast<std::uint8_t>(~kTouching);
+  c.flags[k] &= ~static_cast<PairFlags>(kTouching);
 }
 
 // Skip rule of unbonded contacts: a pair that does not reach its reference
