@@ -108,9 +108,20 @@ double World::pair_state(std::size_t k, const std::string& column) const {
   throw Error("contact model " + models_[pairs_.model[k]]->name() + " keeps no state column \"" + column + "\"");
 }
 
+void World::refresh_inverse_masses() {
+  const std::size_t n = bodies.size();
+  inverse_mass_.resize(n);
+  inverse_inertia_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    inverse_mass_[i] = 1.0 / bodies.mass[i];
+    inverse_inertia_[i] = 1.0 / bodies.inertia[i];
+  }
+}
+
 void World::update_time_step() {
   if (settings_.fixed_dt_s > 0) {
     dt_s_ = settings_.fixed_dt_s;
+    refresh_inverse_masses();
     return;
   }
   const std::size_t n = bodies.size();
@@ -172,6 +183,7 @@ void World::update_time_step() {
   }
   if (!std::isfinite(dt) || dt <= 0) throw Error("cannot find a stable time step (no stiffness or no mass)");
   dt_s_ = settings_.safety_factor * dt;
+  refresh_inverse_masses();
 }
 
 void World::compute_forces() {
@@ -202,7 +214,8 @@ void World::integrate() {
   const double* __restrict force_y = bodies.fy.data();
   const double* __restrict moment = bodies.moment.data();
   const double* __restrict mass = bodies.mass.data();
-  const double* __restrict inertia = bodies.inertia.data();
+  const double* __restrict inverse_mass = inverse_mass_.data();
+  const double* __restrict inverse_inertia = inverse_inertia_.data();
   const double* __restrict x_built = x_built_.data();
   const double* __restrict y_built = y_built_.data();
   const std::uint8_t* __restrict fixed = bodies.fixed.data();
@@ -222,9 +235,10 @@ void World::integrate() {
     const double sx = vx[i] > 0 ? 1.0 : (vx[i] < 0 ? -1.0 : 0.0);
     const double sy = vy[i] > 0 ? 1.0 : (vy[i] < 0 ? -1.0 : 0.0);
     const double sw = w[i] > 0 ? 1.0 : (w[i] < 0 ? -1.0 : 0.0);
-    vx[i] += (fx - alpha * std::abs(fx) * sx) / m * dt;
-    vy[i] += (fy - alpha * std::abs(fy) * sy) / m * dt;
-    w[i] += (mz - alpha * std::abs(mz) * sw) / inertia[i] * dt;
+    const double to_velocity = inverse_mass[i] * dt;
+    vx[i] += (fx - alpha * std::abs(fx) * sx) * to_velocity;
+    vy[i] += (fy - alpha * std::abs(fy) * sy) * to_velocity;
+    w[i] += (mz - alpha * std::abs(mz) * sw) * (inverse_inertia[i] * dt);
     x[i] += vx[i] * dt;
     y[i] += vy[i] * dt;
     const double ddx = x[i] - x_built[i], ddy = y[i] - y_built[i];
@@ -287,7 +301,8 @@ void World::move_walls() {
 }
 
 void World::step() {
-  if (!built_) rebuild();
+  // Disks added by hand since the last build: rebuild (their masses too).
+  if (!built_ || inverse_mass_.size() != bodies.size()) rebuild();
   // Rebuild once some disk may have closed the skin with a neighbour or a wall.
   double disk_move = std::sqrt(max_disk_move2_);
   double wall_move = 0;

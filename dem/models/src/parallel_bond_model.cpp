@@ -97,10 +97,13 @@ class ParallelBondModel : public LinearBase {
           bond_fn[k] -= bond_kn[k] * area * g.vn * dt;
           bond_fs[k] -= bond_ks[k] * area * g.vs * dt;
           bond_m[k] -= bond_kn[k] * inertia * g.relative_w * dt;
-          const double sigma = -bond_fn[k] / area + std::abs(bond_m[k]) * bond_radius[k] / inertia;
-          const double tau = std::abs(bond_fs[k]) / area;
-          if (sigma >= strength_n[k] || tau >= strength_s[k]) {
-            break_bond(c, k, g, b, step, sigma >= strength_n[k] ? BreakMode::Tension : BreakMode::Shear);
+          // sigma = -F_n / A + |M| R_b / I and tau = |F_s| / A against the
+          // strengths, both sides multiplied by A I (> 0): no division in the loop.
+          const double sigma_ai = -bond_fn[k] * inertia + std::abs(bond_m[k]) * bond_radius[k] * area;
+          const double tau_a = std::abs(bond_fs[k]);
+          const bool tension = sigma_ai >= strength_n[k] * area * inertia;
+          if (tension || tau_a >= strength_s[k] * area) {
+            break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
             bond_fn[k] = bond_fs[k] = bond_m[k] = 0.0;
             return f;
           }

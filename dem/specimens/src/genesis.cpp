@@ -95,7 +95,9 @@ std::size_t SpecimenSpec::disk_count() const {
 
 std::string SpecimenSpec::cache_key() const {
   std::ostringstream key;
-  key << "genesis-v4 W=" << format_double(width_m) << " H=" << format_double(height_m)
+  // The version changes with anything that moves a packing's numbers (the
+  // engine's arithmetic too), so a cache never serves an older packing.
+  key << "genesis-v5 W=" << format_double(width_m) << " H=" << format_double(height_m)
       << " t=" << format_double(thickness_m) << " n=" << format_double(porosity) << " Rmin=" << format_double(radius_min_m)
       << " Rmax=" << format_double(radius_max_m) << " rho=" << format_double(density_kg_m3)
       << " E=" << format_double(genesis_modulus_pa) << " s0=" << format_double(isotropic_stress_pa)

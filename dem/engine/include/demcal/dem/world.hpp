@@ -103,6 +103,7 @@ class World {
   void build_wall_pairs(ContactSet& fresh);
   void merge_into(ContactSet& fresh, ContactSet& old, bool walls);
   void update_time_step();
+  void refresh_inverse_masses();
   void compute_forces();
   void integrate();
   void move_walls();
@@ -121,6 +122,9 @@ class World {
   // Positions at the last rebuild, for the skin criterion.
   std::vector<double> x_built_, y_built_;
   std::vector<std::array<double, 2>> wall_built_;
+  // 1 / mass and 1 / inertia per disk, refreshed with the time step (the
+  // only place masses change), so the integration does not divide.
+  std::vector<double> inverse_mass_, inverse_inertia_;
   double max_disk_move2_ = 0;
   double skin_m_ = 0;
   double dt_s_ = 0;
