@@ -37,6 +37,13 @@ std::vector<int> contact_counts(const World& world) {
   return count;
 }
 
+// v[k] becomes v[order[k]].
+void permute(std::vector<double>& v, const std::vector<std::size_t>& order) {
+  std::vector<double> sorted(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) sorted[k] = v[order[k]];
+  v.swap(sorted);
+}
+
 void set_radius(Bodies& b, std::size_t i, double radius, double density, double thickness) {
   b.radius[i] = radius;
   b.mass[i] = density * M_PI * radius * radius * thickness;
@@ -167,11 +174,7 @@ Specimen pack_specimen(const SpecimenSpec& spec) {
   // Numbered along a Hilbert curve, so that neighbours sit close in memory
   // while packing (the disks move less than their size from here).
   const std::vector<std::size_t> start_order = hilbert_order(start_x, start_y);
-  {
-    std::vector<double> radius_in_order(n);
-    for (std::size_t k = 0; k < n; ++k) radius_in_order[k] = final_radius[start_order[k]];
-    final_radius.swap(radius_in_order);
-  }
+  permute(final_radius, start_order);
   for (std::size_t k = 0; k < n; ++k)
     world.bodies.add_disk(start_x[start_order[k]], start_y[start_order[k]], final_radius[k] * start_scale,
                           spec.density_kg_m3, spec.thickness_m, kDiskGroup);
@@ -275,14 +278,9 @@ Specimen pack_specimen(const SpecimenSpec& spec) {
   // test's pair list walks memory in order (spatial_order.hpp).
   {
     const std::vector<std::size_t> order = hilbert_order(out.x, out.y);
-    auto permute = [&](std::vector<double>& v) {
-      std::vector<double> sorted(v.size());
-      for (std::size_t k = 0; k < v.size(); ++k) sorted[k] = v[order[k]];
-      v.swap(sorted);
-    };
-    permute(out.x);
-    permute(out.y);
-    permute(out.radius);
+    permute(out.x, order);
+    permute(out.y, order);
+    permute(out.radius, order);
   }
   if (spec.isotropic_stress_pa == 0 && std::abs(out.porosity - spec.porosity) > 0.005)
     throw Error("specimen: genesis reached porosity " + format_double(out.porosity) + ", not the " +

@@ -122,8 +122,9 @@ class World {
   // Positions at the last rebuild, for the skin criterion.
   std::vector<double> x_built_, y_built_;
   std::vector<std::array<double, 2>> wall_built_;
-  // 1 / mass and 1 / inertia per disk, refreshed with the time step (the
-  // only place masses change), so the integration does not divide.
+  // 1 / mass and 1 / inertia per disk, refreshed with the time step (at
+  // every rebuild, so masses set by hand count from the next refresh(), as
+  // genesis's new radii do), so the integration does not divide.
   std::vector<double> inverse_mass_, inverse_inertia_;
   double max_disk_move2_ = 0;
   double skin_m_ = 0;
