@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <omp.h>
+
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
 #include "demcal/core/error.hpp"
@@ -72,6 +74,12 @@ int main(int argc, char** argv) {
   run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
   std::string vtk_dir;
   run->add_option("--vtk", vtk_dir, "folder for VTK snapshots (disks and bonds, bond breaks) for ParaView");
+  int run_threads = 0;
+  run->add_option("--threads", run_threads,
+                  "threads of the run's force loop (0: OpenMP's default, OMP_NUM_THREADS or every core; "
+                  "results do not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", quiet, "no progress on stderr");
   jobs::BatchOptions batch_options;
   CLI::App* batch = app.add_subcommand("batch", "run every point of a design (x seeds), resumable");
@@ -83,6 +91,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   batch->add_option("--first-seed", batch_options.first_seed, "first seed of each point")->capture_default_str();
   batch->add_option("--jobs", batch_options.jobs, "points run at once")->capture_default_str();
+  batch->add_option("--threads", batch_options.threads,
+                    "threads the points running at once share (0: OpenMP's default; with MPI: per rank, default 1)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   batch->add_option("--csv", batch_options.csv_path, "flat CSV export: design columns, seed, status, macro values");
   batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
   std::string shard;
@@ -150,6 +162,7 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
+    if (run_threads > 0) omp_set_num_threads(run_threads);
     dem::Scene scene = dem::Scene::load(scene_path);
     std::map<std::string, double> parameters = scene.resolve(parse_sets(sets));
     dem::RunOptions options;

@@ -2,8 +2,11 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <set>
+
+#include <omp.h>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
@@ -32,9 +35,11 @@ void pack_specimens(const Scene& scene, const std::vector<const PointSpec*>& pen
   if (to_pack.empty() || options.cache_dir.empty()) return;
   if (options.progress)
     log::info("packing " + std::to_string(to_pack.size()) + " specimen(s) (cached in " + options.cache_dir + ")");
+  const int threads = threads_per_run(options.threads, options.jobs, to_pack.size());
   for_each_in_workers(
       to_pack.size(), options.jobs,
       [&](std::size_t i) {
+        omp_set_num_threads(threads);
         try {
           cached_specimen(to_pack[i], options.cache_dir);
         } catch (const std::exception&) {
@@ -45,6 +50,12 @@ void pack_specimens(const Scene& scene, const std::vector<const PointSpec*>& pen
 }
 
 }  // namespace
+
+int threads_per_run(int threads, int jobs, std::size_t tasks) {
+  const int budget = threads > 0 ? threads : omp_get_max_threads();
+  const std::size_t at_once = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(jobs), tasks));
+  return std::max(1, budget / static_cast<int>(at_once));
+}
 
 std::vector<SpecimenSpec> distinct_specimens(const Scene& scene, const std::vector<const PointSpec*>& points) {
   std::vector<SpecimenSpec> specimens;
@@ -134,9 +145,12 @@ std::vector<json> run_points(const Scene& scene, const std::vector<PointSpec>& p
     progress = std::make_unique<Progress>(options.progress_label, pending.size(), 10.0);
     progress->set_units_name("particle-steps");
   }
+  // Fewer points than jobs (a verification over a few seeds): each gets more threads.
+  const int threads = threads_per_run(options.threads, options.jobs, pending.size());
   for_each_in_workers(
       pending.size(), options.jobs,
       [&](std::size_t k) {
+        omp_set_num_threads(threads);
         const PointSpec& p = points[pending[k]];
         store_point(p, compute_point(scene, p, options.cache_dir));
       },
@@ -176,6 +190,7 @@ BatchSummary run_batch(const BatchOptions& options) {
               " points already done");
   PointRunOptions run_options;
   run_options.jobs = options.jobs;
+  run_options.threads = options.threads;
   run_options.cache_dir = options.cache_dir;
   run_options.progress = options.progress;
   std::vector<json> results = run_points(scene, points, run_options, [&](std::size_t i, const json& result) {

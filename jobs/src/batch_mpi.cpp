@@ -1,6 +1,7 @@
 #include "demcal/jobs/batch_mpi.hpp"
 
 #include <mpi.h>
+#include <omp.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -121,6 +122,9 @@ Setup set_up(const BatchOptions& options, bool master) {
 }
 
 void worker(const BatchOptions& options, const Setup& s) {
+  // Ranks usually share a node one per core: one thread each unless asked
+  // (--threads, the threads of each rank's runs).
+  omp_set_num_threads(options.threads > 0 ? options.threads : 1);
   for (;;) {
     int task[2];
     MPI_Recv(task, 2, MPI_INT, 0, kTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE);

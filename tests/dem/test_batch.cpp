@@ -18,6 +18,7 @@
 
 #include "demcal/core/hdf5_file.hpp"
 #include "demcal/core/table.hpp"
+#include "demcal/jobs/batch.hpp"
 #include "demcal/jobs/point_store.hpp"
 
 namespace {
@@ -201,4 +202,17 @@ TEST(DesignPoints, ReplicatedRowsRunOnOtherSpecimens) {
   EXPECT_EQ(got, want);
   EXPECT_EQ(points[2].file, "/tmp/p/run2_seed3.json");
   EXPECT_EQ(points[4].design.at("a"), 0.7);
+}
+
+TEST(DemcalDemBatch, FewerPointsThanCoresShareTheCoresAndManyPointsGetOneEach) {
+  // 5 seeds of a verification on 16 cores: 3 threads each, not 1.
+  EXPECT_EQ(demcal::jobs::threads_per_run(16, 16, 5), 3);
+  EXPECT_EQ(demcal::jobs::threads_per_run(16, 4, 40), 4);
+  // As many points at once as cores: one thread each.
+  EXPECT_EQ(demcal::jobs::threads_per_run(2, 2, 40), 1);
+  // One point at a time gets the whole budget.
+  EXPECT_EQ(demcal::jobs::threads_per_run(8, 1, 40), 8);
+  EXPECT_EQ(demcal::jobs::threads_per_run(8, 3, 1), 8);
+  // More points at once than threads: still one each.
+  EXPECT_EQ(demcal::jobs::threads_per_run(2, 4, 40), 1);
 }

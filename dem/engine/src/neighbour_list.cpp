@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "demcal/core/error.hpp"
 #include "demcal/dem/world.hpp"
 
@@ -195,6 +197,11 @@ void World::rebuild() {
   wall_built_.resize(walls.size());
   for (std::size_t w = 0; w < walls.size(); ++w) wall_built_[w] = {walls[w].x0, walls[w].y0};
   max_disk_move2_ = 0;
+  // Threads: as asked, but at most one per min_disks_per_thread disks.
+  const int asked = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
+  const std::size_t per_thread = std::max<std::size_t>(settings_.min_disks_per_thread, 1);
+  threads_in_use_ = static_cast<int>(std::clamp<std::size_t>(bodies.size() / per_thread, 1, std::min<std::size_t>(static_cast<std::size_t>(std::max(asked, 1)), 255)));
+  if (threads_in_use_ > 1) build_thread_partition();
   ++rebuilds_;
   built_ = true;
   update_time_step();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <omp.h>
+
 #include "demcal/core/error.hpp"
 #include "demcal/core/rng.hpp"
 
@@ -187,12 +189,16 @@ void World::update_time_step() {
 }
 
 void World::compute_forces() {
-  bodies.clear_forces();
+  if (threads_in_use_ <= 1) bodies.clear_forces();  // else cleared by the threads
   for (Wall& wall : walls) wall.fx = wall.fy = 0;
   StepContext context{dt_s_, time_s_, settings_.thickness_m, &breaks_};
-  for (std::uint8_t m : run_models_) {
-    PairBlock block = pairs_.block(m);
-    models_[m]->disk_forces(block, bodies, context);
+  if (threads_in_use_ > 1) {
+    compute_disk_forces_in_threads();
+  } else {
+    for (std::uint8_t m : run_models_) {
+      PairBlock block = pairs_.block(m);
+      models_[m]->disk_forces(block, bodies, context);
+    }
   }
   for (std::uint8_t m : wall_run_models_) {
     PairBlock block = wall_pairs_.block(m);
@@ -200,28 +206,37 @@ void World::compute_forces() {
   }
 }
 
-void World::integrate() {
-  const std::size_t n = bodies.size();
-  const double dt = dt_s_, alpha = settings_.damping;
-  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+namespace {
+
+// What the disks' integration reads and writes.
+struct DiskArrays {
+  double *x, *y, *vx, *vy, *w;
+  const double *force_x, *force_y, *moment, *mass, *inverse_mass, *inverse_inertia, *x_built, *y_built;
+  const std::uint8_t* fixed;
+  const std::int32_t* clump;
+};
+
+// Moves the free disks [from, to) one step; returns the largest squared
+// move since the last rebuild among them and `max_move2`.
+double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t to, double dt, double alpha, double gx,
+                       double gy, double max_move2) {
   // Local pointers, so they stay in registers through the loop.
-  double* __restrict x = bodies.x.data();
-  double* __restrict y = bodies.y.data();
-  double* __restrict vx = bodies.vx.data();
-  double* __restrict vy = bodies.vy.data();
-  double* __restrict w = bodies.w.data();
-  const double* __restrict force_x = bodies.fx.data();
-  const double* __restrict force_y = bodies.fy.data();
-  const double* __restrict moment = bodies.moment.data();
-  const double* __restrict mass = bodies.mass.data();
-  const double* __restrict inverse_mass = inverse_mass_.data();
-  const double* __restrict inverse_inertia = inverse_inertia_.data();
-  const double* __restrict x_built = x_built_.data();
-  const double* __restrict y_built = y_built_.data();
-  const std::uint8_t* __restrict fixed = bodies.fixed.data();
-  const std::int32_t* __restrict clump = bodies.clump.data();
-  double max_move2 = max_disk_move2_;
-  for (std::size_t i = 0; i < n; ++i) {
+  double* __restrict x = a.x;
+  double* __restrict y = a.y;
+  double* __restrict vx = a.vx;
+  double* __restrict vy = a.vy;
+  double* __restrict w = a.w;
+  const double* __restrict force_x = a.force_x;
+  const double* __restrict force_y = a.force_y;
+  const double* __restrict moment = a.moment;
+  const double* __restrict mass = a.mass;
+  const double* __restrict inverse_mass = a.inverse_mass;
+  const double* __restrict inverse_inertia = a.inverse_inertia;
+  const double* __restrict x_built = a.x_built;
+  const double* __restrict y_built = a.y_built;
+  const std::uint8_t* __restrict fixed = a.fixed;
+  const std::int32_t* __restrict clump = a.clump;
+  for (std::size_t i = from; i < to; ++i) {
     if (fixed[i]) {
       vx[i] = vy[i] = w[i] = 0;
       continue;
@@ -243,6 +258,32 @@ void World::integrate() {
     y[i] += vy[i] * dt;
     const double ddx = x[i] - x_built[i], ddy = y[i] - y_built[i];
     max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
+  }
+  return max_move2;
+}
+
+}  // namespace
+
+void World::integrate() {
+  const std::size_t n = bodies.size();
+  const DiskArrays arrays{bodies.x.data(),      bodies.y.data(),        bodies.vx.data(),
+                          bodies.vy.data(),     bodies.w.data(),        bodies.fx.data(),
+                          bodies.fy.data(),     bodies.moment.data(),   bodies.mass.data(),
+                          inverse_mass_.data(), inverse_inertia_.data(), x_built_.data(),
+                          y_built_.data(),      bodies.fixed.data(),    bodies.clump.data()};
+  const double dt = dt_s_, alpha = settings_.damping;
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  double max_move2 = max_disk_move2_;
+  if (threads_in_use_ > 1) {
+    // max is exact, so the threads' maxima combine to the serial value.
+#pragma omp parallel num_threads(threads_in_use_) reduction(max : max_move2)
+    {
+      const std::size_t team = static_cast<std::size_t>(omp_get_num_threads());
+      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+      max_move2 = integrate_disks(arrays, n * t / team, n * (t + 1) / team, dt, alpha, gx, gy, max_move2);
+    }
+  } else {
+    max_move2 = integrate_disks(arrays, 0, n, dt, alpha, gx, gy, max_move2);
   }
   integrate_clumps(max_move2);
   max_disk_move2_ = max_move2;

@@ -221,6 +221,7 @@ void record_run_end(const World& world, const RunOptions& options, std::chrono::
   const auto now = std::chrono::steady_clock::now();
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
+  result.threads = world.threads_in_use();
   result.density_scaling_dt_s = world.settings().density_scaling_dt_s;
   snapshot(world, options, result.curve.size(), true);
   result.wall_s = std::chrono::duration<double>(now - start).count();

@@ -19,6 +19,7 @@ nlohmann::json result_json(const TestResult& r, const std::map<std::string, doub
   if (r.density_scaling_dt_s > 0) out["density_scaling_dt_s"] = r.density_scaling_dt_s;
   out["wall_s"] = r.wall_s;
   out["test_wall_s"] = r.test_wall_s;
+  out["threads"] = r.threads;
   out["particle_steps_per_s"] =
       r.test_wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.test_wall_s : 0.0;
   return out;

@@ -77,7 +77,7 @@ class ContactBondModel : public LinearBase {
     double* strength_s = c.column[kShearStrength];
     double* installed_overlap = c.column[kReferenceOverlap];
     for_disk_pairs(
-        c, b,
+        c, b, step,
         [&](std::size_t k, const Geometry& g) {
           if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
           PairForce f;

@@ -20,7 +20,7 @@ class LinearModel : public LinearBase {
   std::string name() const override { return "linear"; }
 
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    for_disk_pairs(c, b, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
+    for_disk_pairs(c, b, step, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
                    [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
   }
 };

@@ -89,7 +89,7 @@ class ParallelBondModel : public LinearBase {
     double* strength_n = c.column[kTensileStrength];
     double* strength_s = c.column[kShearStrength];
     for_disk_pairs(
-        c, b,
+        c, b, step,
         [&](std::size_t k, const Geometry& g) {
           PairForce f = linear_force(c, k, g, dt);
           if (!(c.flags[k] & kBonded)) return f;

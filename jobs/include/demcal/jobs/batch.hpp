@@ -30,6 +30,7 @@ struct BatchOptions {
   int seeds = 1;                // seeds per design point (first_seed .. first_seed + K - 1)
   int first_seed = 1;
   int jobs = 1;                 // points at once (one process each)
+  int threads = 0;              // threads shared by the points at once (0: OpenMP's default, every core)
   int shard_index = 1;          // this shard, 1..shard_count
   int shard_count = 1;
   bool progress = true;
@@ -61,10 +62,19 @@ BatchSummary run_batch(const BatchOptions& options);
 
 struct PointRunOptions {
   int jobs = 1;
+  // Threads the points running at once share (0: OpenMP's default, i.e.
+  // OMP_NUM_THREADS or every core): each gets threads / min(jobs, points), at
+  // least one, so fewer points than cores still use every core.
+  int threads = 0;
   std::string cache_dir;
   bool progress = true;
   std::string progress_label = "points";
 };
+
+// Threads for each of `tasks` runs when at most `jobs` run at once: the
+// budget `threads` (0: OpenMP's default) split between the runs that can be
+// running together, at least one each.
+int threads_per_run(int threads, int jobs, std::size_t tasks);
 
 // Runs the points that have no stored result of their own (at most `jobs`
 // at once, one process each, specimens packed once beforehand), stores each

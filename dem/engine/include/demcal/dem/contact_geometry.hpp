@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "demcal/dem/bodies.hpp"
+#include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/contacts.hpp"
 #include "demcal/dem/walls.hpp"
 
@@ -30,11 +31,20 @@ struct PairForce {
   double fn = 0, fs = 0, moment = 0;
 };
 
+// What one disk pair adds to its two disks, kept per pair when a run's
+// forces are computed by several threads: the world then sums these per disk
+// in pair order, the order of the serial loop, so the sums are bit-identical.
+struct PairResult {
+  double fx, fy;              // force on j (i gets the opposite), N
+  double moment_i, moment_j;  // what each disk's moment sum gets, N m
+};
+
 // Law: PairForce law(std::size_t k, const Geometry& g) for the block's pair k;
 // Skip: bool skip(std::size_t k, double gap) true when the pair can be
-// ignored this step at separation `gap` (> 0 apart).
-template <typename Law, typename Skip>
-inline void for_disk_pairs(const PairBlock& c, Bodies& b, Law law, Skip skip) {
+// ignored this step at separation `gap` (> 0 apart). With step.pair_results
+// set, pair k's contribution goes to pair_results[k] instead of the disks.
+template <bool kKeepResults, typename Law, typename Skip>
+inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __restrict results, Law& law, Skip& skip) {
   // Local pointers: the loop reads and writes through them only, so the
   // compiler keeps them in registers instead of reloading them from the vectors.
   const std::int32_t* __restrict ci = c.i;
@@ -54,7 +64,10 @@ inline void for_disk_pairs(const PairBlock& c, Bodies& b, Law law, Skip skip) {
     const double dx = x[j] - x[i], dy = y[j] - y[i];
     const double distance = std::sqrt(dx * dx + dy * dy);
     const double overlap = r[i] + r[j] - distance;
-    if (skip(k, -overlap)) continue;
+    if (skip(k, -overlap)) {
+      if constexpr (kKeepResults) results[k] = PairResult{0.0, 0.0, 0.0, 0.0};
+      continue;
+    }
     Geometry g;
     const double inverse = 1.0 / distance;
     g.nx = dx * inverse;
@@ -71,13 +84,27 @@ inline void for_disk_pairs(const PairBlock& c, Bodies& b, Law law, Skip skip) {
     const PairForce f = law(k, g);
     const double fx = f.fn * g.nx - f.fs * g.ny;
     const double fy = f.fn * g.ny + f.fs * g.nx;
-    fx_sum[j] += fx;
-    fy_sum[j] += fy;
-    fx_sum[i] -= fx;
-    fy_sum[i] -= fy;
-    moment_sum[i] += -g.arm_i * f.fs - f.moment;
-    moment_sum[j] += -g.arm_j * f.fs + f.moment;
+    const double moment_i = -g.arm_i * f.fs - f.moment;
+    const double moment_j = -g.arm_j * f.fs + f.moment;
+    if constexpr (kKeepResults) {
+      results[k] = PairResult{fx, fy, moment_i, moment_j};
+    } else {
+      fx_sum[j] += fx;
+      fy_sum[j] += fy;
+      fx_sum[i] -= fx;
+      fy_sum[i] -= fy;
+      moment_sum[i] += moment_i;
+      moment_sum[j] += moment_j;
+    }
   }
+}
+
+template <typename Law, typename Skip>
+inline void for_disk_pairs(const PairBlock& c, Bodies& b, const StepContext& step, Law law, Skip skip) {
+  if (step.pair_results)
+    for_disk_pairs_into<true>(c, b, step.pair_results, law, skip);
+  else
+    for_disk_pairs_into<false>(c, b, nullptr, law, skip);
 }
 
 // Disk-wall pairs: c.i is the disk, c.j the wall.

@@ -24,11 +24,17 @@ class Rng;
 
 namespace demcal::dem {
 
+struct PairResult;
+
 struct StepContext {
   double dt_s = 0;
   double time_s = 0;
   double thickness_m = 1;
   std::vector<BreakEvent>* breaks = nullptr;  // where bond breaks are logged
+  // Set when several threads share a block: each disk pair's contribution is
+  // stored here (index = the block's pair index) for the world to sum, instead
+  // of being added to the disks (see for_disk_pairs).
+  PairResult* pair_results = nullptr;
 };
 
 // The two sides of a pair when it enters the neighbour list.

@@ -51,6 +51,19 @@ struct BasicPairBlock {
   const std::int32_t* j = nullptr;
   Flag* flags = nullptr;
   std::array<T*, kMaxStateColumns> column{};
+
+  // Pairs [from, to) of this block as a block of their own (local index 0 is
+  // pair `from`): how threads share one model's pairs.
+  BasicPairBlock slice(std::size_t from, std::size_t to) const {
+    BasicPairBlock part = *this;
+    part.size = to - from;
+    part.i = i + from;
+    part.j = j + from;
+    part.flags = flags + from;
+    for (auto& c : part.column)
+      if (c) c += from;
+    return part;
+  }
 };
 using PairBlock = BasicPairBlock<double>;
 using ConstPairBlock = BasicPairBlock<const double>;

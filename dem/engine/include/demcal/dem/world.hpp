@@ -10,6 +10,7 @@
 
 #include "demcal/dem/bodies.hpp"
 #include "demcal/dem/clump.hpp"
+#include "demcal/dem/contact_geometry.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/contacts.hpp"
 #include "demcal/dem/walls.hpp"
@@ -31,6 +32,16 @@ struct WorldSettings {
   // inertia (never lowers them) until the time step is this value. Changes
   // the dynamics, so results must be checked against an unscaled run.
   double density_scaling_dt_s = 0.0;
+  // Threads one run's force and integration loops may use (OpenMP): 0 takes
+  // OpenMP's current default (omp_set_num_threads, OMP_NUM_THREADS, or every
+  // core). Results do not depend on it: the per-disk sums are made in the
+  // serial loop's order.
+  int threads = 0;
+  // A run uses at most one thread per this many disks: below it the cost of
+  // starting the threads each step outweighs the work they share (measured on
+  // a 2-core machine, docs/benchmarks.md: 2 threads took 1.07x the time of one
+  // at 590 disks, 0.84x at 973, 0.67x at 2,366, whole process).
+  std::size_t min_disks_per_thread = 500;
 };
 
 class World {
@@ -82,6 +93,8 @@ class World {
   std::uint64_t steps_done() const { return steps_; }
   double dt_s() const { return dt_s_; }
   std::uint64_t rebuilds() const { return rebuilds_; }
+  // Threads the force and integration loops use now (settings, disk count).
+  int threads_in_use() const { return threads_in_use_; }
   const WorldSettings& settings() const { return settings_; }
   WorldSettings& settings() { return settings_; }
 
@@ -105,6 +118,8 @@ class World {
   void update_time_step();
   void refresh_inverse_masses();
   void compute_forces();
+  void compute_disk_forces_in_threads();
+  void build_thread_partition();
   void integrate();
   void move_walls();
   void integrate_clumps(double& max_move2);
@@ -126,6 +141,25 @@ class World {
   // every rebuild, so masses set by hand count from the next refresh(), as
   // genesis's new radii do), so the integration does not divide.
   std::vector<double> inverse_mass_, inverse_inertia_;
+  // The threaded force loop's partition, made at each rebuild (see
+  // world_threads.cpp). Per model position p and thread t, index p * (team + 1) + t.
+  struct CrossingBreaks {
+    std::uint32_t thread = 0, first = 0, count = 0;  // the crossing pair's breaks in crossing_log[thread]
+  };
+  struct ThreadPartition {
+    std::vector<std::uint8_t> owner;               // per disk: the thread that owns it
+    std::vector<std::size_t> segment;              // first pair whose i thread t owns
+    std::vector<std::uint32_t> crossing;           // pairs whose j another thread owns, in pair order
+    std::vector<std::size_t> crossing_range;       // thread t's crossing pairs of model p start here
+    std::vector<std::uint32_t> incoming;           // per (p, t): crossing pairs whose j t owns (index p * team + t)
+    std::vector<std::size_t> incoming_start;
+    std::vector<PairResult> results;               // per crossing pair
+    std::vector<CrossingBreaks> crossing_break;    // per crossing pair
+    std::vector<std::vector<BreakEvent>> crossing_log;  // per thread
+    std::vector<std::vector<BreakEvent>> log;      // per (p, t), pair order
+  };
+  ThreadPartition partition_;
+  int threads_in_use_ = 1;
   double max_disk_move2_ = 0;
   double skin_m_ = 0;
   double dt_s_ = 0;

@@ -25,6 +25,7 @@ struct TestResult {
   std::uint64_t steps = 0;
   double wall_s = 0;           // whole run, packing or cache load included
   double test_wall_s = 0;      // the loading alone (for particle-steps per second)
+  int threads = 1;             // threads the run's force loop used at its end
   double porosity = 0;
   double dt_s = 0;
   double density_scaling_dt_s = 0;  // > 0 when masses were scaled (quasi-static run)

@@ -1,0 +1,86 @@
+// One run's force and integration loops on several threads give the same
+// bits as on one: each disk adds its pairs' contributions in the serial
+// loop's order, and bond breaks are logged in pair order.
+#include <gtest/gtest.h>
+
+#include "demcal/dem/genesis.hpp"
+#include "demcal/dem/platen_test.hpp"
+#include "demcal/dem/scene.hpp"
+
+using namespace demcal;
+using namespace demcal::dem;
+
+namespace {
+
+void expect_same_bits(const World& a, const World& b) {
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+    ASSERT_EQ(a.bodies.x[k], b.bodies.x[k]) << "disk " << k;
+    ASSERT_EQ(a.bodies.y[k], b.bodies.y[k]) << "disk " << k;
+    ASSERT_EQ(a.bodies.vx[k], b.bodies.vx[k]) << "disk " << k;
+    ASSERT_EQ(a.bodies.vy[k], b.bodies.vy[k]) << "disk " << k;
+    ASSERT_EQ(a.bodies.w[k], b.bodies.w[k]) << "disk " << k;
+    ASSERT_EQ(a.bodies.fx[k], b.bodies.fx[k]) << "disk " << k;
+    ASSERT_EQ(a.bodies.moment[k], b.bodies.moment[k]) << "disk " << k;
+  }
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  for (std::size_t w = 0; w < a.walls.size(); ++w) EXPECT_EQ(a.walls[w].fy, b.walls[w].fy) << "wall " << w;
+  ASSERT_EQ(a.breaks().size(), b.breaks().size());
+  for (std::size_t e = 0; e < a.breaks().size(); ++e) {
+    EXPECT_EQ(a.breaks()[e].time_s, b.breaks()[e].time_s) << "break " << e;
+    EXPECT_EQ(a.breaks()[e].x_m, b.breaks()[e].x_m) << "break " << e;
+    EXPECT_EQ(a.breaks()[e].mode, b.breaks()[e].mode) << "break " << e;
+  }
+  EXPECT_EQ(a.rebuilds(), b.rebuilds());
+  EXPECT_EQ(a.dt_s(), b.dt_s());
+}
+
+}  // namespace
+
+TEST(Threads, OneRunOnSeveralThreadsGivesTheSameBitsAsOnOne) {
+  // Contact bonds, parallel bonds, and a concrete whose aggregates are clumps.
+  for (const char* file :
+       {"tests/data/ucs_rock_cb_small.json", "tests/data/ucs_small.json", "tests/data/ucs_concrete_small.json"}) {
+    Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/" + file);
+    const auto parameters = scene.resolve({});
+    const Specimen s = cached_specimen(scene.specimen(parameters, 2), "");
+    World serial = make_platen_world(scene, parameters, s, 2);
+    serial.settings().threads = 1;
+    serial.refresh();
+    ASSERT_EQ(serial.threads_in_use(), 1);
+    for (int threads : {2, 3}) {
+      World threaded = make_platen_world(scene, parameters, s, 2);
+      threaded.settings().threads = threads;
+      threaded.settings().min_disks_per_thread = 1;  // these specimens are small
+      threaded.refresh();
+      ASSERT_EQ(threaded.threads_in_use(), threads) << file;
+      if (threads == 2) {
+        // Load until bonds break, then as many steps more.
+        std::uint64_t steps = 0;
+        while (serial.breaks().size() < 20 && steps < 200000) {
+          serial.run(500);
+          steps += 500;
+        }
+        ASSERT_GE(serial.breaks().size(), 20u) << file << ": the run should reach bond breakage";
+        serial.run(steps);
+      }
+      threaded.run(serial.steps_done());
+      SCOPED_TRACE(std::string(file) + ", " + std::to_string(threads) + " threads");
+      expect_same_bits(serial, threaded);
+    }
+  }
+}
+
+TEST(Threads, SmallRunsStayOnOneThread) {
+  Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json");
+  const auto parameters = scene.resolve({});
+  const Specimen s = cached_specimen(scene.specimen(parameters, 2), "");
+  World world = make_platen_world(scene, parameters, s, 2);
+  world.settings().threads = 4;
+  world.settings().min_disks_per_thread = world.bodies.size() / 2 + 1;
+  world.refresh();
+  EXPECT_EQ(world.threads_in_use(), 1);
+  world.settings().min_disks_per_thread = world.bodies.size() / 2;
+  world.refresh();
+  EXPECT_EQ(world.threads_in_use(), 2);
+}
