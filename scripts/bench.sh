@@ -26,22 +26,30 @@ time_it "doe: LHS 500 x 13, phi_p optimised (ESE)" \
 time_it "doe: scrambled Sobol 4096 x 13" \
   "$bin/demcal-doe" sobol --runs 4096 --factors 13 --out "$tmp/sobol.csv" --quiet
 
-# The DEM hot path: the parallel-bonded UCS at two sizes, one core each.
-# Packing is cached (build/cache); its time is reported apart from the loading.
+# The DEM hot path: the parallel-bonded UCS at two sizes, on one thread and on
+# every core (--threads 0). Packing is cached (build/cache); its time is
+# reported apart from the loading.
 dem_bench() {
-  local label=$1 scene=$2
-  "$bin/demcal-dem" run --scene "$scene" --out "$tmp/dem.json" --cache "$build/cache" --quiet
+  local label=$1 scene=$2 threads=$3
+  "$bin/demcal-dem" run --scene "$scene" --out "$tmp/dem.json" --cache "$build/cache" --threads "$threads" --quiet
   /usr/bin/python3 - "$tmp/dem.json" "$label" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 m = r["macro"]
-print("%-34s %6d disks %8d steps  loading %6.2f s  total %6.2f s  %5.2f M particle-steps/s/core  (sigma_u %.1f MPa, E %.1f GPa, nu %.3f)"
-      % (sys.argv[2], r["particles"], r["steps"], r["test_wall_s"], r["wall_s"], r["particle_steps_per_s"] / 1e6,
-         m.get("sigma_u_MPa", float("nan")), m.get("E_GPa", float("nan")), m.get("nu", float("nan"))))
+print("%-40s %6d disks %8d steps  %d thread(s)  loading %6.2f s  total %6.2f s  %5.2f M particle-steps/s  (sigma_u %.1f MPa, E %.1f GPa, nu %.3f)"
+      % (sys.argv[2], r["particles"], r["steps"], r.get("threads", 1), r["test_wall_s"], r["wall_s"],
+         r["particle_steps_per_s"] / 1e6, m.get("sigma_u_MPa", float("nan")), m.get("E_GPa", float("nan")),
+         m.get("nu", float("nan"))))
 PY
 }
-dem_bench "dem: UCS parallel bond, 25 x 50 mm" data/scenes/ucs_rock_pb.json
-dem_bench "dem: UCS parallel bond, 50 x 100 mm" data/scenes/bench/ucs_pb_9k.json
+for threads in 1 0; do
+  dem_bench "dem: UCS parallel bond, 25 x 50 mm" data/scenes/ucs_rock_pb.json "$threads"
+  dem_bench "dem: UCS parallel bond, 50 x 100 mm" data/scenes/bench/ucs_pb_9k.json "$threads"
+done
+
+# The same specimens against LAMMPS (installed on demand), same contact law and steps.
+echo
+/usr/bin/python3 scripts/bench_lammps.py --build "$build"
 
 # Batches: the same 16 design points one at a time, two processes at once, and
 # over MPI ranks (rank 0 hands out, 2 worker ranks run); specimens cached first.
@@ -51,8 +59,8 @@ for r in $(seq 1 16); do printf '%d,%d\n' "$r" $((10 + r)) >> "$tmp/batch_design
 "$bin/demcal-dem" batch --scene data/scenes/ucs_rock_pb.json --design "$tmp/batch_design.csv" --out "$tmp/warm.h5" \
   --seeds 1 --jobs 2 --cache "$build/cache" --quiet > /dev/null 2>&1 || true
 batch_args=(batch --scene data/scenes/ucs_rock_pb.json --design "$tmp/batch_design.csv" --cache "$build/cache" --quiet)
-time_it "dem batch: 16 points of the 25 x 50 mm UCS, --jobs 1" "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b1.h5" --jobs 1
-time_it "dem batch: the same, --jobs 2" "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b2.h5" --jobs 2
+time_it "dem batch: 16 points of the 25 x 50 mm UCS, --jobs 1 (2 threads each)" "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b1.h5" --jobs 1
+time_it "dem batch: the same, --jobs 2 (1 thread each)" "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b2.h5" --jobs 2
 if command -v mpirun > /dev/null; then
   time_it "dem batch: the same, mpirun -np 3 (2 worker ranks)" \
     mpirun -np 3 --oversubscribe --allow-run-as-root "$bin/demcal-dem" "${batch_args[@]}" --out "$tmp/b3.h5"

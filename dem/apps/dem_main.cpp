@@ -9,6 +9,8 @@
 
 #include <omp.h>
 
+#include "released_run.hpp"
+
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
 #include "demcal/core/error.hpp"
@@ -20,6 +22,7 @@
 #include "demcal/jobs/batch.hpp"
 #include "demcal/jobs/batch_mpi.hpp"
 #include "demcal/dem/describe.hpp"
+#include "demcal/dem/lammps_data.hpp"
 #include "demcal/jobs/merge.hpp"
 #include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene.hpp"
@@ -106,6 +109,35 @@ int main(int argc, char** argv) {
   describe->add_option("--scene", describe_scene, "scene JSON");
   describe->add_option("--space", describe_space, "also check that this parameter space narrows the scene");
   describe->add_flag("--registries", describe_registries, "list the registered lab tests and contact models instead");
+  std::string export_scene, export_lammps;
+  std::uint64_t export_seed = 1;
+  CLI::App* export_cmd =
+      app.add_subcommand("export", "write a scene's packed specimen (cached or packed now) for another engine");
+  export_cmd->add_option("--scene", export_scene, "scene JSON")->required();
+  export_cmd->add_option("--seed", export_seed, "packing seed")->capture_default_str();
+  export_cmd->add_option("--lammps", export_lammps, "LAMMPS data file (atom_style sphere, 2D)")->required();
+  export_cmd->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
+  export_cmd->add_flag("--quiet", quiet, "no progress on stderr");
+  std::string released_scene;
+  std::uint64_t released_seed = 1;
+  dem::ReleasedRunOptions released;
+  CLI::App* released_cmd = app.add_subcommand(
+      "released", "release a scene's packed specimen with fixed linear springs, no damping and no walls "
+                  "(the peer run of make bench; JSON with timings and the kinetic energy history on stdout)");
+  released_cmd->add_option("--scene", released_scene, "scene JSON (its specimen)")->required();
+  released_cmd->add_option("--seed", released_seed, "packing seed")->capture_default_str();
+  released_cmd->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
+  released_cmd->add_option("--kn", released.kn_n_m, "normal spring, N/m")->capture_default_str();
+  released_cmd->add_option("--ks", released.ks_n_m, "shear spring, N/m")->capture_default_str();
+  released_cmd->add_option("--friction", released.friction, "Coulomb friction coefficient")->capture_default_str();
+  released_cmd->add_option("--dt", released.dt_s, "time step, s")->required();
+  released_cmd->add_option("--steps", released.steps, "steps")->capture_default_str();
+  released_cmd->add_option("--every", released.every, "kinetic energy every this many steps")->capture_default_str();
+  released_cmd->add_flag("--quiet", quiet, "no progress on stderr");
+  released_cmd->add_flag("--box", released.box, "fixed walls on the specimen's box (the packing stays nearly at rest)");
+  released_cmd->add_option("--threads", released.threads, "threads (0: OpenMP's default)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   std::vector<std::string> merge_inputs;
   std::string merge_out, merge_csv;
   CLI::App* merge = app.add_subcommand("merge", "join the result files of batch shards into one (resumable by batch)");
@@ -160,6 +192,21 @@ int main(int argc, char** argv) {
                   merge_out + " runs only those");
         return 4;
       }
+      return 0;
+    }
+    if (export_cmd->parsed()) {
+      dem::Scene scene = dem::Scene::load(export_scene);
+      const dem::Specimen s =
+          dem::cached_specimen(scene.specimen(scene.resolve({}), export_seed), cache_dir);
+      dem::write_lammps_data(s, export_lammps, scene.name() + ", seed " + std::to_string(export_seed));
+      log::info("wrote " + std::to_string(s.size()) + " disks to " + export_lammps);
+      return 0;
+    }
+    if (released_cmd->parsed()) {
+      dem::Scene scene = dem::Scene::load(released_scene);
+      const dem::Specimen s =
+          dem::cached_specimen(scene.specimen(scene.resolve({}), released_seed), cache_dir);
+      std::cout << dem::run_released_specimen(s, released).dump() << "\n";
       return 0;
     }
     if (run_threads > 0) omp_set_num_threads(run_threads);

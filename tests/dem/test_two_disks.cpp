@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "demcal/core/error.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
 
@@ -121,4 +122,25 @@ TEST(TwoDisks, DensityScalingRaisesMassesToReachTheRequestedStep) {
   small.step();
   EXPECT_EQ(small.bodies.mass[0], mass_before);
   EXPECT_NEAR(small.dt_s(), natural_dt, 1e-12 * natural_dt);
+}
+
+TEST(TwoDisks, DirectStiffnessIsTheSameForEveryPairWhateverTheRadii) {
+  // PFC's linear model (and LAMMPS's gran/hooke) set kn and ks themselves.
+  WorldSettings settings;
+  settings.damping = 0.0;
+  World world(settings);
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                        "linear", {{"kn_n_m", 3e8}, {"ks_n_m", 1e8}, {"friction", 0.5}}, "test")));
+  world.bodies.add_disk(0.0, 0.0, 1e-3, 2650, 1.0, 0);
+  world.bodies.add_disk(1.49e-3, 0.0, 0.5e-3, 2650, 1.0, 0);  // overlap 1e-5 m
+  world.step();
+  EXPECT_DOUBLE_EQ(world.pair_state(0, "kn_n_m"), 3e8);
+  EXPECT_DOUBLE_EQ(world.pair_state(0, "ks_n_m"), 1e8);
+  // The first step's force: kn x overlap, pushing the disks apart.
+  EXPECT_NEAR(world.bodies.fx[1], 3e8 * 1e-5, 1e-6 * 3e8 * 1e-5);
+  EXPECT_THROW(ContactModelRegistry::instance().create(
+                   "linear", {{"kn_n_m", 3e8}, {"ks_n_m", 1e8}, {"modulus_pa", 1e9}, {"friction", 0.5}}, "test"),
+               demcal::Error);
+  EXPECT_THROW(ContactModelRegistry::instance().create("linear", {{"kn_n_m", 3e8}, {"friction", 0.5}}, "test"),
+               demcal::Error);
 }

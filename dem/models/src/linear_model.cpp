@@ -14,8 +14,8 @@ namespace {
 
 class LinearModel : public LinearBase {
  public:
-  LinearModel(const nlohmann::json& p, const std::string& where) : LinearBase(p, where) {
-    require_only(p, {"modulus_pa", "kn_ks", "friction"}, where);
+  LinearModel(const nlohmann::json& p, const std::string& where) : LinearBase(p, where, true) {
+    require_only(p, {"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}, where);
   }
   std::string name() const override { return "linear"; }
 

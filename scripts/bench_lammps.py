@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""The LAMMPS peer of `make bench`: the same packed specimen, contact law,
+time step and steps in LAMMPS and in demcal, one core each, back to back.
+
+Each scene's specimen is exported (`demcal-dem export --lammps`) and run two
+ways: released (no walls: its locked-in overlaps push the disks apart, many
+neighbour-list rebuilds) and in a box (four fixed walls: the packing stays
+nearly at rest, every contact loaded). LAMMPS runs gran/hooke/history with
+no damping, nve/sphere disc, enforce2d and fix wall/gran for the box; demcal
+runs `demcal-dem released` (linear springs kn, ks, Coulomb friction, no
+damping). Same skin. The kinetic energy histories say whether the two did the
+same work; the loop times give particle-steps per second and their ratio.
+Debian's lammps package is installed here on demand, never by `make test`.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+KN, KS, FRICTION = 1e8, 5e7, 0.5
+DT_S, STEPS, EVERY = 5e-8, 20000, 100
+SCENES = [("data/scenes/ucs_rock_pb.json", "25 x 50 mm"), ("data/scenes/bench/ucs_pb_9k.json", "50 x 100 mm")]
+
+
+def ensure_lammps():
+    if shutil.which("lmp"):
+        return
+    if os.geteuid() != 0:
+        sys.exit("bench_lammps: LAMMPS (Debian package lammps) is missing; install it as root: apt-get install lammps")
+    print("bench_lammps: installing Debian's lammps", file=sys.stderr)
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    subprocess.run(["apt-get", "install", "-y", "-qq", "--no-install-recommends", "lammps"], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+
+
+def lammps_input(data, ours, box):
+    lines = [
+        "units si", "dimension 2", "atom_style sphere", "boundary s s p", "comm_modify vel yes",
+        f"read_data {data}",
+        f"set group all density/disc {ours['density_kg_m3'] * ours['thickness_m']!r}",
+        f"neighbor {ours['skin_m']!r} bin", "neigh_modify delay 0 every 1 check yes",
+        f"pair_style gran/hooke/history {KN!r} {KS!r} 0 0 {FRICTION!r} 0", "pair_coeff * *",
+        "fix 1 all nve/sphere disc", "fix 2 all enforce2d",
+    ]
+    if box:
+        wall = f"wall/gran hooke/history {KN!r} {KS!r} 0 0 {FRICTION!r} 0"
+        lines += [f"fix 3 all {wall} xplane 0 {ours['width_m']!r}", f"fix 4 all {wall} yplane 0 {ours['height_m']!r}"]
+    lines += [f"timestep {DT_S!r}", "compute ke all ke", "thermo_style custom step c_ke",
+              "thermo_modify format float %.12g", f"thermo {EVERY}", f"run {STEPS}"]
+    return "\n".join(lines) + "\n"
+
+
+def run_lammps(workdir, data, ours, box):
+    script = os.path.join(workdir, "in.box" if box else "in.released")
+    with open(script, "w") as f:
+        f.write(lammps_input(data, ours, box))
+    out = subprocess.run(["lmp", "-in", script, "-log", "none"], check=True, capture_output=True, text=True,
+                         cwd=workdir).stdout
+    loop = re.search(r"Loop time of ([0-9.eE+-]+) on 1 procs for (\d+) steps with (\d+) atoms", out)
+    if not loop:
+        sys.exit("bench_lammps: no loop time in LAMMPS's output:\n" + out[-2000:])
+    history = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 2 and parts[0].isdigit():
+            try:
+                history[int(parts[0])] = float(parts[1])
+            except ValueError:
+                pass
+    neighbours = re.search(r"Ave neighs/atom = ([0-9.]+)", out)
+    return float(loop.group(1)), history, float(neighbours.group(1)) if neighbours else float("nan")
+
+
+def run_ours(binary, scene, cache, box, threads):
+    command = [binary, "released", "--scene", scene, "--cache", cache, "--kn", repr(KN), "--ks", repr(KS),
+               "--friction", repr(FRICTION), "--dt", repr(DT_S), "--steps", str(STEPS), "--every", str(EVERY),
+               "--threads", str(threads)]
+    if box:
+        command.append("--box")
+    return json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
+
+
+def energy_difference(ours, lammps_history):
+    """Largest |ours - LAMMPS| / LAMMPS of the translational kinetic energy,
+    over the first quarter of the run and over all of it (the packings are
+    chaotic: tiny differences of rounding grow late in the run)."""
+    early, whole = 0.0, 0.0
+    for step, translational, _ in ours["history"]:
+        theirs = lammps_history.get(step)
+        if theirs is None or theirs <= 0:
+            continue
+        d = abs(translational - theirs) / theirs
+        whole = max(whole, d)
+        if step <= STEPS // 4:
+            early = max(early, d)
+    return early, whole
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--build", default="build")
+    args = parser.parse_args()
+    ensure_lammps()
+    binary = os.path.join(args.build, "bin", "demcal-dem")
+    cache = os.path.join(args.build, "cache")
+    package = subprocess.run(["dpkg-query", "-W", "-f", "${Version}", "lammps"], capture_output=True, text=True)
+    version = "LAMMPS " + (package.stdout.strip() if package.returncode == 0 else "(not a Debian package)")
+    print(f"peer: {version}, gran/hooke/history, 2D; demcal linear springs; kn {KN:g} N/m, ks {KS:g} N/m, "
+          f"mu {FRICTION:g}, no damping, dt {DT_S:g} s, {STEPS} steps, one core each unless said")
+    print(f"{'specimen':<24} {'case':<9} {'disks':>6} {'LAMMPS s':>9} {'M/s':>6} {'demcal s':>9} {'M/s':>6} "
+          f"{'ratio':>6} {'2 thr s':>8} {'KE diff early/all':>18} {'neigh/atom':>10}")
+    with tempfile.TemporaryDirectory() as workdir:
+        for scene, label in SCENES:
+            data = os.path.join(workdir, os.path.basename(scene) + ".data")
+            subprocess.run([binary, "export", "--scene", scene, "--cache", cache, "--lammps", data], check=True,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            for box in (False, True):
+                ours = run_ours(binary, scene, cache, box, 1)
+                lammps_s, history, neighbours = run_lammps(workdir, data, ours, box)
+                ours2 = run_ours(binary, scene, cache, box, 2)
+                early, whole = energy_difference(ours, history)
+                n = ours["disks"]
+                print(f"{label:<24} {'box' if box else 'released':<9} {n:>6} {lammps_s:>9.3f} "
+                      f"{n * STEPS / lammps_s / 1e6:>6.1f} {ours['wall_s']:>9.3f} {n * STEPS / ours['wall_s'] / 1e6:>6.1f} "
+                      f"{lammps_s / ours['wall_s']:>5.2f}x {ours2['wall_s']:>8.3f} "
+                      f"{100 * early:>8.3f}% {100 * whole:>7.3f}% {neighbours:>10.2f}")
+    print("ratio: LAMMPS loop time / demcal loop time, one core each (> 1: demcal faster); 2 thr: demcal on two "
+          "threads; KE diff: largest relative difference of the translational kinetic energy, first quarter / "
+          "whole run")
+
+
+if __name__ == "__main__":
+    main()
