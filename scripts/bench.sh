@@ -50,6 +50,9 @@ done
 # The same specimens against LAMMPS (installed on demand), same contact law and steps.
 echo
 /usr/bin/python3 scripts/bench_lammps.py --build "$build"
+# And YADE's CPM concrete in compression (another model, 3D): per particle-step only.
+echo
+/usr/bin/python3 scripts/bench_yade.py --build "$build"
 
 # Batches: the same 16 design points one at a time, two processes at once, and
 # over MPI ranks (rank 0 hands out, 2 worker ranks run); specimens cached first.
