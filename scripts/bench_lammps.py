@@ -16,25 +16,15 @@ import argparse
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
 
+import debian_package
+
 KN, KS, FRICTION = 1e8, 5e7, 0.5
 DT_S, STEPS, EVERY = 5e-8, 20000, 100
 SCENES = [("data/scenes/ucs_rock_pb.json", "25 x 50 mm"), ("data/scenes/bench/ucs_pb_9k.json", "50 x 100 mm")]
-
-
-def ensure_lammps():
-    if shutil.which("lmp"):
-        return
-    if os.geteuid() != 0:
-        sys.exit("bench_lammps: LAMMPS (Debian package lammps) is missing; install it as root: apt-get install lammps")
-    print("bench_lammps: installing Debian's lammps", file=sys.stderr)
-    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    subprocess.run(["apt-get", "install", "-y", "-qq", "--no-install-recommends", "lammps"], check=True, env=env,
-                   stdout=subprocess.DEVNULL)
 
 
 def lammps_input(data, ours, box):
@@ -104,11 +94,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default="build")
     args = parser.parse_args()
-    ensure_lammps()
+    debian_package.ensure("lammps", "lmp", "bench_lammps")
     binary = os.path.join(args.build, "bin", "demcal-dem")
     cache = os.path.join(args.build, "cache")
-    package = subprocess.run(["dpkg-query", "-W", "-f", "${Version}", "lammps"], capture_output=True, text=True)
-    version = "LAMMPS " + (package.stdout.strip() if package.returncode == 0 else "(not a Debian package)")
+    version = "LAMMPS " + debian_package.version("lammps")
     print(f"peer: {version}, gran/hooke/history, 2D; demcal linear springs; kn {KN:g} N/m, ks {KS:g} N/m, "
           f"mu {FRICTION:g}, no damping, dt {DT_S:g} s, {STEPS} steps, one core each unless said")
     print(f"{'specimen':<24} {'case':<9} {'disks':>6} {'LAMMPS s':>9} {'M/s':>6} {'demcal s':>9} {'M/s':>6} "

@@ -10,24 +10,14 @@ test, not of equal work; the table says so. Debian's yade is installed here on d
 import argparse
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
 
+import debian_package
+
 YADE_SIZES = [(3000, 400), (12000, 100)]  # spheres asked, steps
 OURS = [("data/scenes/ucs_rock_pb.json", "25 x 50 mm"), ("data/scenes/bench/ucs_pb_9k.json", "50 x 100 mm")]
-
-
-def ensure_yade():
-    if shutil.which("yade"):
-        return
-    if os.geteuid() != 0:
-        sys.exit("bench_yade: YADE (Debian package yade) is missing; install it as root: apt-get install yade")
-    print("bench_yade: installing Debian's yade", file=sys.stderr)
-    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    subprocess.run(["apt-get", "install", "-y", "-qq", "--no-install-recommends", "yade"], check=True, env=env,
-                   stdout=subprocess.DEVNULL)
 
 
 def run_yade(spheres, steps, workdir):
@@ -52,11 +42,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default="build")
     args = parser.parse_args()
-    ensure_yade()
+    debian_package.ensure("yade", "yade", "bench_yade")
     binary = os.path.join(args.build, "bin", "demcal-dem")
     cache = os.path.join(args.build, "cache")
-    package = subprocess.run(["dpkg-query", "-W", "-f", "${Version}", "yade"], capture_output=True, text=True)
-    print(f"peer: YADE {package.stdout.strip() or '(not a Debian package)'}, CPM uniaxial compression of a prism "
+    print(f"peer: YADE {debian_package.version('yade')}, CPM uniaxial compression of a prism "
           "(3D spheres); demcal: parallel-bonded UCS (2D disks); one thread each")
     print(f"{'YADE spheres':>12} {'steps':>6} {'interactions/sphere':>19} {'M/s':>7}   {'demcal disks':>12} {'steps':>6} "
           f"{'M/s':>7}   {'ratio per particle-step':>23}")

@@ -58,6 +58,11 @@ void write_curve(const dem::TestResult& r, const std::string& path) {
   table.write(path, "/curve");
 }
 
+// The scene's packed specimen at its default parameters (from the cache, or packed now).
+dem::Specimen packed_specimen(const dem::Scene& scene, std::uint64_t seed, const std::string& cache_dir) {
+  return dem::cached_specimen(scene.specimen(scene.resolve({}), seed), cache_dir);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,16 +201,13 @@ int main(int argc, char** argv) {
     }
     if (export_cmd->parsed()) {
       dem::Scene scene = dem::Scene::load(export_scene);
-      const dem::Specimen s =
-          dem::cached_specimen(scene.specimen(scene.resolve({}), export_seed), cache_dir);
+      const dem::Specimen s = packed_specimen(scene, export_seed, cache_dir);
       dem::write_lammps_data(s, export_lammps, scene.name() + ", seed " + std::to_string(export_seed));
       log::info("wrote " + std::to_string(s.size()) + " disks to " + export_lammps);
       return 0;
     }
     if (released_cmd->parsed()) {
-      dem::Scene scene = dem::Scene::load(released_scene);
-      const dem::Specimen s =
-          dem::cached_specimen(scene.specimen(scene.resolve({}), released_seed), cache_dir);
+      const dem::Specimen s = packed_specimen(dem::Scene::load(released_scene), released_seed, cache_dir);
       std::cout << dem::run_released_specimen(s, released).dump() << "\n";
       return 0;
     }

@@ -197,10 +197,11 @@ void World::rebuild() {
   wall_built_.resize(walls.size());
   for (std::size_t w = 0; w < walls.size(); ++w) wall_built_[w] = {walls[w].x0, walls[w].y0};
   max_disk_move2_ = 0;
-  // Threads: as asked, but at most one per min_disks_per_thread disks.
-  const int asked = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
-  const std::size_t per_thread = std::max<std::size_t>(settings_.min_disks_per_thread, 1);
-  threads_in_use_ = static_cast<int>(std::clamp<std::size_t>(bodies.size() / per_thread, 1, std::min<std::size_t>(static_cast<std::size_t>(std::max(asked, 1)), 255)));
+  // Threads: as asked, but at most one per min_disks_per_thread disks (and
+  // 255: a disk's owner is a byte).
+  const std::size_t asked = static_cast<std::size_t>(settings_.threads > 0 ? settings_.threads : omp_get_max_threads());
+  const std::size_t fit = bodies.size() / std::max<std::size_t>(settings_.min_disks_per_thread, 1);
+  threads_in_use_ = static_cast<int>(std::max<std::size_t>(1, std::min({asked, fit, std::size_t{255}})));
   if (threads_in_use_ > 1) build_thread_partition();
   ++rebuilds_;
   built_ = true;
