@@ -19,17 +19,13 @@ double translational_energy(const Bodies& b) {
 }  // namespace
 
 nlohmann::json run_released_specimen(const Specimen& s, const ReleasedRunOptions& o) {
-  if (!(o.dt_s > 0)) throw Error("--dt-s must be positive");
+  if (!(o.dt_s > 0)) throw Error("--dt must be positive");
   if (o.every == 0) throw Error("--every must be at least 1");
   WorldSettings settings;
   settings.thickness_m = s.thickness_m;
   settings.damping = 0.0;
   settings.fixed_dt_s = o.dt_s;
   settings.threads = o.threads;
-  double mean_radius = 0;
-  for (double r : s.radius) mean_radius += r;
-  mean_radius /= static_cast<double>(s.size());
-  settings.skin_m = 0.25 * mean_radius;  // the engine's default, stated so LAMMPS can use the same
   World world(settings);
   world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
                          "linear", {{"kn_n_m", o.kn_n_m}, {"ks_n_m", o.ks_n_m}, {"friction", o.friction}},
@@ -73,7 +69,7 @@ nlohmann::json run_released_specimen(const Specimen& s, const ReleasedRunOptions
           {"thickness_m", s.thickness_m},
           {"steps", o.steps},
           {"dt_s", world.dt_s()},
-          {"skin_m", settings.skin_m},
+          {"skin_m", world.skin_m()},  // the engine's default, stated so LAMMPS can use the same
           {"threads", world.threads_in_use()},
           {"rebuilds", world.rebuilds()},
           {"wall_s", run_s},

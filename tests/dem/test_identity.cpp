@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "../common/load_until_breaks.hpp"
 #include "demcal/core/rng.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
@@ -65,11 +66,7 @@ TEST(Identity, ReorderedDisksGiveTheSameBitsForEveryDisk) {
     World a = world_in_order(scene, parameters, s, in_order, platen, 3);
     World b = world_in_order(scene, parameters, s, shuffled, platen, 3);
     // Load until bonds break (their strengths drawn per bond), then as many steps more.
-    std::uint64_t steps = 0;
-    while (a.breaks().size() < 20 && steps < 200000) {
-      a.run(500);
-      steps += 500;
-    }
+    const std::uint64_t steps = test::load_until_breaks(a, 20);
     ASSERT_GE(a.breaks().size(), 20u) << file << ": the run should reach bond breakage";
     a.run(steps);
     b.run(2 * steps);

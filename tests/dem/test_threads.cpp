@@ -3,6 +3,7 @@
 // loop's order, and bond breaks are logged in pair order.
 #include <gtest/gtest.h>
 
+#include "../common/load_until_breaks.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -56,11 +57,7 @@ TEST(Threads, OneRunOnSeveralThreadsGivesTheSameBitsAsOnOne) {
       ASSERT_EQ(threaded.threads_in_use(), threads) << file;
       if (threads == 2) {
         // Load until bonds break, then as many steps more.
-        std::uint64_t steps = 0;
-        while (serial.breaks().size() < 20 && steps < 200000) {
-          serial.run(500);
-          steps += 500;
-        }
+        const std::uint64_t steps = test::load_until_breaks(serial, 20);
         ASSERT_GE(serial.breaks().size(), 20u) << file << ": the run should reach bond breakage";
         serial.run(steps);
       }

@@ -93,6 +93,8 @@ class World {
   std::uint64_t steps_done() const { return steps_; }
   double dt_s() const { return dt_s_; }
   std::uint64_t rebuilds() const { return rebuilds_; }
+  // The neighbour-list skin (settings, or 0.25 x the mean radius), set at the first build, m.
+  double skin_m() const { return skin_m_; }
   // Threads the force and integration loops use now (settings, disk count).
   int threads_in_use() const { return threads_in_use_; }
   const WorldSettings& settings() const { return settings_; }
