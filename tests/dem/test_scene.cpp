@@ -105,6 +105,20 @@ TEST(Scene, ShippedVariantsEqualTheirBaseExceptWhatTheyChange) {
   EXPECT_EQ(demo["specimen"]["porosity"], base["specimen"]["porosity"]);
 }
 
+TEST(Scene, AggregateFillIsAreaOrCountAndPartOfThePhysics) {
+  json concrete = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
+  EXPECT_EQ(Scene::from_json(concrete, "c.json").aggregates()->fill, demcal::dem::AggregateFill::area);  // the default
+  json count = concrete;
+  count["aggregates"]["fill"] = "count";
+  const Scene counted = Scene::from_json(count, "c.json");
+  EXPECT_EQ(counted.aggregates()->fill, demcal::dem::AggregateFill::count);
+  EXPECT_NE(counted.fingerprint(), Scene::from_json(concrete, "c.json").fingerprint());
+  count["aggregates"]["fill"] = "volume";
+  EXPECT_NE(error_of([&] { Scene::from_json(count, "c.json"); })
+                .find("c.json: aggregates: \"fill\" must be \"area\" (Walraven's area per bin) or \"count\""),
+            std::string::npos);
+}
+
 TEST(Scene, FingerprintCoversPhysicsNotDescriptionsNotesOrBounds) {
   const std::string original = Scene::from_json(small_scene(), "a").fingerprint();
   json cosmetic = small_scene();

@@ -33,9 +33,18 @@ double number_field(const json& object, const char* key, double fallback, const 
 // The aggregates object: sizes in mm as engineers give them.
 AggregateSpec aggregate_spec(const json& a, const std::string& where) {
   require_known_fields(a, {"size_range_mm", "bins", "coarse_fraction", "sides", "min_gap_m", "density_kg_m3", "max_attempts",
-                           "note"},
+                           "fill", "note"},
                        where);
   AggregateSpec spec;
+  if (a.contains("fill")) {
+    const json& f = a.at("fill");
+    if (f == "area")
+      spec.fill = AggregateFill::area;
+    else if (f == "count")
+      spec.fill = AggregateFill::count;
+    else
+      throw Error(where + ": \"fill\" must be \"area\" (Walraven's area per bin) or \"count\" (its circle-equivalent count)");
+  }
   if (a.contains("size_range_mm")) {
     const json& r = a.at("size_range_mm");
     if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())

@@ -160,11 +160,13 @@ AggregatePlacement place_aggregates(const AggregateSpec& spec, double width_m, d
     placement.target_area_fraction += bin.area_fraction;
     const double target_m2 = bin.area_fraction * section_m2;
     double drawn_m2 = 0;
-    for (;;) {
+    for (int drawn = 0;; ++drawn) {
+      if (spec.fill == AggregateFill::count && drawn == bin.count) break;
       const int sides = spec.sides_min + static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.sides_max - spec.sides_min + 1)));
       Polygon p = random_polygon(sides, rng.uniform(bin.d_low_m, bin.d_high_m), 0.0, 0.0, rng);
       const double a = p.area();
-      if (drawn_m2 + 0.5 * a > target_m2) break;  // it would overshoot by more than it fills
+      // Fill area: stop where the next one would overshoot by more than it fills.
+      if (spec.fill == AggregateFill::area && drawn_m2 + 0.5 * a > target_m2) break;
       drawn_m2 += a;
       shapes.push_back({std::move(p), b});
     }

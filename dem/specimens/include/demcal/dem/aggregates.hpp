@@ -12,7 +12,17 @@ class Rng;
 
 namespace demcal::dem {
 
+// How many polygons each size bin gets.
+//  - area: polygons are drawn until their own area meets the bin's Walraven
+//    share P_c, so the section holds Walraven's aggregate area.
+//  - count: the bin's circle-equivalent count (its share over the area of a
+//    circle of the bin's mean diameter), as Su et al. 2021 build their PFC2D
+//    concrete (59, 28, 15, 8 and 4 aggregates on 200 x 100 mm); polygons
+//    inscribed in those circles cover less than P_c (about 0.2 against 0.29).
+enum class AggregateFill { area, count };
+
 struct AggregateSpec {
+  AggregateFill fill = AggregateFill::area;
   double d_min_m = 0.005, d_max_m = 0.015;  // sieve sizes bounding the gradation
   int bins = 5;                             // equal-width size bins between them
   double coarse_fraction = 0.75;            // P_k, aggregate volume fraction of the concrete
@@ -70,8 +80,9 @@ struct AggregatePlacement {
   double target_area_fraction = 0;  // Walraven's P_c over the size range
 };
 
-// Draws polygons per size bin until their area meets the bin's Walraven share
-// (the last one kept while it brings the bin closer to it), then places them
+// Draws polygons per size bin, until their area meets the bin's Walraven share
+// (fill area: the last one kept while it brings the bin closer to it) or the
+// bin's circle-equivalent count (fill count), then places them
 // in [0, width] x [0, height], largest first, at random positions, each at
 // least min_gap from the boundary and from every other polygon (bounding
 // circles first, then the exact polygon distance). Throws, naming the
