@@ -133,8 +133,9 @@ TEST(Placement, EachSizeBinFillsWalravensShareOfThePublishedSection) {
 TEST(Placement, CountFillPlacesWalravensCircleEquivalentCounts) {
   // As Su et al. 2021 build their PFC2D concrete: 59, 28, 15, 8 and 4 polygons
   // on 100 x 200 mm. Inscribed in circles of the bins' diameters, they cover
-  // less than Walraven's P_c: a polygon of 4-6 sides at random angles covers
-  // 0.35-0.83 of its circle, so the section holds 0.35-0.83 of 0.287.
+  // less than Walraven's P_c: 4-6 vertices at random angles cover about 0.55
+  // of their circle on average (0.152-0.159 of the section, against 0.288, on
+  // the concrete scene's seeds 1-3), so 0.45-0.65 of P_c.
   AggregateSpec spec;
   spec.fill = AggregateFill::count;
   spec.min_gap_m = 0.001;
@@ -144,8 +145,8 @@ TEST(Placement, CountFillPlacesWalravensCircleEquivalentCounts) {
     ASSERT_EQ(a.bins.size(), 5u);
     for (int b = 0; b < 5; ++b) EXPECT_EQ(a.bins[static_cast<std::size_t>(b)].placed, published[b]) << "bin " << b;
     EXPECT_EQ(a.polygons.size(), 114u);
-    EXPECT_GT(a.area_fraction, 0.35 * a.target_area_fraction) << "seed " << seed;
-    EXPECT_LT(a.area_fraction, 0.83 * a.target_area_fraction) << "seed " << seed;
+    EXPECT_GT(a.area_fraction, 0.45 * a.target_area_fraction) << "seed " << seed;
+    EXPECT_LT(a.area_fraction, 0.65 * a.target_area_fraction) << "seed " << seed;
     // Area fill of the same seed holds more polygons for Walraven's area.
     spec.fill = AggregateFill::area;
     EXPECT_GT(place_aggregates(spec, 0.1, 0.2, seed).polygons.size(), 150u);

@@ -41,15 +41,15 @@ double walraven_fraction_below(double d0_m, double d_max_m, double coarse_fracti
 struct SizeBin {
   double d_low_m = 0, d_high_m = 0;
   int count = 0;            // circle-equivalent count for the section (what Su et al. 2021 publish)
-  double area_fraction = 0; // P_c(d_high) - P_c(d_low), the share placement fills
+  double area_fraction = 0; // P_c(d_high) - P_c(d_low), the share an area fill meets
   int placed = 0;                  // polygons placed in this bin
   double placed_area_fraction = 0; // their area / section area
 };
 
 // Aggregates per bin for a section of `area_m2`: area fraction of the bin
 // over the area of a circle of the bin's mean diameter, rounded. Polygons
-// inscribed in those circles fill less, so placement fills each bin's area
-// instead and places more of them.
+// inscribed in those circles fill less, so an area fill meets each bin's
+// area instead and places more of them; a count fill places these counts.
 std::vector<SizeBin> aggregate_counts(const AggregateSpec& spec, double area_m2);
 
 struct Polygon {
