@@ -76,14 +76,18 @@ TEST(ExactScaling, StressParametersTimesFourAndVelocityTimesTwoGiveTheSameRun) {
 }
 
 TEST(ExactScaling, AtTheSamePlatenVelocityTheOutputsStayWithinTheSeedNoise) {
-  // Common specimens (seeds 1-4) at k = 1, 2 and 10. The run is then
+  // Common specimens (seeds 1-6) at k = 1, 2 and 10. The run is then
   // sqrt(k) times slower relative to the specimen's wave time, which moves
   // the outputs by far less than the seed-to-seed scatter. Measured on this
-  // scene (seeds 1-6, 2026-12-01, before issue 14's genesis): mean paired shifts sigma_u +0.1 % (k = 2)
-  // and -0.9 % (k = 10), E +0.8 % and +0.7 %, nu 0.0 %; seed-to-seed CV 12 %.
+  // scene (2026-12-02, platens starting at the vessel faces), mean paired
+  // shifts over the seeds 1-6 asserted here: sigma_u +0.9 % (k = 2) and
+  // -1.2 % (k = 10), E -0.1 % and +0.2 %, nu -2.0 % and +0.6 %; seed-to-seed
+  // CV over seeds 1-8: 18 %, 4 % and 22 %. One specimen moves far more
+  // (seed 3: nu -11 % at k = 2, a different crack path), so four seeds were
+  // too few to average it out.
   const nlohmann::json j = scene_json("ucs_rock_cb_small.json");
   const Scene base = scaled_scene(j, 1.0, 1.0);
-  const int seeds = 4;
+  const int seeds = 6;
   std::vector<TestResult> reference;
   for (int s = 1; s <= seeds; ++s) reference.push_back(run(base, s));
   for (double k : {2.0, 10.0}) {
@@ -101,7 +105,7 @@ TEST(ExactScaling, AtTheSamePlatenVelocityTheOutputsStayWithinTheSeedNoise) {
       for (const TestResult& r : reference) mean += r.macro.at(name) / seeds;
       for (const TestResult& r : reference) ss += std::pow(r.macro.at(name) - mean, 2);
       const double standard_error_pct = 100.0 * std::sqrt(ss / (seeds - 1)) / std::sqrt(double(seeds)) / mean;
-      EXPECT_LT(std::fabs(shift), standard_error_pct) << name << " at k = " << k;  // within the noise of a 4-seed mean
+      EXPECT_LT(std::fabs(shift), standard_error_pct) << name << " at k = " << k;  // within the noise of a 6-seed mean
       EXPECT_LT(std::fabs(shift), 3.0) << name << " at k = " << k;
     }
   }

@@ -28,6 +28,7 @@ World world_in_order(const Scene& scene, const std::map<std::string, double>& pa
                           static_cast<std::int64_t>(i));
   world.walls = like.walls;
   world.install_bonds(0.01 * *std::min_element(s.radius.begin(), s.radius.end()), seed);
+  world.make_wall_contacts_force_free();  // as make_platen_world starts them at the vessel's faces
   return world;
 }
 

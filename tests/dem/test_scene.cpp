@@ -105,7 +105,7 @@ TEST(Scene, ShippedVariantsEqualTheirBaseExceptWhatTheyChange) {
   EXPECT_EQ(demo["specimen"]["porosity"], base["specimen"]["porosity"]);
 }
 
-TEST(Scene, AggregateFillIsAreaOrCountAndPartOfThePhysics) {
+TEST(Scene, AggregateFillAndPlatenStartAreCheckedChoices) {
   json concrete = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
   EXPECT_EQ(Scene::from_json(concrete, "c.json").aggregates()->fill, demcal::dem::AggregateFill::area);  // the default
   json count = concrete;
@@ -113,9 +113,19 @@ TEST(Scene, AggregateFillIsAreaOrCountAndPartOfThePhysics) {
   const Scene counted = Scene::from_json(count, "c.json");
   EXPECT_EQ(counted.aggregates()->fill, demcal::dem::AggregateFill::count);
   EXPECT_NE(counted.fingerprint(), Scene::from_json(concrete, "c.json").fingerprint());
+  json outer = concrete;
+  outer["loading"]["platen_start"] = "outermost_disks";
+  EXPECT_EQ(Scene::from_json(outer, "c.json").loading().platen_start,
+            demcal::dem::LoadingSpec::PlatenStart::outermost_disks);
+  EXPECT_EQ(Scene::from_json(concrete, "c.json").loading().platen_start,
+            demcal::dem::LoadingSpec::PlatenStart::vessel_faces);  // the default, as PFC
+  outer["loading"]["platen_start"] = "top";
+  EXPECT_NE(error_of([&] { Scene::from_json(outer, "c.json"); })
+                .find("c.json: loading: \"platen_start\" must be \"vessel_faces\" or \"outermost_disks\" (got \"top\")"),
+            std::string::npos);
   count["aggregates"]["fill"] = "volume";
   EXPECT_NE(error_of([&] { Scene::from_json(count, "c.json"); })
-                .find("c.json: aggregates: \"fill\" must be \"area\" (Walraven's area per bin) or \"count\""),
+                .find("c.json: aggregates: \"fill\" must be \"area\" or \"count\" (got \"volume\")"),
             std::string::npos);
 }
 

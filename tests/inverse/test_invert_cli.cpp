@@ -228,7 +228,7 @@ class DemcalInvertDemInTheLoop : public ::testing::Test {
   }
   std::string args(const std::string& out) const {
     return "--dem-scene " + scene_ + " --space " + space_ +
-           " --target sigma_u_MPa=16 --target E_GPa=20 --algo sa --objective max-rel --set parallel_trials=2"
+           " --target sigma_u_MPa=21 --target E_GPa=25 --algo sa --objective max-rel --set parallel_trials=2"
            " --jobs 2 --budget 300 --cache " + temp_path("dem_loop_cache") + " --out " + out;
   }
   std::string scene_ = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";

@@ -92,6 +92,27 @@ std::size_t World::install_bonds(double tolerance_m, std::uint64_t seed, double 
   return installed;
 }
 
+std::size_t World::make_wall_contacts_force_free() {
+  rebuild();
+  std::size_t touching = 0;
+  for (std::uint8_t m : wall_run_models_) {
+    PairBlock block = wall_pairs_.block(m);
+    for (std::size_t k = 0; k < block.size; ++k) {
+      const std::size_t i = static_cast<std::size_t>(block.i[k]);
+      const Wall& wall = walls[static_cast<std::size_t>(block.j[k])];
+      if (!wall.active) continue;
+      // The overlap as the force loop computes it, so the contact is exactly force-free.
+      double dx, dy, distance;
+      wall_offset(wall, bodies.x[i], bodies.y[i], dx, dy, distance);
+      const double overlap = bodies.radius[i] - distance;
+      if (overlap <= 0) continue;
+      models_[m]->make_force_free(block, k, overlap);
+      ++touching;
+    }
+  }
+  return touching;
+}
+
 void World::start_test() {
   breaks_.clear();
   steps_ = 0;

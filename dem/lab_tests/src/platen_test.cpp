@@ -96,6 +96,14 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     world.start_test();
   }
 
+  // A prism cut from nothing (no keep mask) and not relaxed out of its vessel
+  // starts between the vessel's faces, as PFC's platens do.
+  const bool vessel_faces = scene.loading().platen_start == LoadingSpec::PlatenStart::vessel_faces && !keep &&
+                            locked_in_fraction == 0;
+  if (vessel_faces) {
+    bottom_y = 0;
+    top_y = specimen.height_m;
+  }
   const double W = specimen.width_m, v = scene.loading().platen_velocity_m_s;
   Wall bottom, top;
   bottom.x0 = top.x0 = -W;
@@ -106,7 +114,12 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   bottom.vy = v;
   top.vy = -v;
   world.walls = {bottom, top};
-  world.refresh();
+  if (vessel_faces) {
+    const std::size_t touching = world.make_wall_contacts_force_free();  // rebuilds the pairs with the platens
+    if (info) (*info)["platen_contacts_at_start"] = static_cast<double>(touching);
+  } else {
+    world.refresh();
+  }
   if (info) {
     // The packing as genesis left it (over the whole packed box) and this specimen's bonds and contact stress.
     (*info)["coordination_number"] = specimen.coordination_number;

@@ -30,21 +30,26 @@ double number_field(const json& object, const char* key, double fallback, const 
   return v.get<double>();
 }
 
+// A string field that must be one of `choices`; returns its index (`fallback` when absent).
+std::size_t choice_field(const json& object, const char* key, const std::vector<std::string>& choices,
+                         std::size_t fallback, const std::string& where) {
+  if (!object.contains(key)) return fallback;
+  const json& v = object.at(key);
+  for (std::size_t c = 0; c < choices.size(); ++c)
+    if (v == choices[c]) return c;
+  std::string allowed;
+  for (const std::string& c : choices) allowed += (allowed.empty() ? "\"" : " or \"") + c + "\"";
+  throw Error(where + ": \"" + key + "\" must be " + allowed + " (got " + v.dump() + ")");
+}
+
 // The aggregates object: sizes in mm as engineers give them.
 AggregateSpec aggregate_spec(const json& a, const std::string& where) {
   require_known_fields(a, {"size_range_mm", "bins", "coarse_fraction", "sides", "min_gap_m", "density_kg_m3", "max_attempts",
                            "fill", "note"},
                        where);
   AggregateSpec spec;
-  if (a.contains("fill")) {
-    const json& f = a.at("fill");
-    if (f == "area")
-      spec.fill = AggregateFill::area;
-    else if (f == "count")
-      spec.fill = AggregateFill::count;
-    else
-      throw Error(where + ": \"fill\" must be \"area\" (Walraven's area per bin) or \"count\" (its circle-equivalent count)");
-  }
+  // area: Walraven's area per bin; count: its circle-equivalent count.
+  spec.fill = choice_field(a, "fill", {"area", "count"}, 0, where) == 0 ? AggregateFill::area : AggregateFill::count;
   if (a.contains("size_range_mm")) {
     const json& r = a.at("size_range_mm");
     if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
@@ -141,8 +146,9 @@ json Scene::with_finer_disks(json scene, double factor, const std::string& origi
 namespace {
 
 // Raise when a change of the engine changes results (2: a burst past the peak
-// ends the test instead of failing it).
-constexpr int kResultsVersion = 2;
+// ends the test instead of failing it; 3: a prism's platens start at its
+// vessel's faces).
+constexpr int kResultsVersion = 3;
 
 void drop_notes(json& value) {
   if (!value.is_object()) return;
@@ -259,9 +265,12 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
-                  "bond_gap_tolerance_m", "density_scaling_dt_s"},
+                  "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start"},
               where);
     LoadingSpec& s = scene.loading_;
+    s.platen_start = choice_field(l, "platen_start", {"vessel_faces", "outermost_disks"}, 0, where) == 0
+                         ? LoadingSpec::PlatenStart::vessel_faces
+                         : LoadingSpec::PlatenStart::outermost_disks;
     s.platen_velocity_m_s = number_field(l, "platen_velocity_m_s", s.platen_velocity_m_s, where);
     s.stop_fraction_of_peak = number_field(l, "stop_fraction_of_peak", s.stop_fraction_of_peak, where);
     s.strain_limit = number_field(l, "strain_limit", s.strain_limit, where);

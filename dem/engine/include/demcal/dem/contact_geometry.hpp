@@ -107,6 +107,18 @@ inline void for_disk_pairs(const PairBlock& c, Bodies& b, const StepContext& ste
     for_disk_pairs_into<false>(c, b, nullptr, law, skip);
 }
 
+// From the wall's point nearest to (x, y) to (x, y): the offset and its length.
+inline void wall_offset(const Wall& wall, double x, double y, double& dx, double& dy, double& distance) {
+  const double ex = wall.x1 - wall.x0, ey = wall.y1 - wall.y0;
+  const double length2 = ex * ex + ey * ey;
+  double s = length2 > 0 ? ((x - wall.x0) * ex + (y - wall.y0) * ey) / length2 : 0.0;
+  s = s < 0 ? 0 : (s > 1 ? 1 : s);
+  const double px = wall.x0 + s * ex, py = wall.y0 + s * ey;
+  dx = x - px;
+  dy = y - py;
+  distance = std::sqrt(dx * dx + dy * dy);
+}
+
 // Disk-wall pairs: c.i is the disk, c.j the wall.
 template <typename Law, typename Skip>
 inline void for_wall_pairs(const PairBlock& c, Bodies& b, std::vector<Wall>& walls, Law law, Skip skip) {
@@ -114,14 +126,8 @@ inline void for_wall_pairs(const PairBlock& c, Bodies& b, std::vector<Wall>& wal
     const std::int32_t i = c.i[k];
     Wall& wall = walls[static_cast<std::size_t>(c.j[k])];
     if (!wall.active) continue;
-    // Closest point of the segment to the disk centre.
-    const double ex = wall.x1 - wall.x0, ey = wall.y1 - wall.y0;
-    const double length2 = ex * ex + ey * ey;
-    double s = length2 > 0 ? ((b.x[i] - wall.x0) * ex + (b.y[i] - wall.y0) * ey) / length2 : 0.0;
-    s = s < 0 ? 0 : (s > 1 ? 1 : s);
-    const double px = wall.x0 + s * ex, py = wall.y0 + s * ey;
-    const double dx = b.x[i] - px, dy = b.y[i] - py;
-    const double distance = std::sqrt(dx * dx + dy * dy);
+    double dx, dy, distance;
+    wall_offset(wall, b.x[i], b.y[i], dx, dy, distance);
     const double overlap = b.radius[i] - distance;
     if (skip(k, -overlap) || distance == 0.0) continue;
     Geometry g;

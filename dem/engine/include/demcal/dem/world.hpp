@@ -84,6 +84,12 @@ class World {
   // Returns the number of bonds installed.
   std::size_t install_bonds(double tolerance_m, std::uint64_t seed,
                             double locked_in_fraction = 0.0);
+  // Makes every disk-wall contact force-free as it lies: each overlapping
+  // pair's reference overlap becomes its overlap, so walls placed where the
+  // packing's vessel was touch every disk that touched the vessel without
+  // pushing it (PFC: the vessel's walls become the platens). Returns the
+  // number of disk-wall contacts so set.
+  std::size_t make_wall_contacts_force_free();
   // Clears the break log and the step and time counters, and stops every
   // body: what came before (relaxing a locked-in stress) prepared the
   // specimen and is not part of the test.

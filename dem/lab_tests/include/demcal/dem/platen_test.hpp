@@ -27,15 +27,19 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
 // Disks of `specimen` (only those with keep[i] when `keep` is given), the
 // scene's contact models, bonds on every pair closer than the scene's
 // tolerance with every overlapping pair force-free as it lies, and a bottom
-// and a top platen touching the lowest and highest disk and moving towards
-// each other at the loading velocity. Walls: [0] bottom, [1] top.
+// and a top platen moving towards each other at the loading velocity. A
+// prism's platens start at its vessel's faces, touching every disk that
+// touched the vessel with no force (loading.platen_start); a disc cut by
+// `keep`, or a relaxed locked-in specimen, has them touch its lowest and
+// highest disk. Walls: [0] bottom, [1] top.
 // A scene with aggregates also places them (seeded by `seed`), makes their
 // clumps and binds the mortar, interface and aggregate contacts. With
 // specimen.locked_in_stress_pa the contacts keep that mean stress instead and
 // the specimen relaxes, without walls, until the bonds hold it; the test's
 // counters start after that. `info`, when given, receives what the specimen
 // holds (aggregates placed, disks in them, the packing's coordination number
-// and overlaps, bonds per disk, the contacts' locked-in stress).
+// and overlaps, bonds per disk, the contacts' locked-in stress, the disks
+// touching the platens at the start when they start at the vessel's faces).
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
                         std::map<std::string, double>* info = nullptr);

@@ -73,6 +73,15 @@ struct LoadingSpec {
   double max_wall_s = 3600;            // a run longer than this is recorded as failed (timeout)
   double bond_gap_tolerance_m = 0;     // 0: 1 % of the smallest radius
   double density_scaling_dt_s = 0;     // > 0: density scaling to this time step (stated in the result)
+  // Where the platens of a packed prism start: at the faces of the vessel it
+  // was packed in, touching every disk that touched the vessel, force-free as
+  // they lie (PFC: the vessel's walls become the platens); or at the
+  // outermost disks, which makes the first strain close the ends' roughness.
+  // A Brazilian disc (cut from the packing) and a specimen relaxed out of its
+  // vessel (a locked-in stress) have no vessel faces: they start at their
+  // outermost disks either way.
+  enum class PlatenStart { vessel_faces, outermost_disks };
+  PlatenStart platen_start = PlatenStart::vessel_faces;
 };
 
 class Scene {
