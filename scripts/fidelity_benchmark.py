@@ -11,6 +11,9 @@ what PFC2D gave there.
   rock           Wang & Cao 2017's calibrated sandstone (data/scenes/ucs_rock_cb.json defaults), 5 seeds,
                  against their PFC2D run (data/literature/wang2017_rock_sa.json).
 
+The summary also gives the resolution shift: fine over default for the same parameter set and seed, where both
+l64 and l64_fine (or both reference parts) hold it; the default resolution's comparison is judged within it.
+
 Each part is a resumable `demcal-dem batch` under BUILD/fidelity_benchmark/PART (finished points are skipped, so an
 interrupted run goes on where it stopped); --only runs some parts. The summary (Markdown: per output the median
 ratio ours / PFC2D, its interquartile range, the correlation, our seed CV; the commits the runs were made at; the
@@ -200,6 +203,38 @@ def plan_table(part, build, published):
     return lines, points, failed
 
 
+def by_run_and_seed(part, build):
+    """{(run, seed): {output: value}} of a part's ok runs, from its CSV."""
+    path = os.path.join(build, "fidelity_benchmark", part, "responses.csv")
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        pairs = {}
+        for row in csv.DictReader(f):
+            if row["status"] != "ok":
+                continue
+            values = {o: float(row[OURS[o]]) for o in OUTPUTS if row.get(OURS[o]) not in (None, "")}
+            pairs[(row["run"], row["seed"])] = {o: v for o, v in values.items() if math.isfinite(v)}
+        return pairs
+
+
+def resolution_rows(build):
+    """The resolution shift: fine over default for the same parameter set and seed (the same packing seed at two disk
+    sizes), where both parts hold it; the L64 comparison at the default resolution is judged within this shift."""
+    lines = []
+    for coarse, fine in (("l64", "l64_fine"), ("reference", "reference_fine")):
+        a, b = by_run_and_seed(coarse, build), by_run_and_seed(fine, build)
+        pairs = sorted(set(a) & set(b), key=lambda k: (int(k[0]), int(k[1])))
+        for o in OUTPUTS:
+            ratios = [b[k][o] / a[k][o] for k in pairs if o in a[k] and o in b[k] and a[k][o]]
+            if len(ratios) < 2:
+                lines.append(f"| {fine} / {coarse} | {o} | {len(ratios)} | | |")
+                continue
+            lines.append(f"| {fine} / {coarse} | {o} | {len(ratios)} | {statistics.median(ratios):.3f} | "
+                         f"{min(ratios):.3f}-{max(ratios):.3f} |")
+    return lines
+
+
 def reference_row(part, build, pfc, outputs):
     by_run, failed = results(part, build)
     if not by_run:
@@ -291,6 +326,9 @@ def summary(build, figure_copy):
         rows, failed = reference_row(part, build, ref, outs)
         lines += rows
         failures[part] = failed
+    lines += ["", "The resolution shift (published over default resolution, the same parameter set and seed; nu is nu50):",
+              "", "| parts | output | pairs | median | range |", "|---|---|---|---|---|"]
+    lines += resolution_rows(build)
     lines += ["", "The specimens (means over the stored runs):", "",
               "| part | disks | porosity | bonds per disk | locked-in stress MPa |", "|---|---|---|---|---|"]
     for part in PARTS:
