@@ -50,9 +50,9 @@ calibrate: build
 calibration-benchmark: build
 	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global) $(if $(KRIGING),--kriging)
 
-# Our DEM at published PFC2D parameter sets (docs/fidelity.md); hours, resumable.
+# Our DEM at published PFC2D parameter sets (docs/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
 fidelity-benchmark: build
-	scripts/fidelity_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(FIGURE),--figure $(FIGURE))
+	scripts/fidelity_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(QUICK),--quick) $(if $(FIGURE),--figure $(FIGURE))
 
 bench: build
 	@scripts/bench.sh $(BUILD)

@@ -20,7 +20,7 @@ ratio ours / PFC2D, its interquartile range, the correlation, our seed CV; the c
 machine) goes to BUILD/fidelity_benchmark/summary.md, and the figure of ours against PFC2D to
 BUILD/fidelity_benchmark/fidelity_l64.png (--figure copies it elsewhere, e.g. docs/figures/).
 
-    scripts/fidelity_benchmark.py [--build build] [--jobs 2] [--only PART,PART] [--summary-only] [--figure PATH]
+    scripts/fidelity_benchmark.py [--build build] [--jobs 2] [--only PART,PART] [--quick] [--summary-only] [--figure PATH]
 """
 import argparse
 import csv
@@ -90,16 +90,17 @@ def reference_values():
     return concrete, {"sigma_u_MPa": macro["ucs_MPa"], "E_GPa": macro["E_GPa"]}
 
 
-def part_plan(part, bin_dir):
-    """(scene, design rows as {run, parameters...}, seeds) of a part."""
+def part_plan(part, bin_dir, quick=False):
+    """(scene, design rows as {run, parameters...}, seeds) of a part. Quick: both L64 parts on the published
+    resolution's 16 points at seed 1 only (about an hour; a later full run resumes from them)."""
     if part in ("l64", "l64_fine"):
         scene = CONCRETE if part == "l64" else CONCRETE_FINE
         names = scene_parameters(scene, bin_dir)
         rows = l64_rows()
-        if part == "l64_fine":
+        if part == "l64_fine" or quick:
             rows = [r for r in rows if (int(r["run"]) - 1) % 4 == 0]
         design = [{"run": r["run"], **{n: r[n] for n in names}} for r in rows]
-        return scene, design, 3 if part == "l64" else 2
+        return scene, design, 1 if quick else (3 if part == "l64" else 2)
     if part in ("reference", "reference_fine"):
         scene = CONCRETE if part == "reference" else CONCRETE_FINE
         return scene, [{"run": "1", **scene_parameters(scene, bin_dir)}], 5 if part == "reference" else 3
@@ -123,11 +124,11 @@ def machine():
     return f"{os.cpu_count()} cores, {model}, {platform.system()} {platform.release()}"
 
 
-def run_part(part, build, jobs):
+def run_part(part, build, jobs, quick):
     bin_dir = os.path.join(build, "bin")
     folder = os.path.join(build, "fidelity_benchmark", part)
     os.makedirs(folder, exist_ok=True)
-    scene, design, seeds = part_plan(part, bin_dir)
+    scene, design, seeds = part_plan(part, bin_dir, quick)
     design_path = os.path.join(folder, "design.csv")
     with open(design_path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(design[0]))
@@ -357,6 +358,8 @@ def main():
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--only", help="comma-separated parts: " + ", ".join(PARTS))
     p.add_argument("--summary-only", action="store_true")
+    p.add_argument("--quick", action="store_true",
+                   help="the L64 parts on the 16 points of l64_fine at seed 1 only (about an hour)")
     p.add_argument("--figure", help="also copy the figure here")
     args = p.parse_args()
     only = args.only.split(",") if args.only else PARTS
@@ -367,7 +370,7 @@ def main():
     if not args.summary_only:
         for part in PARTS:
             if part in only:
-                run_part(part, build, args.jobs)
+                run_part(part, build, args.jobs, args.quick)
     summary(build, args.figure)
 
 
