@@ -106,7 +106,10 @@ TEST(Scene, ShippedVariantsEqualTheirBaseExceptWhatTheyChange) {
 }
 
 TEST(Scene, AggregateFillAndPlatenStartAreCheckedChoices) {
-  json concrete = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
+  json shipped = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
+  EXPECT_EQ(Scene::from_json(shipped, "c.json").aggregates()->fill, demcal::dem::AggregateFill::count);  // as Su et al.
+  json concrete = shipped;
+  concrete["aggregates"].erase("fill");
   EXPECT_EQ(Scene::from_json(concrete, "c.json").aggregates()->fill, demcal::dem::AggregateFill::area);  // the default
   json count = concrete;
   count["aggregates"]["fill"] = "count";
