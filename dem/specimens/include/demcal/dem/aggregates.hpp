@@ -18,7 +18,7 @@ namespace demcal::dem {
 //  - count: the bin's circle-equivalent count (its share over the area of a
 //    circle of the bin's mean diameter), as Su et al. 2021 build their PFC2D
 //    concrete (59, 28, 15, 8 and 4 aggregates on 200 x 100 mm); polygons
-//    inscribed in those circles cover less than P_c (about 0.2 against 0.29).
+//    inscribed in those circles cover less than P_c (about 0.15 against 0.29).
 enum class AggregateFill { area, count };
 
 struct AggregateSpec {
