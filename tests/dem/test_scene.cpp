@@ -126,6 +126,14 @@ TEST(Scene, AggregateFillAndPlatenStartAreCheckedChoices) {
   EXPECT_NE(error_of([&] { Scene::from_json(outer, "c.json"); })
                 .find("c.json: loading: \"platen_start\" must be \"vessel_faces\" or \"outermost_disks\" (got \"top\")"),
             std::string::npos);
+  json damping = concrete;
+  damping["loading"]["local_damping"] = 1.2;
+  EXPECT_NE(error_of([&] { Scene::from_json(damping, "c.json"); }).find("c.json: loading: local_damping must lie in [0, 1)"),
+            std::string::npos);
+  damping["loading"]["local_damping"] = 0.3;
+  EXPECT_EQ(Scene::from_json(damping, "c.json").loading().local_damping, 0.3);
+  EXPECT_EQ(Scene::from_json(concrete, "c.json").loading().local_damping, 0.7);
+  EXPECT_NE(Scene::from_json(damping, "c.json").fingerprint(), Scene::from_json(concrete, "c.json").fingerprint());
   count["aggregates"]["fill"] = "volume";
   EXPECT_NE(error_of([&] { Scene::from_json(count, "c.json"); })
                 .find("c.json: aggregates: \"fill\" must be \"area\" or \"count\" (got \"volume\")"),

@@ -35,6 +35,7 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   WorldSettings settings;
   settings.thickness_m = specimen.thickness_m;
   settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
+  settings.damping = scene.loading().local_damping;
   World world(settings);
   bind_contact_models(world, scene, parameters);
   world.bodies.reserve(specimen.size());

@@ -265,7 +265,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
-                  "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start"},
+                  "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start", "local_damping"},
               where);
     LoadingSpec& s = scene.loading_;
     s.platen_start = choice_field(l, "platen_start", {"vessel_faces", "outermost_disks"}, 0, where) == 0
@@ -279,6 +279,8 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     s.bond_gap_tolerance_m = number_field(l, "bond_gap_tolerance_m", s.bond_gap_tolerance_m, where);
     s.density_scaling_dt_s = number_field(l, "density_scaling_dt_s", s.density_scaling_dt_s, where);
     if (s.density_scaling_dt_s < 0) throw Error(where + ": density_scaling_dt_s must be >= 0");
+    s.local_damping = number_field(l, "local_damping", s.local_damping, where);
+    if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(where + ": local_damping must lie in [0, 1)");
     // A quasi-static test: platens faster than 10 m/s would be an impact test.
     if (!(s.platen_velocity_m_s > 0 && s.platen_velocity_m_s <= 10))
       throw Error(where + ": platen_velocity_m_s must lie in (0, 10] m/s");

@@ -73,6 +73,7 @@ struct LoadingSpec {
   double max_wall_s = 3600;            // a run longer than this is recorded as failed (timeout)
   double bond_gap_tolerance_m = 0;     // 0: 1 % of the smallest radius
   double density_scaling_dt_s = 0;     // > 0: density scaling to this time step (stated in the result)
+  double local_damping = 0.7;          // alpha of the local non-viscous damping (PFC's default for quasi-static tests)
   // Where the platens of a packed prism start: at the faces of the vessel it
   // was packed in, touching every disk that touched the vessel, force-free as
   // they lie (PFC: the vessel's walls become the platens); or at the
