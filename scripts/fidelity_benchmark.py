@@ -146,20 +146,31 @@ def run_part(part, build, jobs, quick):
         fail(f"{part}: demcal-dem batch failed (exit {code})")
 
 
-def results(part, build):
-    """{run: [macro dict per ok seed]}, failures [(run, seed, reason)] of a part's stored runs."""
-    folder = os.path.join(build, "fidelity_benchmark", part)
-    path = os.path.join(folder, "responses.csv")
+def stored_runs(part, build):
+    """{(run, seed): {output: finite value}} of a part's ok runs, in CSV order, and its failures [(run, seed,
+    reason)]; None for the runs when the part has no CSV yet."""
+    path = os.path.join(build, "fidelity_benchmark", part, "responses.csv")
     if not os.path.exists(path):
         return None, []
-    by_run, failed = {}, []
+    ok, failed = {}, []
     with open(path) as f:
         for row in csv.DictReader(f):
             if row["status"] != "ok":  # "failed: <reason>"
                 failed.append((row["run"], row["seed"], row["status"].removeprefix("failed: ")))
                 continue
             values = {o: float(row[OURS[o]]) for o in OUTPUTS if row.get(OURS[o]) not in (None, "")}
-            by_run.setdefault(row["run"], []).append({o: v for o, v in values.items() if math.isfinite(v)})
+            ok[(row["run"], row["seed"])] = {o: v for o, v in values.items() if math.isfinite(v)}
+    return ok, failed
+
+
+def results(part, build):
+    """{run: [macro dict per ok seed]}, failures [(run, seed, reason)] of a part's stored runs."""
+    ok, failed = stored_runs(part, build)
+    if ok is None:
+        return None, failed
+    by_run = {}
+    for (run, _), values in ok.items():
+        by_run.setdefault(run, []).append(values)
     return by_run, failed
 
 
@@ -204,27 +215,12 @@ def plan_table(part, build, published):
     return lines, points, failed
 
 
-def by_run_and_seed(part, build):
-    """{(run, seed): {output: value}} of a part's ok runs, from its CSV."""
-    path = os.path.join(build, "fidelity_benchmark", part, "responses.csv")
-    if not os.path.exists(path):
-        return {}
-    with open(path) as f:
-        pairs = {}
-        for row in csv.DictReader(f):
-            if row["status"] != "ok":
-                continue
-            values = {o: float(row[OURS[o]]) for o in OUTPUTS if row.get(OURS[o]) not in (None, "")}
-            pairs[(row["run"], row["seed"])] = {o: v for o, v in values.items() if math.isfinite(v)}
-        return pairs
-
-
 def resolution_rows(build):
     """The resolution shift: fine over default for the same parameter set and seed (the same packing seed at two disk
     sizes), where both parts hold it; the L64 comparison at the default resolution is judged within this shift."""
     lines = []
     for coarse, fine in (("l64", "l64_fine"), ("reference", "reference_fine")):
-        a, b = by_run_and_seed(coarse, build), by_run_and_seed(fine, build)
+        a, b = stored_runs(coarse, build)[0] or {}, stored_runs(fine, build)[0] or {}
         pairs = sorted(set(a) & set(b), key=lambda k: (int(k[0]), int(k[1])))
         for o in OUTPUTS:
             ratios = [b[k][o] / a[k][o] for k in pairs if o in a[k] and o in b[k] and a[k][o]]
