@@ -42,19 +42,12 @@ std::map<std::string, double> parse_sets(const std::vector<std::string>& sets) {
   return values;
 }
 
+// The columns of the stored curve (dem::curve_json), in a fixed order.
 void write_curve(const dem::TestResult& r, const std::string& path) {
+  const nlohmann::json curve = dem::curve_json(r);
   Table table;
-  std::vector<double> strain, stress, lateral, cracks;
-  for (const auto& p : r.curve) {
-    strain.push_back(p.axial_strain);
-    stress.push_back(p.stress_pa / 1e6);
-    lateral.push_back(p.lateral_strain);
-    cracks.push_back(static_cast<double>(p.cracks));
-  }
-  table.add_column("axial_strain", strain);
-  table.add_column("stress_MPa", stress);
-  table.add_column("lateral_strain", lateral);
-  table.add_column("cracks", cracks);
+  for (const char* column : {"axial_strain", "stress_MPa", "lateral_strain", "cracks", "confining_stress_MPa"})
+    if (curve.contains(column)) table.add_column(column, curve.at(column).get<std::vector<double>>());
   table.write(path, "/curve");
 }
 

@@ -113,6 +113,25 @@ std::size_t World::make_wall_contacts_force_free() {
   return touching;
 }
 
+double World::wall_contact_stiffness_n_m(std::size_t w) const {
+  double sum = 0;
+  if (w >= walls.size() || !walls[w].active) return 0;
+  for (std::uint8_t m : wall_run_models_) {
+    const ConstPairBlock block = wall_pairs_.block(m);
+    for (std::size_t k = 0; k < block.size; ++k) {
+      if (static_cast<std::size_t>(block.j[k]) != w) continue;
+      const std::size_t i = static_cast<std::size_t>(block.i[k]);
+      double dx, dy, distance;
+      wall_offset(walls[w], bodies.x[i], bodies.y[i], dx, dy, distance);
+      if (bodies.radius[i] - distance <= 0) continue;
+      double translational = 0, rotational = 0;
+      models_[m]->stiffness(block, k, bodies.radius[i], translational, rotational);
+      sum += translational;
+    }
+  }
+  return sum;
+}
+
 void World::start_test() {
   breaks_.clear();
   steps_ = 0;

@@ -39,6 +39,7 @@ std::vector<std::string> LabTestRegistry::names() const {
 void register_builtin_tests(LabTestRegistry& registry) {
   register_ucs_test(registry);
   register_brazilian_test(registry);
+  register_biaxial_test(registry);
 }
 
 TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {

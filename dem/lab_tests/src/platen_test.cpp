@@ -31,7 +31,7 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene) {
 
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep,
-                        std::map<std::string, double>* info) {
+                        std::map<std::string, double>* info, bool side_walls) {
   WorldSettings settings;
   settings.thickness_m = specimen.thickness_m;
   settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
@@ -39,13 +39,15 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   World world(settings);
   bind_contact_models(world, scene, parameters);
   world.bodies.reserve(specimen.size());
-  double bottom_y = INFINITY, top_y = -INFINITY, r_min = INFINITY;
+  double bottom_y = INFINITY, top_y = -INFINITY, left_x = INFINITY, right_x = -INFINITY, r_min = INFINITY;
   for (std::size_t i = 0; i < specimen.size(); ++i) {
     if (keep && !(*keep)[i]) continue;
     world.bodies.add_disk(specimen.x[i], specimen.y[i], specimen.radius[i], specimen.density_kg_m3,
                           specimen.thickness_m, kSpecimenGroup, static_cast<std::int64_t>(i));
     bottom_y = std::min(bottom_y, specimen.y[i] - specimen.radius[i]);
     top_y = std::max(top_y, specimen.y[i] + specimen.radius[i]);
+    left_x = std::min(left_x, specimen.x[i] - specimen.radius[i]);
+    right_x = std::max(right_x, specimen.x[i] + specimen.radius[i]);
     r_min = std::min(r_min, specimen.radius[i]);
   }
   if (world.bodies.size() < 10) throw Error("the specimen holds fewer than 10 disks");
@@ -87,11 +89,13 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     // Out of the vessel, the specimen relaxes until the bonds hold the stress (PFC: remove the walls, equilibrate).
     if (!cycle_to_equilibrium(world, 1e-3, 200000))
       throw Error(scene.origin() + ": the specimen did not reach equilibrium after installing the locked-in stress");
-    bottom_y = INFINITY;
-    top_y = -INFINITY;
+    bottom_y = left_x = INFINITY;
+    top_y = right_x = -INFINITY;
     for (std::size_t i = 0; i < world.bodies.size(); ++i) {
       bottom_y = std::min(bottom_y, world.bodies.y[i] - world.bodies.radius[i]);
       top_y = std::max(top_y, world.bodies.y[i] + world.bodies.radius[i]);
+      left_x = std::min(left_x, world.bodies.x[i] - world.bodies.radius[i]);
+      right_x = std::max(right_x, world.bodies.x[i] + world.bodies.radius[i]);
     }
     if (info) (*info)["locked_in_relaxation_breaks"] = static_cast<double>(world.breaks().size());
     world.start_test();
@@ -104,6 +108,8 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   if (vessel_faces) {
     bottom_y = 0;
     top_y = specimen.height_m;
+    left_x = 0;
+    right_x = specimen.width_m;
   }
   const double W = specimen.width_m, v = scene.loading().platen_velocity_m_s;
   Wall bottom, top;
@@ -114,7 +120,22 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   bottom.group = top.group = kPlatenGroup;
   bottom.vy = v;
   top.vy = -v;
+  bottom.inward_ny = 1;
+  top.inward_ny = -1;
   world.walls = {bottom, top};
+  if (side_walls) {
+    const double H = top_y - bottom_y;
+    Wall left, right;
+    left.y0 = right.y0 = bottom_y - H;
+    left.y1 = right.y1 = top_y + H;
+    left.x0 = left.x1 = left_x;
+    right.x0 = right.x1 = right_x;
+    left.group = right.group = kPlatenGroup;
+    left.inward_nx = 1;
+    right.inward_nx = -1;
+    world.walls.push_back(left);
+    world.walls.push_back(right);
+  }
   if (vessel_faces) {
     const std::size_t touching = world.make_wall_contacts_force_free();  // rebuilds the pairs with the platens
     if (info) (*info)["platen_contacts_at_start"] = static_cast<double>(touching);
@@ -144,6 +165,9 @@ std::string instability(const World& world, double platen_velocity_m_s) {
     if (b.x[i] < bottom.x0 || b.x[i] > bottom.x1) return "unstable: a disk left the domain sideways";
     if (b.y[i] < bottom.y0 - b.radius[i] || b.y[i] > top.y0 + b.radius[i])
       return "unstable: a disk passed through a platen";
+    if (world.walls.size() >= 4 &&
+        (b.x[i] < world.walls[2].x0 - b.radius[i] || b.x[i] > world.walls[3].x0 + b.radius[i]))
+      return "unstable: a disk passed through a side wall";
   }
   return "";
 }

@@ -1,5 +1,7 @@
 #include "demcal/dem/result_json.hpp"
 
+#include <algorithm>
+
 namespace demcal::dem {
 
 nlohmann::json result_json(const TestResult& r, const std::map<std::string, double>& parameters, std::uint64_t seed) {
@@ -33,6 +35,13 @@ nlohmann::json curve_json(const TestResult& r) {
     curve["stress_MPa"].push_back(c.stress_pa / 1e6);
     curve["lateral_strain"].push_back(c.lateral_strain);
     curve["cracks"].push_back(c.cracks);
+  }
+  // Only a confined test's curve has the column (its stress is then sigma_1 - sigma_3).
+  const bool confined = std::any_of(r.curve.begin(), r.curve.end(),
+                                    [](const CurvePoint& c) { return c.confining_stress_pa != 0; });
+  if (confined) {
+    curve["confining_stress_MPa"] = nlohmann::json::array();
+    for (const CurvePoint& c : r.curve) curve["confining_stress_MPa"].push_back(c.confining_stress_pa / 1e6);
   }
   return curve;
 }

@@ -150,6 +150,28 @@ namespace {
 // vessel's faces).
 constexpr int kResultsVersion = 3;
 
+// loading.confining_stresses_MPa, in Pa: the biaxial test's list, each > 0;
+// at least two different ones when there are several (the Mohr-Coulomb fit).
+std::vector<double> confining_stresses(const json& loading, const std::string& test, const std::string& where) {
+  std::vector<double> out;
+  if (!loading.contains("confining_stresses_MPa")) return out;
+  const std::string field = where + ".confining_stresses_MPa";
+  if (test != "biaxial") throw Error(field + ": only the biaxial test has a confining stress (this scene's test: " + test + ")");
+  const json& list = loading.at("confining_stresses_MPa");
+  if (!list.is_array() || list.empty()) throw Error(field + ": must be a non-empty list of stresses in MPa, e.g. [1, 2, 4, 8]");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    if (!list[k].is_number()) throw Error(field + ": entry " + std::to_string(k + 1) + " is not a number");
+    const double mpa = list[k].get<double>();
+    if (!(std::isfinite(mpa) && mpa > 0))
+      throw Error(field + ": entry " + std::to_string(k + 1) + " is " + format_double(mpa) +
+                  " MPa; a confining stress must be > 0 (an unconfined test is the ucs test)");
+    out.push_back(mpa * 1e6);
+  }
+  if (out.size() > 1 && std::all_of(out.begin(), out.end(), [&](double v) { return v == out[0]; }))
+    throw Error(field + ": the Mohr-Coulomb fit of a series needs at least two different confining stresses");
+  return out;
+}
+
 void drop_notes(json& value) {
   if (!value.is_object()) return;
   value.erase("note");
@@ -265,7 +287,8 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
-                  "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start", "local_damping"},
+                  "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start", "local_damping",
+                  "confining_stresses_MPa"},
               where);
     LoadingSpec& s = scene.loading_;
     s.platen_start = choice_field(l, "platen_start", {"vessel_faces", "outermost_disks"}, 0, where) == 0
@@ -291,7 +314,10 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     if (!(s.strain_limit > 0 && s.strain_limit < 0.5)) throw Error(where + ": strain_limit must lie in (0, 0.5)");
     if (!(s.record_strain > 0 && s.record_strain < s.strain_limit))
       throw Error(where + ": record_strain must lie in (0, strain_limit)");
+    s.confining_stresses_pa = confining_stresses(l, scene.test_, where);
   }
+  if (scene.test_ == "biaxial" && scene.loading_.confining_stresses_pa.empty())
+    throw Error(origin + ": loading.confining_stresses_MPa: missing (the biaxial test's confining stresses, MPa, e.g. [1, 2, 4, 8])");
   // Evaluate everything once with the defaults, so a bad expression fails at load.
   std::map<std::string, double> defaults = scene.resolve({});
   try {

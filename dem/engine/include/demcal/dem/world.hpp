@@ -90,6 +90,11 @@ class World {
   // pushing it (PFC: the vessel's walls become the platens). Returns the
   // number of disk-wall contacts so set.
   std::size_t make_wall_contacts_force_free();
+  // Sum of the normal (translational) stiffness of the disks touching wall
+  // `w` now, N/m: what a stress servo on that wall pushes against, so its
+  // gain can close a set share of the stress error per step without
+  // overshooting (PFC's servo rule).
+  double wall_contact_stiffness_n_m(std::size_t w) const;
   // Clears the break log and the step and time counters, and stops every
   // body: what came before (relaxing a locked-in stress) prepared the
   // specimen and is not part of the test.

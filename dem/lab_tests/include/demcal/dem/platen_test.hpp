@@ -40,13 +40,17 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
 // holds (aggregates placed, disks in them, the packing's coordination number
 // and overlaps, bonds per disk, the contacts' locked-in stress, the disks
 // touching the platens at the start when they start at the vessel's faces).
+// With `side_walls` (the biaxial test) two vertical walls of the platens'
+// group confine the sides, placed like the platens: at the vessel's side
+// faces or at the outermost disks; walls [2] left, [3] right. Every wall then
+// carries its inward normal (for a stress servo).
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
-                        std::map<std::string, double>* info = nullptr);
+                        std::map<std::string, double>* info = nullptr, bool side_walls = false);
 
 // Empty when the state is sane; otherwise why the run must stop as failed
 // (non-finite values, a disk faster than 1000 x the platen speed, a disk
-// beyond the platens' ends or through a platen).
+// beyond the platens' ends or through a platen or a side wall).
 std::string instability(const World& world, double platen_velocity_m_s);
 
 // Mean force the disks exert on the two platens, compression positive, N.

@@ -35,6 +35,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -83,6 +84,9 @@ struct LoadingSpec {
   // outermost disks either way.
   enum class PlatenStart { vessel_faces, outermost_disks };
   PlatenStart platen_start = PlatenStart::vessel_faces;
+  // Biaxial test only: one specimen per confining stress (same seed), in
+  // this order; its outputs are numbered 1, 2, ... in it.
+  std::vector<double> confining_stresses_pa;
 };
 
 class Scene {

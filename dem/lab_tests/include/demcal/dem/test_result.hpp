@@ -13,6 +13,9 @@ struct CurvePoint {
   double stress_pa = 0;       // mean platen force / (W t) (compression > 0)
   double lateral_strain = 0;  // widening of the middle third / initial width (expansion > 0)
   std::size_t cracks = 0;     // bond breaks so far
+  // Confined tests: the measured confining stress, and then stress_pa is the
+  // deviatoric stress sigma_1 - sigma_3 (0 for unconfined tests).
+  double confining_stress_pa = 0;
 };
 
 struct TestResult {

@@ -1,0 +1,260 @@
+#include "demcal/dem/biaxial_test.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/dem/equilibrium.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/platen_test.hpp"
+#include "demcal/dem/ucs_test.hpp"
+
+namespace demcal::dem {
+namespace {
+
+enum WallIndex : std::size_t { kBottom = 0, kTop = 1, kLeft = 2, kRight = 3 };
+
+double width_m(const World& w) { return w.walls[kRight].x0 - w.walls[kLeft].x0; }
+double height_m(const World& w) { return w.walls[kTop].y0 - w.walls[kBottom].y0; }
+
+// Compressive stress the disks exert on wall `w` over `length_m`.
+double wall_stress_pa(const World& world, std::size_t w, double length_m) {
+  const Wall& wall = world.walls[w];
+  return -(wall.fx * wall.inward_nx + wall.fy * wall.inward_ny) / (length_m * world.settings().thickness_m);
+}
+
+// Puts wall `w` under a stress servo whose gain closes kServoRelaxation of the
+// error per step against the stiffness of the disks touching it now; a wall
+// without contacts moves at its top speed.
+void servo(World& world, std::size_t w, double target_pa, double length_m, double max_speed_m_s) {
+  Wall& wall = world.walls[w];
+  wall.servo = true;
+  wall.servo_target_stress_pa = target_pa;
+  wall.servo_length_m = length_m;
+  wall.servo_max_speed_m_s = max_speed_m_s;
+  const double k = world.wall_contact_stiffness_n_m(w);
+  wall.servo_gain_m_s_per_pa = k > 0 ? kServoRelaxation * length_m * world.settings().thickness_m / (k * world.dt_s())
+                                     : max_speed_m_s / target_pa;
+}
+
+// All four walls servoed to the confining stress until each holds it within
+// 0.5 % and the specimen is at rest; the reason when it does not get there.
+std::string consolidate(World& world, double sigma_3_pa, double max_speed_m_s, std::uint64_t max_steps) {
+  constexpr int kBlock = 50;
+  for (std::uint64_t done = 0; done < max_steps; done += kBlock) {
+    const double W = width_m(world), H = height_m(world);
+    servo(world, kBottom, sigma_3_pa, W, max_speed_m_s);
+    servo(world, kTop, sigma_3_pa, W, max_speed_m_s);
+    servo(world, kLeft, sigma_3_pa, H, max_speed_m_s);
+    servo(world, kRight, sigma_3_pa, H, max_speed_m_s);
+    world.run(kBlock);
+    bool held = true;
+    for (std::size_t w = 0; w < 4; ++w)
+      held = held && std::abs(wall_stress_pa(world, w, w < 2 ? width_m(world) : height_m(world)) - sigma_3_pa) <=
+                         0.005 * sigma_3_pa;
+    if (held && force_ratio(world) < 1e-3) return "";
+  }
+  return "the confinement to " + format_double(sigma_3_pa / 1e6) + " MPa did not settle within " +
+         std::to_string(max_steps) + " steps";
+}
+
+}  // namespace
+
+MohrCoulombFit fit_mohr_coulomb(const std::vector<double>& sigma_3_pa, const std::vector<double>& sigma_1_pa) {
+  if (sigma_3_pa.size() != sigma_1_pa.size() || sigma_3_pa.size() < 2)
+    throw Error("the Mohr-Coulomb fit needs at least two peaks");
+  const double n = static_cast<double>(sigma_3_pa.size());
+  double s3 = 0, s1 = 0;
+  for (std::size_t k = 0; k < sigma_3_pa.size(); ++k) {
+    s3 += sigma_3_pa[k];
+    s1 += sigma_1_pa[k];
+  }
+  const double m3 = s3 / n, m1 = s1 / n;
+  double sxx = 0, sxy = 0, syy = 0;
+  for (std::size_t k = 0; k < sigma_3_pa.size(); ++k) {
+    const double dx = sigma_3_pa[k] - m3, dy = sigma_1_pa[k] - m1;
+    sxx += dx * dx;
+    sxy += dx * dy;
+    syy += dy * dy;
+  }
+  if (!(sxx > 0)) throw Error("the Mohr-Coulomb fit needs at least two different confining stresses");
+  MohrCoulombFit fit;
+  fit.n_phi = sxy / sxx;
+  fit.sigma_c_pa = m1 - fit.n_phi * m3;
+  if (!(fit.n_phi > 0))
+    throw Error("the Mohr-Coulomb fit gives a slope N_phi = " + format_double(fit.n_phi) +
+                " <= 0 (the peak strength falls as the confinement rises): no friction angle");
+  fit.phi_deg = std::asin((fit.n_phi - 1) / (fit.n_phi + 1)) * 180 / M_PI;
+  fit.c_pa = fit.sigma_c_pa / (2 * std::sqrt(fit.n_phi));
+  fit.r2 = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
+  return fit;
+}
+
+TestResult confine_and_load(World& world, double confining_stress_pa, const LoadingSpec& loading,
+                            const RunOptions& options, std::chrono::steady_clock::time_point start) {
+  if (world.walls.size() != 4) throw Error("the biaxial test needs four walls (bottom, top, left, right)");
+  const double v = loading.platen_velocity_m_s, t = world.settings().thickness_m;
+  const double max_speed = kServoSpeedOverPlatenSpeed * v;
+  TestResult result;
+  world.refresh();
+  result.reason = consolidate(world, confining_stress_pa, max_speed, 2000000);
+  if (!result.reason.empty()) return result;
+
+  // Loading: the platens at the loading velocity, the side walls still servoed.
+  const double H0 = height_m(world), W0 = width_m(world);
+  for (std::size_t w : {kBottom, kTop}) world.walls[w].servo = false;
+  world.walls[kBottom].vx = world.walls[kTop].vx = 0;
+  world.walls[kBottom].vy = v;
+  world.walls[kTop].vy = -v;
+  LoadingMonitor monitor(loading, options, start, W0 * H0 * t);
+  double next_record = 0;
+  for (std::uint64_t s = 0;; ++s) {
+    if (s % 50 == 0) {
+      // The side walls' gain follows their contacts, their stress the current height.
+      servo(world, kLeft, confining_stress_pa, height_m(world), max_speed);
+      servo(world, kRight, confining_stress_pa, height_m(world), max_speed);
+    }
+    world.step();
+    const double H = height_m(world), W = width_m(world);
+    const double strain = (H0 - H) / H0;
+    if (strain < next_record) continue;
+    next_record = strain + loading.record_strain;
+    CurvePoint point;
+    point.axial_strain = strain;
+    const double sigma_1 = platen_force(world) / (W * t);
+    point.confining_stress_pa = 0.5 * (wall_stress_pa(world, kLeft, H) + wall_stress_pa(world, kRight, H));
+    point.stress_pa = sigma_1 - point.confining_stress_pa;
+    point.lateral_strain = (W - W0) / W0;
+    point.cracks = world.breaks().size();
+    if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
+  }
+  if (!result.ok) return result;
+  try {
+    result.macro = ucs_macro_values(result.curve);
+  } catch (const Error& e) {
+    result.ok = false;
+    result.reason = e.what();
+    return result;
+  }
+  std::size_t peak = 0;
+  for (std::size_t k = 1; k < result.curve.size(); ++k)
+    if (result.curve[k].stress_pa > result.curve[peak].stress_pa) peak = k;
+  result.macro["sigma_1_peak_MPa"] = (result.curve[peak].stress_pa + result.curve[peak].confining_stress_pa) / 1e6;
+  result.macro["sigma_3_peak_MPa"] = result.curve[peak].confining_stress_pa / 1e6;
+  if (result.ended_by == "strain_limit") result.macro["reached_strain_limit"] = 1;
+  return result;
+}
+
+TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
+  if (confinements.empty()) throw Error(scene.origin() + ": loading.confining_stresses_MPa: missing");
+  Specimen specimen = cached_specimen(scene.specimen(parameters, options.seed), options.cache_dir);
+  TestResult series;
+  series.particles = specimen.size();
+  series.porosity = specimen.porosity;
+  std::vector<double> sigma_3, sigma_1;
+  std::chrono::steady_clock::duration loading_time{};
+  for (std::size_t k = 0; k < confinements.size(); ++k) {
+    const std::string n = std::to_string(k + 1);
+    std::map<std::string, double> info;
+    World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &info, true);
+    if (k == 0) series.specimen_info = info;
+    const auto loading_start = std::chrono::steady_clock::now();
+    TestResult one = confine_and_load(world, confinements[k], scene.loading(), options, start);
+    record_run_end(world, options, start, loading_start, one);
+    loading_time += std::chrono::steady_clock::now() - loading_start;
+    series.steps += one.steps;
+    series.dt_s = one.dt_s;
+    series.threads = one.threads;
+    series.density_scaling_dt_s = one.density_scaling_dt_s;
+    series.curve.insert(series.curve.end(), one.curve.begin(), one.curve.end());
+    if (!one.ok) {
+      series.reason = "confinement " + n + " (" + format_double(confinements[k] / 1e6) + " MPa): " + one.reason;
+      break;
+    }
+    series.macro["q_peak_MPa_" + n] = one.macro.at("sigma_u_MPa");
+    series.macro["sigma_1_peak_MPa_" + n] = one.macro.at("sigma_1_peak_MPa");
+    series.macro["sigma_3_peak_MPa_" + n] = one.macro.at("sigma_3_peak_MPa");
+    series.macro["E_GPa_" + n] = one.macro.at("E_GPa");
+    series.macro["nu_" + n] = one.macro.at("nu");
+    series.macro["peak_strain_" + n] = one.macro.at("peak_strain");
+    series.macro["cracks_tension_" + n] = one.macro.at("cracks_tension");
+    series.macro["cracks_shear_" + n] = one.macro.at("cracks_shear");
+    if (one.macro.count("reached_strain_limit")) series.macro["reached_strain_limit_" + n] = 1;
+    series.ended_by += (series.ended_by.empty() ? "" : "; ") + n + ": " + one.ended_by;
+    sigma_3.push_back(one.macro.at("sigma_3_peak_MPa") * 1e6);
+    sigma_1.push_back(one.macro.at("sigma_1_peak_MPa") * 1e6);
+  }
+  series.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  series.test_wall_s = std::chrono::duration<double>(loading_time).count();
+  if (!series.reason.empty()) return series;
+  if (confinements.size() >= 2) {
+    try {
+      const MohrCoulombFit fit = fit_mohr_coulomb(sigma_3, sigma_1);
+      series.macro["c_MPa"] = fit.c_pa / 1e6;
+      series.macro["phi_deg"] = fit.phi_deg;
+      series.macro["mc_sigma_c_MPa"] = fit.sigma_c_pa / 1e6;
+      series.macro["mc_r2"] = fit.r2;
+    } catch (const Error& e) {
+      series.reason = e.what();
+      return series;
+    }
+  }
+  series.ok = true;
+  return series;
+}
+
+namespace {
+
+class BiaxialTest : public LabTest {
+ public:
+  std::string name() const override { return "biaxial"; }
+  std::string description() const override {
+    return "biaxial (2D triaxial) compression: servo side walls hold each of loading.confining_stresses_MPa while "
+           "frictionless platens approach; a series fits the Mohr-Coulomb envelope";
+  }
+  std::vector<BoundaryRole> boundary_roles() const override {
+    return {{"disk-platen", kPlatenGroup, "the specimen's disks against the platens and the confining side walls"}};
+  }
+  std::vector<OutputSpec> outputs(const Scene& scene) const override {
+    std::vector<OutputSpec> out;
+    const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
+    for (std::size_t k = 0; k < confinements.size(); ++k) {
+      const std::string n = std::to_string(k + 1), at = " at confinement " + n + " (" +
+                                                         format_double(confinements[k] / 1e6) + " MPa)";
+      out.push_back({"q_peak_MPa_" + n, "MPa", "peak deviatoric stress sigma_1 - sigma_3" + at});
+      out.push_back({"sigma_1_peak_MPa_" + n, "MPa", "axial stress at the peak" + at});
+      out.push_back({"sigma_3_peak_MPa_" + n, "MPa",
+                     "confining stress the side walls measured at the peak (the servo's, not the nominal one)" + at});
+      out.push_back({"E_GPa_" + n, "GPa", "tangent d q / d eps_ax where q first reaches half its peak" + at});
+      out.push_back({"nu_" + n, "1", "tangent d eps_lat / d eps_ax over the same window as E (side walls)" + at});
+      out.push_back({"peak_strain_" + n, "1", "axial strain at the peak" + at});
+      out.push_back({"cracks_tension_" + n, "1", "bonds broken in tension" + at});
+      out.push_back({"cracks_shear_" + n, "1", "bonds broken in shear" + at});
+      out.push_back({"reached_strain_limit_" + n, "1",
+                     "1 when loading.strain_limit ended the test before the post-peak stop" + at, false});
+    }
+    if (confinements.size() >= 2) {
+      out.push_back({"c_MPa", "MPa", "Mohr-Coulomb cohesion sigma_c / (2 sqrt(N_phi)) of the least-squares line "
+                                     "sigma_1 = sigma_c + N_phi sigma_3 through the peaks"});
+      out.push_back({"phi_deg", "deg", "Mohr-Coulomb friction angle, asin((N_phi - 1) / (N_phi + 1))"});
+      out.push_back({"mc_sigma_c_MPa", "MPa", "the envelope's intercept sigma_c (its uniaxial strength)"});
+      out.push_back({"mc_r2", "1", "coefficient of determination of the envelope's line"});
+    }
+    return out;
+  }
+  TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                 const RunOptions& options) const override {
+    return run_biaxial(scene, parameters, options);
+  }
+};
+
+}  // namespace
+
+void register_biaxial_test(LabTestRegistry& registry) { registry.add(std::make_unique<BiaxialTest>()); }
+
+}  // namespace demcal::dem
