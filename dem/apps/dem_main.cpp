@@ -25,6 +25,7 @@
 #include "demcal/dem/lammps_data.hpp"
 #include "demcal/jobs/merge.hpp"
 #include "demcal/dem/result_json.hpp"
+#include "demcal/dem/scene_set.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 
@@ -42,13 +43,31 @@ std::map<std::string, double> parse_sets(const std::vector<std::string>& sets) {
   return values;
 }
 
-// The columns of the stored curve (dem::curve_json), in a fixed order.
-void write_curve(const dem::TestResult& r, const std::string& path) {
-  const nlohmann::json curve = dem::curve_json(r);
+// The curve of a run (dem::curve_json's columns, `prefix` before each name
+// in a test list's), in a fixed order; false when it has none of them.
+bool write_curve(const nlohmann::json& curve, const std::string& prefix, const std::string& path) {
   Table table;
   for (const char* column : {"axial_strain", "stress_MPa", "lateral_strain", "cracks", "confining_stress_MPa"})
-    if (curve.contains(column)) table.add_column(column, curve.at(column).get<std::vector<double>>());
+    if (curve.contains(prefix + column)) table.add_column(column, curve.at(prefix + column).get<std::vector<double>>());
+  if (table.names().empty()) return false;
   table.write(path, "/curve");
+  return true;
+}
+
+// One file for a scene; for a test list one per test that ran, named
+// STEM.LABEL.EXT (the curves differ in length).
+void write_curves(const dem::SceneSet& set, const nlohmann::json& curve, const std::string& path) {
+  if (set.size() == 1) {
+    write_curve(curve, "", path);
+    return;
+  }
+  const std::size_t dot = path.find_last_of('.');
+  const std::string stem = dot == std::string::npos ? path : path.substr(0, dot);
+  const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const std::string file = stem + "." + set.label(k) + ext;
+    if (write_curve(curve, set.label(k) + ".", file)) log::info("wrote the " + set.label(k) + " curve to " + file);
+  }
 }
 
 // The scene's packed specimen at its default parameters (from the cache, or packed now).
@@ -173,9 +192,9 @@ int main(int argc, char** argv) {
         return 0;
       }
       if (describe_scene.empty()) throw Error("describe: --scene is required (or --registries)");
-      dem::Scene scene = dem::Scene::load(describe_scene);
+      const dem::SceneSet scene = dem::SceneSet::load(describe_scene);
       if (!describe_space.empty()) scene.check_space(ParameterSpace::load(describe_space), describe_space);
-      std::cout << dem::describe_scene(scene).dump(2) << "\n";
+      std::cout << dem::describe_scene_set(scene).dump(2) << "\n";
       return 0;
     }
     if (merge->parsed()) {
@@ -193,6 +212,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (export_cmd->parsed()) {
+      if (dem::SceneSet::is_test_list(export_scene))
+        throw Error("export: " + export_scene + " is a test list; name one of its scenes");
       dem::Scene scene = dem::Scene::load(export_scene);
       const dem::Specimen s = packed_specimen(scene, export_seed, cache_dir);
       dem::write_lammps_data(s, export_lammps, scene.name() + ", seed " + std::to_string(export_seed));
@@ -200,23 +221,26 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (released_cmd->parsed()) {
+      if (dem::SceneSet::is_test_list(released_scene))
+        throw Error("released: " + released_scene + " is a test list; name one of its scenes");
       const dem::Specimen s = packed_specimen(dem::Scene::load(released_scene), released_seed, cache_dir);
       std::cout << dem::run_released_specimen(s, released).dump() << "\n";
       return 0;
     }
     if (run_threads > 0) omp_set_num_threads(run_threads);
-    dem::Scene scene = dem::Scene::load(scene_path);
+    const dem::SceneSet scene = dem::SceneSet::load(scene_path);
     std::map<std::string, double> parameters = scene.resolve(parse_sets(sets));
     dem::RunOptions options;
     options.seed = seed;
     options.cache_dir = cache_dir;
     options.progress = !quiet;
     options.vtk_dir = vtk_dir;
-    dem::TestResult result = dem::run_test(scene, parameters, options);
-    json summary = dem::result_json(result, parameters, seed);
+    json summary = scene.run(parameters, options);
+    const json curves = summary.at("curve");
+    summary.erase("curve");
     if (!out.empty()) write_file_atomically(out, summary.dump(2) + "\n");
-    if (!curve.empty()) write_curve(result, curve);
+    if (!curve.empty()) write_curves(scene, curves, curve);
     if (!quiet) std::cout << summary.dump(2) << "\n";
-    return result.ok ? 0 : 4;
+    return summary.at("status") == "ok" ? 0 : 4;
   });
 }

@@ -23,6 +23,7 @@
 #include "demcal/jobs/batch.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
+#include "demcal/dem/scene_set.hpp"
 #include "demcal/inverse/verification.hpp"
 
 namespace {
@@ -111,10 +112,10 @@ int run(const Arguments& a) {
   if (solution.value("status", std::string("ok")) != "ok")
     log::warn(a.solution + ": the inversion reported status " + solution.value("status", std::string()) +
               "; verifying its nearest point anyway");
-  const dem::Scene scene = dem::Scene::load(a.scene);
-  // Check the targets before any DEM run: each must be an output of the scene's test.
+  const dem::SceneSet scene = dem::SceneSet::load(a.scene);
+  // Check the targets before any DEM run: each must be an output of the scene's test (or tests).
   std::set<std::string> outputs;
-  for (const dem::OutputSpec& o : scene.lab_test().outputs(scene)) outputs.insert(o.name);
+  for (const dem::OutputSpec& o : scene.outputs()) outputs.insert(o.name);
   for (const auto& [name, value] : targets)
     if (!outputs.count(name)) {
       std::string list;
@@ -208,10 +209,8 @@ int run(const Arguments& a) {
   std::string finer_table;
   if (a.scale_resolution > 1.0) {
     // The same point on finer specimens: how far the calibration moves at the resolution a user will run.
-    const std::string finer_scene = work + "/finer_scene.json";
-    write_file_atomically(finer_scene,
-                          dem::Scene::with_finer_disks(dem::Scene::resolved_json(a.scene), a.scale_resolution, a.scene)
-                                  .dump(1) + "\n");
+    const std::string finer_scene =
+        dem::SceneSet::write_with_finer_disks(a.scene, a.scale_resolution, work + "/finer_scene.json");
     jobs::BatchOptions fine = batch;
     fine.scene_path = finer_scene;
     fine.out_path = work + "/finer_runs.h5";

@@ -16,7 +16,7 @@
 
 namespace demcal::jobs {
 
-using dem::Scene;
+using dem::SceneSet;
 using dem::SpecimenSpec;
 
 using json = nlohmann::json;
@@ -30,7 +30,7 @@ bool file_exists(const std::string& path) {
 
 // Packs each distinct specimen of the points once (in parallel), before the
 // points share it through the cache.
-void pack_specimens(const Scene& scene, const std::vector<const PointSpec*>& pending, const PointRunOptions& options) {
+void pack_specimens(const SceneSet& scene, const std::vector<const PointSpec*>& pending, const PointRunOptions& options) {
   const std::vector<SpecimenSpec> to_pack = distinct_specimens(scene, pending);
   if (to_pack.empty() || options.cache_dir.empty()) return;
   if (options.progress)
@@ -57,13 +57,13 @@ int threads_per_run(int threads, int jobs, std::size_t tasks) {
   return std::max(1, budget / static_cast<int>(at_once));
 }
 
-std::vector<SpecimenSpec> distinct_specimens(const Scene& scene, const std::vector<const PointSpec*>& points) {
+std::vector<SpecimenSpec> distinct_specimens(const SceneSet& scene, const std::vector<const PointSpec*>& points) {
   std::vector<SpecimenSpec> specimens;
   std::set<std::string> keys;
   for (const PointSpec* p : points) {
     try {
-      SpecimenSpec spec = scene.specimen(scene.resolve(p->design), p->seed);
-      if (keys.insert(spec.cache_key()).second) specimens.push_back(spec);
+      for (const SpecimenSpec& spec : scene.specimens(scene.resolve(p->design), p->seed))
+        if (keys.insert(spec.cache_key()).second) specimens.push_back(spec);
     } catch (const Error&) {
       // The point itself will record why it cannot run.
     }
@@ -96,7 +96,7 @@ OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_t
   return files;
 }
 
-std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& options,
+std::vector<PointSpec> batch_points(const SceneSet& scene, const BatchOptions& options,
                                     std::vector<std::string>& design_columns, std::size_t* design_total,
                                     bool make_folder) {
   if (options.seeds < 1) throw Error("--seeds must be at least 1");
@@ -119,7 +119,7 @@ std::vector<PointSpec> batch_points(const Scene& scene, const BatchOptions& opti
   return shard;
 }
 
-std::vector<json> run_points(const Scene& scene, const std::vector<PointSpec>& points, const PointRunOptions& options,
+std::vector<json> run_points(const SceneSet& scene, const std::vector<PointSpec>& points, const PointRunOptions& options,
                              const std::function<void(std::size_t, const json&)>& on_done, std::size_t* skipped) {
   if (options.jobs < 1) throw Error("--jobs must be at least 1");
   std::vector<json> results(points.size());
@@ -170,7 +170,7 @@ std::vector<json> run_points(const Scene& scene, const std::vector<PointSpec>& p
 BatchSummary run_batch(const BatchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (options.jobs < 1) throw Error("--jobs must be at least 1");
-  Scene scene = Scene::load(options.scene_path);
+  SceneSet scene = SceneSet::load(options.scene_path);
   std::vector<std::string> design_columns;
   std::size_t design_total = 0;
   std::vector<PointSpec> points = batch_points(scene, options, design_columns, &design_total);

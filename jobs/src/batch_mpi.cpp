@@ -21,7 +21,7 @@
 
 namespace demcal::jobs {
 
-using dem::Scene;
+using dem::SceneSet;
 using dem::SpecimenSpec;
 
 using json = nlohmann::json;
@@ -107,7 +107,7 @@ void send_result(const std::string& text) {
 }
 
 struct Setup {
-  Scene scene;
+  SceneSet scene;
   std::vector<std::string> design_columns;
   std::vector<PointSpec> points;
   std::vector<SpecimenSpec> to_pack;
@@ -115,7 +115,7 @@ struct Setup {
 };
 
 Setup set_up(const BatchOptions& options, bool master) {
-  Setup s{Scene::load(options.scene_path), {}, {}, {}};
+  Setup s{SceneSet::load(options.scene_path), {}, {}, {}};
   // The same points on every rank; only rank 0 writes, so only it makes the folder.
   s.points = batch_points(s.scene, options, s.design_columns, &s.design_total, master);
   return s;

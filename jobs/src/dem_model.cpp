@@ -16,7 +16,7 @@
 
 namespace demcal::jobs {
 
-using dem::Scene;
+using dem::SceneSet;
 
 using json = nlohmann::json;
 
@@ -40,7 +40,7 @@ DemModel::DemModel(const std::string& scene_path, const ParameterSpace& space, s
                    DemModelOptions options)
     : BoxModel(space_domain(space), std::move(outputs)),
       scene_path_(scene_path),
-      scene_(Scene::load(scene_path)),
+      scene_(SceneSet::load(scene_path)),
       space_(space),
       options_(std::move(options)) {
   if (options_.work_dir.empty()) throw Error("DEM in the loop needs a folder for its runs");

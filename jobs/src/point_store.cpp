@@ -19,7 +19,7 @@
 
 namespace demcal::jobs {
 
-using dem::Scene;
+using dem::SceneSet;
 using dem::TestResult;
 using dem::RunOptions;
 
@@ -55,7 +55,7 @@ std::string status_text(const json& r) {
 // A design column is a scene parameter, the coded copy of one (NAME_coded), or
 // a declared blank column (blank*, null_column); anything else is a typo or a
 // design made for another scene, and running it would silently use defaults.
-std::vector<std::string> design_parameter_columns(const Scene& scene, const Table& design,
+std::vector<std::string> design_parameter_columns(const SceneSet& scene, const Table& design,
                                                   const std::string& design_path) {
   std::vector<std::string> columns;
   auto list = [&]() {
@@ -71,7 +71,7 @@ std::vector<std::string> design_parameter_columns(const Scene& scene, const Tabl
     const bool coded = ends_with(name, "_coded") && scene.parameters().count(name.substr(0, name.size() - 6));
     const bool blank = name.rfind("blank", 0) == 0 || name == "null_column";
     if (!coded && !blank)
-      throw Error(design_path + ": column \"" + name + "\" is not a parameter of the scene " + scene.origin() +
+      throw Error(design_path + ": column \"" + name + "\" is not a parameter of " + (scene.size() > 1 ? "the tests of " : "the scene ") + scene.origin() +
                   " (its parameters: " + list() + "; also allowed: run, NAME_coded, blank*, null_column)");
   }
   if (columns.empty())
@@ -156,17 +156,15 @@ json failed_point(const PointSpec& p, const std::string& reason) {
   return out;
 }
 
-json compute_point(const Scene& scene, const PointSpec& p, const std::string& cache_dir) {
+json compute_point(const SceneSet& scene, const PointSpec& p, const std::string& cache_dir) {
   try {
     std::map<std::string, double> parameters = scene.resolve(p.design);
     RunOptions options;
     options.seed = p.seed;
     options.cache_dir = cache_dir;
-    TestResult r = run_test(scene, parameters, options);
-    json out = result_json(r, parameters, p.seed);
+    json out = scene.run(parameters, options);
     out["run"] = p.run;
     out["scene_fingerprint"] = p.scene_fingerprint;
-    out["curve"] = curve_json(r);
     return out;
   } catch (const std::exception& e) {
     return failed_point(p, e.what());

@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "demcal/core/hdf5_file.hpp"
 #include "demcal/core/table.hpp"
 #include "demcal/jobs/batch.hpp"
@@ -215,4 +217,30 @@ TEST(DemcalDemBatch, FewerPointsThanCoresShareTheCoresAndManyPointsGetOneEach) {
   EXPECT_EQ(demcal::jobs::threads_per_run(8, 3, 1), 8);
   // More points at once than threads: still one each.
   EXPECT_EQ(demcal::jobs::threads_per_run(2, 4, 40), 1);
+}
+
+TEST(DemcalDemBatch, ATestListRunsEveryTestPerPointAndResumes) {
+  // tests_small.json: UCS, Brazilian and a two-confinement biaxial series of one material.
+  const std::string list = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/tests_small.json";
+  const std::string out = temp("list.h5"), csv = temp("list.csv"), cache = temp("cache_list");
+  const std::string design = temp("list_design.csv");
+  std::ofstream(design) << "run,pb_sigma_c_MPa\n1,9\n2,12\n";
+  const std::string command = kBin + " batch --scene " + list + " --design " + design + " --out " + out + " --csv " +
+                              csv + " --jobs 2 --cache " + cache + " --quiet 2>/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::map<std::string, std::string> first = point_files(out + ".points");
+  ASSERT_EQ(first.size(), 2u);
+  const nlohmann::json point = nlohmann::json::parse(first.at("run1_seed1.json"));
+  EXPECT_EQ(point.at("status"), "ok") << point.at("reason");
+  EXPECT_EQ(point.at("test_runs"), 3);
+  for (const char* name : {"sigma_u_MPa", "sigma_t_MPa", "q_peak_MPa_2", "phi_deg", "ucs.cracks_tension"})
+    EXPECT_TRUE(point.at("macro").contains(name)) << name;
+  // The CSV has a column per output of the set, and a rerun repeats nothing.
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_NE(header.find("sigma_t_MPa"), std::string::npos) << header;
+  EXPECT_NE(header.find("brazilian.cracks_tension"), std::string::npos) << header;
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(point_files(out + ".points"), first);
 }

@@ -5,6 +5,18 @@
 
 namespace demcal::dem {
 
+namespace {
+
+nlohmann::json output_json(const OutputSpec& o) {
+  const Quantity q = quantity_of_unit(o.unit, "output " + o.name);
+  nlohmann::json item = {{"unit", o.unit}, {"description", o.description}, {"quantity", quantity_name(q)},
+                         {"stress_like", is_stress_like(q)}, {"si_factor", si_factor_of_unit(o.unit, o.name)}};
+  if (!o.always) item["optional"] = true;
+  return item;
+}
+
+}  // namespace
+
 nlohmann::json describe_scene(const Scene& scene) {
   using json = nlohmann::json;
   json out;
@@ -22,16 +34,52 @@ nlohmann::json describe_scene(const Scene& scene) {
     out["parameters"][name] = item;
   }
   out["outputs"] = json::object();
-  for (const OutputSpec& o : scene.lab_test().outputs(scene)) {
-    const Quantity q = quantity_of_unit(o.unit, "output " + o.name);
-    json item = {{"unit", o.unit}, {"description", o.description}, {"quantity", quantity_name(q)},
-                 {"stress_like", is_stress_like(q)}, {"si_factor", si_factor_of_unit(o.unit, o.name)}};
-    if (!o.always) item["optional"] = true;
-    out["outputs"][o.name] = item;
-  }
+  for (const OutputSpec& o : scene.lab_test().outputs(scene)) out["outputs"][o.name] = output_json(o);
   out["contacts"] = json::object();
   for (const ContactRole& role : scene.contact_roles())
     out["contacts"][role.name] = {{"model", scene.contacts().at(role.name).model}, {"description", role.description}};
+  return out;
+}
+
+
+nlohmann::json describe_scene_set(const SceneSet& set) {
+  using json = nlohmann::json;
+  if (set.size() == 1) {
+    json out = describe_scene(set.scenes()[0]);
+    out["scene"] = set.origin();
+    return out;
+  }
+  json out;
+  out["scene"] = set.origin();
+  out["name"] = set.name();
+  out["test"] = "list";
+  out["test_description"] = "several lab tests per point, sharing one parameter set";
+  out["fingerprint"] = set.fingerprint();
+  out["tests"] = json::array();
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const Scene& s = set.scenes()[k];
+    out["tests"].push_back({{"scene", s.origin()}, {"name", s.name()}, {"test", s.test()}, {"label", set.label(k)}});
+  }
+  out["parameters"] = json::object();
+  for (const auto& [name, p] : set.parameters()) {
+    out["parameters"][name] = {{"unit", p.unit}, {"quantity", quantity_name(p.quantity)},
+                               {"stress_like", is_stress_like(p.quantity)}, {"value", p.value}, {"low", p.low},
+                               {"high", p.high}, {"shapes_specimen", set.shapes_specimen(name)},
+                               {"si_factor", si_factor_of_unit(p.unit, name)}};
+    if (!p.note.empty()) out["parameters"][name]["note"] = p.note;
+  }
+  out["outputs"] = json::object();
+  for (std::size_t k = 0; k < set.size(); ++k)
+    for (const OutputSpec& o : set.scenes()[k].lab_test().outputs(set.scenes()[k])) {
+      json item = output_json(o);
+      item["test"] = set.label(k);
+      out["outputs"][set.output_name(k, o.name)] = item;
+    }
+  out["contacts"] = json::object();
+  for (std::size_t k = 0; k < set.size(); ++k)
+    for (const ContactRole& role : set.scenes()[k].contact_roles())
+      out["contacts"][set.label(k)][role.name] = {{"model", set.scenes()[k].contacts().at(role.name).model},
+                                                  {"description", role.description}};
   return out;
 }
 

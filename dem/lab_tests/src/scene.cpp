@@ -335,11 +335,16 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
 }
 
 void Scene::check_space(const ParameterSpace& space, const std::string& space_path) const {
+  check_space_against(parameters_, origin_, space, space_path);
+}
+
+void check_space_against(const std::map<std::string, SceneParameter>& parameters, const std::string& origin_,
+                         const ParameterSpace& space, const std::string& space_path) {
   auto scene_parameter = [&](const std::string& name, const std::string& what) -> const SceneParameter& {
-    auto it = parameters_.find(name);
-    if (it == parameters_.end()) {
+    auto it = parameters.find(name);
+    if (it == parameters.end()) {
       std::string list;
-      for (const auto& [known, p] : parameters_) list += (list.empty() ? "" : ", ") + known;
+      for (const auto& [known, p] : parameters) list += (list.empty() ? "" : ", ") + known;
       throw Error(space_path + ": " + what + " \"" + name + "\" is not a parameter of the scene " + origin_ +
                   " (its parameters: " + list + ")");
     }

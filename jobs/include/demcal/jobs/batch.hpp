@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/jobs/point_store.hpp"
-#include "demcal/dem/scene.hpp"
+#include "demcal/dem/scene_set.hpp"
 
 namespace demcal::jobs {
 
@@ -47,13 +47,13 @@ void parse_shard(const std::string& text, BatchOptions& options);
 // The points of the batch (this shard's only), with their result files.
 // `design_total` receives the point count of the whole design (all shards).
 // `make_folder` false: do not create OUT.points/ (an MPI worker may not share rank 0's disk).
-std::vector<PointSpec> batch_points(const dem::Scene& scene, const BatchOptions& options,
+std::vector<PointSpec> batch_points(const dem::SceneSet& scene, const BatchOptions& options,
                                     std::vector<std::string>& design_columns, std::size_t* design_total = nullptr,
                                     bool make_folder = true);
 
 // The distinct specimens the points need, in the points' order (points that
 // cannot run are skipped: they record why themselves).
-std::vector<dem::SpecimenSpec> distinct_specimens(const dem::Scene& scene, const std::vector<const PointSpec*>& points);
+std::vector<dem::SpecimenSpec> distinct_specimens(const dem::SceneSet& scene, const std::vector<const PointSpec*>& points);
 
 // The result files of a batch: its shard ("i/N") and the whole design's point count recorded.
 OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_total);
@@ -80,7 +80,7 @@ int threads_per_run(int threads, int jobs, std::size_t tasks);
 // at once, one process each, specimens packed once beforehand), stores each
 // result as it finishes and calls on_done(point index, result). Returns every
 // point's result, stored or new, in the order given.
-std::vector<nlohmann::json> run_points(const dem::Scene& scene, const std::vector<PointSpec>& points,
+std::vector<nlohmann::json> run_points(const dem::SceneSet& scene, const std::vector<PointSpec>& points,
                                        const PointRunOptions& options,
                                        const std::function<void(std::size_t, const nlohmann::json&)>& on_done = {},
                                        std::size_t* skipped = nullptr);

@@ -18,7 +18,7 @@
 
 #include "demcal/core/model.hpp"
 #include "demcal/core/parameter_space.hpp"
-#include "demcal/dem/scene.hpp"
+#include "demcal/dem/scene_set.hpp"
 
 namespace demcal::jobs {
 
@@ -55,7 +55,7 @@ class DemModel : public BoxModel {
   void write_evaluations() const;
 
   std::string scene_path_;
-  dem::Scene scene_;
+  dem::SceneSet scene_;
   ParameterSpace space_;
   DemModelOptions options_;
   struct Evaluation {

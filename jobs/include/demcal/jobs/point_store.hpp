@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/table.hpp"
-#include "demcal/dem/scene.hpp"
+#include "demcal/dem/scene_set.hpp"
 
 namespace demcal::jobs {
 
@@ -26,7 +26,7 @@ struct PointSpec {
 // The design's columns that are scene parameters. Throws a one-line error
 // naming the file for any other column (but NAME_coded and blank columns), a
 // design without runs, a run id twice, or a cell that is not a finite number.
-std::vector<std::string> design_parameter_columns(const dem::Scene& scene, const Table& design,
+std::vector<std::string> design_parameter_columns(const dem::SceneSet& scene, const Table& design,
                                                   const std::string& design_path);
 
 // Every (row, seed first_seed .. first_seed + seeds - 1) of the design, in row
@@ -47,7 +47,7 @@ bool same_point(const nlohmann::json& stored, const PointSpec& point);
 bool stored_result(const PointSpec& point, nlohmann::json& out);
 
 // Runs one point in this process (never throws: a failure is a failed result).
-nlohmann::json compute_point(const dem::Scene& scene, const PointSpec& point, const std::string& cache_dir);
+nlohmann::json compute_point(const dem::SceneSet& scene, const PointSpec& point, const std::string& cache_dir);
 nlohmann::json failed_point(const PointSpec& point, const std::string& reason);
 void store_point(const PointSpec& point, const nlohmann::json& result);
 

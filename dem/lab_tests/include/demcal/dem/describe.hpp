@@ -5,10 +5,16 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/dem/scene.hpp"
+#include "demcal/dem/scene_set.hpp"
 
 namespace demcal::dem {
 
 nlohmann::json describe_scene(const Scene& scene);
+// A set of one: describe_scene of its scene. A test list: the same keys
+// (parameters: the union; outputs: their names in the set, each with the
+// label of its test), with "test": "list", its scenes under "tests" and the
+// contacts per label.
+nlohmann::json describe_scene_set(const SceneSet& set);
 // The registered lab tests and contact models.
 nlohmann::json describe_registries();
 

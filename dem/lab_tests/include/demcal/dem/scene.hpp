@@ -152,6 +152,11 @@ class Scene {
   std::optional<AggregateSpec> aggregates_;
 };
 
+// Scene::check_space against any declared parameters (a scene's, or the
+// union of a test list's); `origin` names where they were declared.
+void check_space_against(const std::map<std::string, SceneParameter>& parameters, const std::string& origin,
+                         const ParameterSpace& space, const std::string& space_path);
+
 // Creates a model for each of the scene's contact roles (in the order of
 // contact_roles(), bound to `parameters`) and assigns it to the role's groups.
 void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters);
