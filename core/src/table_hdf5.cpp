@@ -10,6 +10,10 @@
 namespace demcal {
 
 void Table::write_hdf5(const std::string& path, const std::string& group_name) const {
+  // HDF5 reads '/' in a dataset name as a path: a ratio column A/B has to go to CSV.
+  for (const std::string& name : names_)
+    if (name.find('/') != std::string::npos)
+      throw Error(path + ": column \"" + name + "\" holds a '/', which an HDF5 dataset name cannot; write a .csv");
   h5::File file(path, h5::Mode::OpenOrCreate);
   file.remove(group_name);
   h5::Group group = file.group(group_name, true);

@@ -22,6 +22,7 @@
 #include "demcal/core/parameter_space.hpp"
 #include "demcal/jobs/batch.hpp"
 #include "demcal/dem/lab_test.hpp"
+#include "demcal/core/output_ratio.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/scene_set.hpp"
 #include "demcal/inverse/verification.hpp"
@@ -73,6 +74,16 @@ std::vector<inverse::SeedRun> stored_seeds(const std::string& out_path, int firs
   return seeds;
 }
 
+// Each seed's value of every ratio target A/B (its own A over its own B).
+std::vector<inverse::SeedRun> with_ratios(std::vector<inverse::SeedRun> seeds, const std::map<std::string, double>& targets) {
+  for (inverse::SeedRun& run : seeds)
+    for (const auto& [name, target] : targets) {
+      double value = 0;
+      if (!run.macro.count(name) && output_value(run.macro, name, value)) run.macro[name] = value;
+    }
+  return seeds;
+}
+
 std::string shift_markdown(const inverse::Verification& coarse, const inverse::Verification& finer, double factor,
                            const json& shifts) {
   std::string md = "\nAt a finer resolution (disk radii / " + format_double(factor) + ", " +
@@ -116,12 +127,17 @@ int run(const Arguments& a) {
   // Check the targets before any DEM run: each must be an output of the scene's test (or tests).
   std::set<std::string> outputs;
   for (const dem::OutputSpec& o : scene.outputs()) outputs.insert(o.name);
-  for (const auto& [name, value] : targets)
-    if (!outputs.count(name)) {
-      std::string list;
-      for (const std::string& o : outputs) list += (list.empty() ? "" : ", ") + o;
-      throw Error(a.solution + ": target " + name + " is not an output of " + a.scene + " (its outputs: " + list + ")");
-    }
+  for (const auto& [name, value] : targets) {
+    const std::optional<OutputRatio> ratio = parse_output_ratio(name, a.solution + ": targets");
+    for (const std::string& part : ratio ? std::vector<std::string>{ratio->numerator, ratio->denominator}
+                                         : std::vector<std::string>{name})
+      if (!outputs.count(part)) {
+        std::string list;
+        for (const std::string& o : outputs) list += (list.empty() ? "" : ", ") + o;
+        throw Error(a.solution + ": target " + name + ": " + part + " is not an output of " + a.scene +
+                    " (its outputs: " + list + ")");
+      }
+  }
 
   // The point to run: the solution's parameters, then the space's fixed and
   // tied values, then --set; every name must be a scene parameter.
@@ -183,7 +199,8 @@ int run(const Arguments& a) {
   auto judge = [&](int n) {
     batch.seeds = n;
     wall_s += jobs::run_batch(batch).wall_s;
-    return inverse::verify(targets, predicted, stored_seeds(batch.out_path, a.first_seed, n), a.tolerance, intervals);
+    return inverse::verify(targets, predicted, with_ratios(stored_seeds(batch.out_path, a.first_seed, n), targets),
+                           a.tolerance, intervals);
   };
   inverse::Verification v = judge(a.seeds);
   for (;;) {
@@ -221,7 +238,8 @@ int run(const Arguments& a) {
                 std::to_string(a.finer_seeds) + " seeds");
     wall_s += jobs::run_batch(fine).wall_s;
     inverse::Verification finer =
-        inverse::verify(targets, predicted, stored_seeds(fine.out_path, a.first_seed, a.finer_seeds), a.tolerance);
+        inverse::verify(targets, predicted, with_ratios(stored_seeds(fine.out_path, a.first_seed, a.finer_seeds), targets),
+                        a.tolerance);
     json shifts = json::object();
     for (std::size_t i = 0; i < v.rows.size() && i < finer.rows.size(); ++i) {
       const double shift = 100.0 * (finer.rows[i].mean - v.rows[i].mean) / std::fabs(v.rows[i].mean);

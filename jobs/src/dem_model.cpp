@@ -8,6 +8,7 @@
 
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/error.hpp"
+#include "demcal/core/output_ratio.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/progress.hpp"
@@ -106,14 +107,17 @@ void DemModel::predict_batch(const std::vector<std::vector<double>>& xs, std::ve
           e.reason = r.value("reason", std::string("failed"));
           continue;
         }
-        const json& macro = r.at("macro");
+        std::map<std::string, double> macro;
+        for (auto it = r.at("macro").begin(); it != r.at("macro").end(); ++it)
+          if (it.value().is_number()) macro[it.key()] = it.value().get<double>();
         for (std::size_t o = 0; o < outputs().size(); ++o) {
-          if (!macro.contains(outputs()[o]) || !macro.at(outputs()[o]).is_number()) {
+          double value = 0;
+          if (!output_value(macro, outputs()[o], value)) {  // an output, or a ratio A/B of two per specimen
             std::string known;
-            for (auto it = macro.begin(); it != macro.end(); ++it) known += (known.empty() ? "" : ", ") + it.key();
+            for (const auto& [name, v] : macro) known += (known.empty() ? "" : ", ") + name;
             throw Error(scene_path_ + ": the DEM gives no output \"" + outputs()[o] + "\" (it gives " + known + ")");
           }
-          e.y[o] += macro.at(outputs()[o]).get<double>() / options_.seeds;
+          e.y[o] += value / options_.seeds;
         }
       }
       if (e.failed_seeds > 0) e.y.assign(outputs().size(), std::nan(""));

@@ -8,6 +8,7 @@
 
 #include "demcal/core/cli_main.hpp"
 #include "demcal/core/atomic_file.hpp"
+#include "demcal/core/output_ratio.hpp"
 #include "demcal/surrogate/data_columns.hpp"
 #include "demcal/surrogate/design_anova.hpp"
 #include "demcal/surrogate/model_file.hpp"
@@ -44,6 +45,7 @@ int design_analysis(const Arguments& a) {
   std::vector<std::string> responses = split_names(a.responses, "--responses");
   if (factors.empty()) throw Error("--factors A,B,... is required (the design columns)");
   if (responses.empty()) throw Error("--responses R1,R2,... is required");
+  add_ratio_columns(table, responses, a.data);  // a response A/B: each run's A over its B
   for (const std::string& r : responses)
     if (std::find(factors.begin(), factors.end(), r) != factors.end())
       throw Error("column " + r + " is both a factor (--factors) and a response (--responses)");

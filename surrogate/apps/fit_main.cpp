@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "demcal/core/output_ratio.hpp"
 #include "demcal/core/cli_main.hpp"
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/number_format.hpp"
@@ -95,6 +96,7 @@ int run(const Arguments& a, const CLI::App& app) {
   if (y_names.empty()) throw Error("--y R is required (the response column; repeat for several)");
   for (const std::string& y : y_names)
     if (std::find(x_names.begin(), x_names.end(), y) != x_names.end()) throw Error("column " + y + " is both an input (--x) and a response (--y)");
+  add_ratio_columns(table, y_names, a.data);  // a response A/B: each run's A over its B
   Eigen::MatrixXd X = select_columns(table, x_names, a.data);
   Eigen::MatrixXd Y = select_columns(table, y_names, a.data);
   require_varying(X, x_names, a.data, "an input must vary to be fitted");

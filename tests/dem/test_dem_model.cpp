@@ -18,6 +18,7 @@
 #include "demcal/jobs/dem_model.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/scene_set.hpp"
 
 using namespace demcal;
 using namespace demcal::dem;
@@ -130,4 +131,31 @@ TEST(DemModel, AFailedRunGivesNoNumberAndBadSetupsAreErrors) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no output \"UCS\""), std::string::npos) << e.what();
   }
+}
+
+TEST(DemModel, ARatioOutputIsFormedPerSpecimenOverATestList) {
+  // sigma_t / sigma_u of one material from a UCS and a Brazilian test per point,
+  // each seed's own ratio averaged (not the ratio of the means).
+  const std::string list = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/tests_small.json";
+  DemModelOptions o = options("ratio");
+  o.seeds = 2;
+  DemModel model(list, space(), {"sigma_t_MPa/sigma_u_MPa", "sigma_u_MPa"}, o);
+  std::vector<double> y = model.predict(std::vector<double>{12.0, 20.0});
+  const SceneSet set = SceneSet::load(list);
+  double mean_ratio = 0, mean_ucs = 0;
+  for (std::uint64_t seed : {1, 2}) {
+    RunOptions run;
+    run.seed = seed;
+    const nlohmann::json r = set.run(set.resolve({{"pb_sigma_c_MPa", 12.0}, {"Ec_GPa", 20.0}, {"kn_ks", 1.5}}), run);
+    ASSERT_EQ(r.at("status"), "ok") << r.at("reason");
+    const double t = r.at("macro").at("sigma_t_MPa").get<double>(), u = r.at("macro").at("sigma_u_MPa").get<double>();
+    mean_ratio += t / u / 2;
+    mean_ucs += u / 2;
+  }
+  EXPECT_DOUBLE_EQ(y[0], mean_ratio);
+  EXPECT_DOUBLE_EQ(y[1], mean_ucs);
+  EXPECT_EQ(model.runs_made(), 2);  // points x seeds; each ran all three tests
+  // A ratio of something the tests do not give is an error naming it.
+  DemModel bad(list, space(), {"sigma_t_MPa/nothing"}, options("ratio_bad"));
+  EXPECT_THROW(bad.predict(std::vector<double>{12.0, 20.0}), demcal::Error);
 }
