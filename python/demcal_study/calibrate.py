@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-from . import calibrate_runs, commands, executables, kriging, trust_region
+from . import calibrate_runs, commands, executables, kriging, outputs, trust_region
 from .calibrate_report import pct, report
 from .calibration_problem import Problem
 from .errors import fail, load_json
@@ -78,6 +78,8 @@ class Calibration:
                                scale_parameter=config.get("scale_parameter"), where=config.get("where", "calibrate"))
         self.tolerance = config["tolerance"]
         self.budget = config["budget"]
+        # The budget counts lab-test runs: a point of a test list runs each of its tests.
+        self.tests = outputs.tests_described(description)
         self.points = []   # every DEM point on specimen 1: {"u", "scale", "status", "outputs", "round"}
         self.rounds = []   # what each round decided
         self.verifications = []
@@ -183,17 +185,18 @@ class Calibration:
     # -- DEM ---------------------------------------------------------------------------------------------------------
     def run_round(self, label, entries):
         """entries: (u, scale). Runs them on specimen 1 and records them."""
-        if self.runs + len(entries) > self.budget:
-            entries = entries[:max(self.budget - self.runs, 0)]
+        if self.runs + len(entries) * self.tests > self.budget:
+            entries = entries[:max((self.budget - self.runs) // self.tests, 0)]
         if not entries:
             return []
         params = [self.problem.absolute(u, s) for u, s in entries]
         results = calibrate_runs.run_points(self.tools, self.scene, os.path.join(self.out, "rounds", label), params,
                                             self.quiet)
-        self.runs += len(entries)
+        self.runs += len(entries) * self.tests
         added = []
         for (u, s), r in zip(entries, results):
-            p = {"u": [float(x) for x in u], "scale": float(s), "status": r["status"], "outputs": r["outputs"],
+            p = {"u": [float(x) for x in u], "scale": float(s), "status": r["status"],
+                 "outputs": outputs.with_ratios(r["outputs"], self.problem.targets),
                  "reason": r["reason"], "round": label}
             self.points.append(p)
             added.append(p)
@@ -229,12 +232,13 @@ class Calibration:
         first = self.run_round("r00_reference", [(centre, 1.0)])
         wall = self.point_wall_s("r00_reference")
         design = self.initial_design(centre)
-        planned = 1 + len(design) + 2 * MAX_ROUNDS
-        self.say(f"planned DEM runs: 1 reference + {len(design)} design + up to {MAX_ROUNDS} rounds of 2 on specimen 1,"
-                 f" then verification on {FIRST_VERIFICATION_SEEDS}-{MAX_VERIFICATION_SEEDS} fresh seeds per round;"
-                 f" at most {self.budget} in all. One run took {wall:.1f} s: about "
-                 f"{self.estimate_min(min(self.budget, planned + 2 * MAX_VERIFICATION_SEEDS), wall):.1f} min at most "
-                 f"with {self.tools.jobs} job(s)")
+        planned = (1 + len(design) + 2 * MAX_ROUNDS) * self.tests
+        each = f" (each point runs {self.tests} tests, each counted)" if self.tests > 1 else ""
+        self.say(f"planned DEM points: 1 reference + {len(design)} design + up to {MAX_ROUNDS} rounds of 2 on specimen 1,"
+                 f" then verification on {FIRST_VERIFICATION_SEEDS}-{MAX_VERIFICATION_SEEDS} fresh seeds per round{each};"
+                 f" at most {self.budget} test runs in all. One point took {wall:.1f} s: about "
+                 f"{self.estimate_min(min(self.budget, planned + 2 * MAX_VERIFICATION_SEEDS * self.tests) / self.tests, wall):.1f}"
+                 f" min at most with {self.tools.jobs} job(s)")
         if first and first[0]["status"] != "ok":
             self.say(f"the reference point failed: {first[0]['reason']}")
         self.run_round("r01_design", [(u, 1.0) for u in design])
@@ -272,7 +276,7 @@ class Calibration:
                     rejected >= 2 and np.max(np.abs(current)) <= self.tolerance):
                 converged = True
                 break
-            if self.runs + 2 > self.budget - reserve:
+            if self.runs + 2 * self.tests > self.budget - reserve:
                 blocked = False  # stopped by the budget, not by the bounds
                 break
             offset = np.zeros(len(p.modelled_outputs()))
@@ -319,7 +323,7 @@ class Calibration:
         return bool(np.all(np.abs(residuals) <= np.maximum(CRN_FRACTION * self.tolerance, allowance)))
 
     def verification_reserve(self):
-        return min(FIRST_VERIFICATION_SEEDS + 10, self.budget // 3)
+        return min((FIRST_VERIFICATION_SEEDS + 10) * self.tests, self.budget // 3)
 
     def search_kriging(self, centre, best):
         """The alternative: Gaussian processes of the responses over every point on specimen 1, and each round the
@@ -345,7 +349,7 @@ class Calibration:
             if self.close_enough(current, noise):
                 converged = True
                 break
-            if self.runs + 2 > self.budget - reserve:
+            if self.runs + 2 * self.tests > self.budget - reserve:
                 break
             if stale >= 2 and self.nowhere_within_tolerance(gps, d) and np.any(np.abs(centre) >= 0.98):
                 blocked = True  # two rounds without a better point, and the GPs see nothing better anywhere
@@ -440,7 +444,7 @@ class Calibration:
             left = self.budget - self.runs
             model = self.fit(centre, radius)
             point = self.point_at(model, centre, offset)
-            if left < 2:
+            if left < 2 * self.tests:
                 return self.finish("budget", f"the budget of {self.budget} DEM runs is spent", EXIT_BUDGET,
                                    point=verified or point)
             interval, wanted = point["scale_interval"], point["wanted_scale_factor"]
@@ -480,14 +484,14 @@ class Calibration:
                 return self.finish("unreachable", f"{p.scale_target} needs a scale factor {wanted:.4g}, outside what "
                                    f"the bounds allow ({interval[0]:.4g} to {interval[1]:.4g}): at that factor "
                                    f"{beyond}", EXIT_UNREACHABLE, point=point)
-            seeds, most = min(FIRST_VERIFICATION_SEEDS, left), min(MAX_VERIFICATION_SEEDS, left)
+            seeds, most = min(FIRST_VERIFICATION_SEEDS, left // self.tests), min(MAX_VERIFICATION_SEEDS, left // self.tests)
             folder = os.path.join(self.out, "verify", f"v{k:02d}")
             v = calibrate_runs.verify(self.tools, self.scene, folder, point["x"], p.targets, point["predicted"],
                                       next_seed, seeds, most, self.tolerance, self.quiet,
                                       intervals=point["prediction_interval_95"])
             verified = point
             used = len(v["seeds"])
-            self.runs += used
+            self.runs += used * self.tests
             next_seed += used
             rows = v["outputs"]
             met = v["passed"] and all(r["half_width_pct"] is not None and r["half_width_pct"] <= 100 * self.tolerance

@@ -17,6 +17,7 @@ defaults."""
 import math
 
 from .errors import fail
+from .outputs import is_output, output_info
 
 LOG_SPAN = 10.0  # a range wider than this (high / low) is coded on a log scale
 
@@ -64,11 +65,13 @@ class Problem:
         if not self.targets:
             fail(f"{where}: no targets")
         for name, value in self.targets.items():
-            if name not in outputs:
-                fail(f"{where}: target {name} is not an output of the scene (outputs: {', '.join(sorted(outputs))})")
+            if not is_output(outputs, name, f"{where}: target"):
+                fail(f"{where}: target {name} is not an output of the scene, nor a ratio A/B of two "
+                     f"(outputs: {', '.join(sorted(outputs))})")
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value != 0):
                 fail(f"{where}: target {name} must be a non-zero number")
-        self.output_stress_like = {o: bool(outputs[o]["stress_like"]) for o in self.targets}
+        info = {o: output_info(outputs, o, f"{where}: target") for o in self.targets}
+        self.output_stress_like = {o: bool(info[o]["stress_like"]) for o in self.targets}
         fixed = dict(fixed or {})
         for name in fixed:
             if name not in params:
@@ -122,7 +125,7 @@ class Problem:
         self.scale_target = None
         if scale_parameter is not None and stress_targets:
             self.scale_target = "E_GPa" if "E_GPa" in stress_targets else stress_targets[0]
-        self.output_si = {o: outputs[o]["si_factor"] for o in self.targets}
+        self.output_si = {o: info[o]["si_factor"] for o in self.targets}
         # The scale parameter's reference value at scale 1; every ratio multiplies it.
         self.scale_reference = varied[scale_parameter][2] if scale_parameter else 1.0
 

@@ -4,6 +4,7 @@ import csv
 import os
 
 from .errors import load_json
+from .outputs import tests_per_point
 
 
 def count_rows(path):
@@ -24,7 +25,7 @@ def make_wall_s(out):
 
 def study_cost(out):
     """What a calibration cost and gave: DEM runs (screening, designs, DEM in the loop,
-    verification, refinement; not the stability checks), wall time of make study, and the
+    verification, refinement; not the stability checks; each test of a test list counted), wall time of make study, and the
     largest verified relative error of the final solution."""
     study = load_json(os.path.join(out, "config", "study.json"), "study")
     refined = load_json(os.path.join(out, "refined.json"), "refinement record")
@@ -39,6 +40,7 @@ def study_cost(out):
     if os.path.exists(scatter):  # seeds_per_point "auto" measured the scatter first
         runs += len(load_json(scatter, "scatter verification")["seeds"])
     runs += sum(r["dem_runs"] for r in refined["rounds"])
+    runs *= tests_per_point(study["scene"])  # a point of a test list runs each of its tests
     final = load_json(refined["final"]["verification"], "verification")
     errors = [abs(r["relative_error_pct"]) for r in final["outputs"].values()]
     if study.get("strategy") == "dem_in_the_loop":

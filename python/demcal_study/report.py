@@ -4,6 +4,7 @@ import os
 
 from . import strategy
 from .cost import count_rows, make_wall_s
+from .outputs import tests_per_point
 from .errors import load_json
 from .files import write_if_changed
 from .plots import convergence_png, curves_png
@@ -33,7 +34,7 @@ def screening_report(study, out):
              f"Scene `{study['scene']}`, space `{study['space']}`.", "", "## Parameter space", ""]
     lines += space_lines(space) + screening_section(study, out) + significance_section(out)
     wall = make_wall_s(out)
-    runs = count_rows(os.path.join(out, "screening", "responses.csv"))
+    runs = count_rows(os.path.join(out, "screening", "responses.csv")) * tests_per_point(study["scene"])
     lines += ["## Cost", "",
               f"{runs} DEM runs; wall time of `make study` summed over its runs: "
               + (f"{wall / 60:.1f} min" if wall is not None else "not recorded") + ".", ""]

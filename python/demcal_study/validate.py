@@ -6,12 +6,15 @@ import os
 
 from . import executables, schema, strategy
 from .errors import fail, load_json
+from .outputs import is_output
 
 
 def validate(study, path):
     """Returns (scene as demcal-dem describes it, space file) of a valid study read from `path`."""
     schema.check(study, path)
     where = path
+    if ("scene" in study) == ("tests" in study):
+        fail(f"{where}: give either \"scene\" (one lab test) or \"tests\" (several, sharing each point's parameters)")
     check_strategy_fields(study, where)
     if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):
         fail(f"{where}: seeds_per_point \"auto\" chooses the specimens per DEM-in-the-loop evaluation; "
@@ -27,8 +30,8 @@ def validate(study, path):
     space = load_json(study["space"], "parameter space")
     names = Names(study, scene, space)
     for name in study.get("targets", {}):
-        if name not in names.outputs:
-            fail(f"{where}: targets.{name}: not a DEM output (outputs of {study['scene']}: "
+        if not is_output(names.outputs, name, f"{where}: targets"):
+            fail(f"{where}: targets.{name}: not a DEM output, nor a ratio A/B of two (outputs of {study['scene']}: "
                  f"{', '.join(sorted(names.outputs))})")
     if isinstance(study.get("fixed"), dict):
         for name in study["fixed"]:
@@ -90,8 +93,8 @@ class Names:
             fail(f"{what} is not a parameter of {self.scene_path}")
 
     def check_output(self, what, name):
-        if name not in self.outputs:
-            fail(f"{what} is not a DEM output")
+        if not is_output(self.outputs, name, what):
+            fail(f"{what} is not a DEM output, nor a ratio A/B of two")
 
 
 def check_screening(screening, names, w):

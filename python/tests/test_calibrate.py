@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from demcal_study import calibrate, calibrate_runs, commands, executables, trust_region
+from demcal_study import calibrate, calibrate_runs, commands, executables, outputs, trust_region
 from demcal_study.calibration_problem import Problem
 from demcal_study.calibrate_report import report
 from demcal_study.errors import StudyError
@@ -66,7 +66,7 @@ def fake(monkeypatch, tmp_path):
         os.makedirs(folder, exist_ok=True)
         n = seeds
         while True:
-            runs = [fake_dem(parameters, s) for s in range(first_seed, first_seed + n)]
+            runs = [outputs.with_ratios(fake_dem(parameters, s), targets) for s in range(first_seed, first_seed + n)]
             rows, passed = {}, True
             for o, t in targets.items():
                 x = np.array([r[o] for r in runs])
@@ -303,3 +303,29 @@ def test_the_noise_allowance_never_reaches_the_tolerance():
     assert not c.close_enough([0.055, 0.0], [0.08, 0.0])      # noise above the tolerance is capped at half of it
     assert c.close_enough([0.024, 0.0], [0.08, 0.0])
     assert not c.close_enough([0.026, 0.0], [0.08, 0.0])
+
+
+def test_a_ratio_target_over_a_test_list_is_met_and_each_test_is_counted(fake, tmp_path, bin_dir, monkeypatch):
+    # The same stand-in as a list of two tests per point (each point costs two runs), with sigma_u / E as a
+    # target in its own right (dimensionless: both are stresses).
+    listed = dict(DESCRIPTION, test="list", tests=[{"label": "ucs"}, {"label": "other"}])
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: listed)
+    target = fake_dem({"Ec_Pa": 15e9, "sc_Pa": 120e6, "kn_ks": 2.5, "mu": 0.5}, 1)
+    targets = {"E_GPa": target["E_GPa"], "sigma_u_MPa/E_GPa": target["sigma_u_MPa"] / target["E_GPa"]}
+    code, solution, out = run_calibration(tmp_path, bin_dir, targets, budget=120)
+    assert code == calibrate.EXIT_MET, solution["why"]
+    assert solution["dem_runs"] == 2 * (fake["points"] + fake["seeds"])
+    p = Problem(listed, targets)
+    assert not p.output_stress_like["sigma_u_MPa/E_GPa"]
+    assert p.dimensionless_targets()["sigma_u_MPa/E_GPa"] == targets["sigma_u_MPa/E_GPa"]
+
+
+def test_ratio_outputs_are_formed_per_run_and_refused_when_they_make_no_sense():
+    assert outputs.with_ratios({"a": 6.0, "b": 3.0}, ["a/b", "b", "a/c"]) == {"a": 6.0, "b": 3.0, "a/b": 2.0}
+    info = outputs.output_info(DESCRIPTION["outputs"], "sigma_u_MPa/E_GPa", "w")
+    assert not info["stress_like"] and info["si_factor"] == 1e-3
+    assert outputs.output_info(DESCRIPTION["outputs"], "sigma_u_MPa/nu", "w")["stress_like"]
+    with pytest.raises(StudyError, match="a pure number over a stress"):
+        outputs.output_info(DESCRIPTION["outputs"], "nu/E_GPa", "w")
+    with pytest.raises(StudyError, match="is not an output or a ratio"):
+        Problem(DESCRIPTION, {"E_GPa/": 3})

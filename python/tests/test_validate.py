@@ -98,6 +98,10 @@ def test_schema_check_raises_the_error_in_process():
 # What involves the scene, the space, the executables or another field: validate.py (asks the executables).
 CROSS_CASES = [
     (demo, lambda d: d["targets"].update(density=2400), "targets.density: not a DEM output"),
+    (demo, lambda d: d["targets"].update({"sigma_t_MPa/sigma_u_MPa": 0.1}),
+     "targets.sigma_t_MPa/sigma_u_MPa: not a DEM output, nor a ratio A/B of two"),
+    (demo, lambda d: d["targets"].update({"sigma_u_MPa/": 0.1}), 'targets: "sigma_u_MPa/" is not an output or a ratio'),
+    (demo, lambda d: d.update(tests=["data/scenes/ucs_rock_pb.json"]), 'give either "scene" (one lab test) or "tests"'),
     (demo, lambda d: d.update(scene="data/scenes/no_such_scene.json"),
      "scene: demcal-dem: error: data/scenes/no_such_scene.json: cannot open scene file"),
     (demo, lambda d: d["surfaces"][0]["factors"].__setitem__(-1, "kn_ks_x"), "factor kn_ks_x is not a parameter"),
@@ -134,3 +138,37 @@ def test_a_screening_alone_plans_its_screening_and_report(tmp_path, bin_dir):
     plan = (tmp_path / "s" / "plan.mk").read_text()
     assert "$(D)/screening/anova.json:" in plan and "$(D)/report.md: $(D)/screening/anova.json" in plan
     assert "solution.json" not in plan and "refined.json" not in plan
+
+
+def rock_with_tensile_ratio():
+    """The rock surface study on a UCS and a Brazilian test per point, with sigma_t / sigma_u as a target."""
+    with open(os.path.join(REPO, "data", "studies", "rock_response_surface.json")) as f:
+        study = json.load(f)
+    study.pop("scene")
+    study["tests"] = ["data/scenes/ucs_rock_cb.json", "data/scenes/brazilian_rock_cb.json"]
+    study["targets"]["sigma_t_MPa/sigma_u_MPa"] = 0.2
+    study["screening"]["outputs"].append("sigma_t_MPa/sigma_u_MPa")
+    study["surfaces"][0]["outputs"].append("sigma_t_MPa/sigma_u_MPa")
+    return study
+
+
+def test_a_study_of_several_tests_plans_them_as_one_list(tmp_path, bin_dir):
+    path = tmp_path / "two_tests.json"
+    path.write_text(json.dumps(rock_with_tensile_ratio()))
+    done = run_study_layer(["plan", str(path), str(tmp_path / "s")], bin_dir)
+    assert done.returncode == 0, done.stderr
+    listed = json.loads((tmp_path / "s" / "config" / "tests.json").read_text())
+    config = tmp_path / "s" / "config"
+    assert [os.path.normpath(os.path.join(config, p)) for p in listed["tests"]] == [
+        os.path.join(REPO, "data", "scenes", "ucs_rock_cb.json"), os.path.join(REPO, "data", "scenes", "brazilian_rock_cb.json")]
+    study = json.loads((config / "study.json").read_text())
+    assert study["scene"] == str(config / "tests.json") and "tests" not in study
+    # A stage that runs the tests is remade when one of their scene files changes.
+    plan = (tmp_path / "s" / "plan.mk").read_text()
+    assert "data/scenes/brazilian_rock_cb.json" in plan
+
+
+def test_tests_must_be_scene_files(tmp_path, bin_dir):
+    study = rock_with_tensile_ratio()
+    study["tests"][1] = "data/scenes/no_such.json"
+    assert "tests[1]: data/scenes/no_such.json is not a scene file" in plan_error(tmp_path, study, bin_dir)
