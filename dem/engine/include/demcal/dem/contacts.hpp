@@ -39,7 +39,7 @@ struct BreakEvent {
 };
 
 // Most state columns one model may declare.
-constexpr std::size_t kMaxStateColumns = 24;
+constexpr std::size_t kMaxStateColumns = 48;
 
 // One model's pairs seen with local indices 0..size-1: what a model's force
 // loop works on. column[c][k] is state column c of the block's pair k.
