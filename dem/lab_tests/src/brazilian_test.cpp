@@ -20,17 +20,36 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
   const double cx = 0.5 * square.width_m, cy = 0.5 * square.height_m;
   // The disc is flattened where the platens load it (a 2 x 10 degree chord
   // at each end), so each platen bears on several disks from the start
-  // instead of crushing a single one; sigma_t keeps the plain formula.
+  // instead of crushing a single one; sigma_t keeps the plain formula. The
+  // platens start on the flats, touching every disk that crosses a flat with
+  // its centre inside the disc, with no force (as a prism's start at its
+  // vessel's faces): otherwise the first approach closes the flats'
+  // roughness on one or two disks, whose local breaks could end the test
+  // long before the disc splits (loading.platen_start "outermost_disks"
+  // keeps that start, and only the disks wholly inside the flattened disc).
   const double flat = 0.5 * D * std::cos(10.0 * M_PI / 180.0);
+  const bool on_flats = loading.platen_start == LoadingSpec::PlatenStart::vessel_faces;
   std::vector<bool> keep(square.size());
   std::size_t kept = 0;
   for (std::size_t i = 0; i < square.size(); ++i) {
-    keep[i] = std::hypot(square.x[i] - cx, square.y[i] - cy) + square.radius[i] <= 0.5 * D &&
-              std::abs(square.y[i] - cy) + square.radius[i] <= flat;
+    const double dy = std::abs(square.y[i] - cy), centre = std::hypot(square.x[i] - cx, square.y[i] - cy);
+    const double r = square.radius[i];
+    // Inside the disc, or (on the flats) crossing a flat with its centre
+    // inside the circle: the flats are shallower than a disk (0.015 D), so a
+    // disk that touches one reaches past the circle.
+    keep[i] = on_flats ? dy <= flat && (centre + r <= 0.5 * D || (dy + r > flat && centre <= 0.5 * D))
+                       : centre + r <= 0.5 * D && dy + r <= flat;
     kept += keep[i];
+    // A disk crossing a flat by more than half its radius is set back to half
+    // (the flats ground true): deeper, little force would push it through the
+    // platen. Bonding makes its new overlaps force-free as they lie.
+    if (on_flats && keep[i] && dy > flat - 0.5 * r)
+      square.y[i] = cy + std::copysign(flat - 0.5 * r, square.y[i] - cy);
   }
   std::map<std::string, double> specimen_info;
-  World world = make_platen_world(scene, parameters, square, options.seed, &keep, &specimen_info);
+  const std::pair<double, double> flats{cy - flat, cy + flat};
+  World world = make_platen_world(scene, parameters, square, options.seed, &keep, &specimen_info, false,
+                                  on_flats ? &flats : nullptr);
   const double t = square.thickness_m;
   const double gap0 = world.walls[1].y0 - world.walls[0].y0;
 
@@ -73,6 +92,8 @@ class BrazilianTest : public LabTest {
     return "Brazilian disc: a disc cut from the packing, flattened where the platens bear, split across its diameter";
   }
   std::vector<BoundaryRole> boundary_roles() const override { return {platen_role()}; }
+  // 1: the platens start on the flats, force-free (2026-12-03).
+  int results_version() const override { return 1; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out = {
         {"sigma_t_MPa", "MPa", "tensile strength 2 F_max / (pi D t)"},

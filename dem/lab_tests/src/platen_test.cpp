@@ -31,7 +31,7 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene) {
 
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep,
-                        std::map<std::string, double>* info, bool side_walls) {
+                        std::map<std::string, double>* info, bool side_walls, const std::pair<double, double>* faces_y) {
   WorldSettings settings;
   settings.thickness_m = specimen.thickness_m;
   settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
@@ -111,6 +111,11 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     left_x = 0;
     right_x = specimen.width_m;
   }
+  const bool given_faces = faces_y != nullptr && locked_in_fraction == 0;
+  if (given_faces) {
+    bottom_y = faces_y->first;
+    top_y = faces_y->second;
+  }
   const double W = specimen.width_m, v = scene.loading().platen_velocity_m_s;
   Wall bottom, top;
   bottom.x0 = top.x0 = -W;
@@ -136,7 +141,7 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     world.walls.push_back(left);
     world.walls.push_back(right);
   }
-  if (vessel_faces) {
+  if (vessel_faces || given_faces) {
     const std::size_t touching = world.make_wall_contacts_force_free();  // rebuilds the pairs with the platens
     if (info) (*info)["platen_contacts_at_start"] = static_cast<double>(touching);
   } else {

@@ -181,7 +181,7 @@ void drop_notes(json& value) {
 // FNV-1a over the canonical dump (keys sorted) of what changes results: the
 // same physics gives the same fingerprint, whatever the file's layout, name,
 // descriptions, notes, units or parameter bounds.
-std::string scene_fingerprint(const json& root) {
+std::string scene_fingerprint(const json& root, int test_version) {
   json physics = root;
   for (const char* key : {"name", "description", "extends"}) physics.erase(key);
   if (physics.contains("parameters") && physics.at("parameters").is_object()) {
@@ -191,7 +191,8 @@ std::string scene_fingerprint(const json& root) {
   }
   for (const char* key : {"specimen", "aggregates", "contacts", "loading"})
     if (physics.contains(key)) drop_notes(physics[key]);
-  const std::string text = physics.dump() + "|results-v" + std::to_string(kResultsVersion);
+  std::string text = physics.dump() + "|results-v" + std::to_string(kResultsVersion);
+  if (test_version > 0) text += "|test-v" + std::to_string(test_version);
   std::uint64_t hash = 1469598103934665603ull;
   for (unsigned char c : text) {
     hash ^= c;
@@ -330,7 +331,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const std::string where = origin + ": contacts." + pair;
     ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
   }
-  scene.fingerprint_ = scene_fingerprint(root);  // on the validated file
+  scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version());  // on the validated file
   return scene;
 }
 

@@ -35,6 +35,10 @@ class LabTest {
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;
   virtual std::vector<BoundaryRole> boundary_roles() const = 0;
+  // Raised when a change to this test alone changes its results (0: none
+  // yet), so stored results of its scenes are run again and the other
+  // tests' stay valid; enters the scene's fingerprint when nonzero.
+  virtual int results_version() const { return 0; }
   // What a run of `scene` reports (some outputs depend on the specimen, e.g.
   // the cracks in the mortar and the interface of a concrete).
   virtual std::vector<OutputSpec> outputs(const Scene& scene) const = 0;

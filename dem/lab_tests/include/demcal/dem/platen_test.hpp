@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "demcal/core/progress.hpp"
@@ -44,9 +45,12 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
 // group confine the sides, placed like the platens: at the vessel's side
 // faces or at the outermost disks; walls [2] left, [3] right. Every wall then
 // carries its inward normal (for a stress servo).
+// `faces_y` (bottom, top), when given, places the platens there instead, the
+// disks crossing them touching with no force (a Brazilian disc's flats).
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
-                        std::map<std::string, double>* info = nullptr, bool side_walls = false);
+                        std::map<std::string, double>* info = nullptr, bool side_walls = false,
+                        const std::pair<double, double>* faces_y = nullptr);
 
 // Empty when the state is sane; otherwise why the run must stop as failed
 // (non-finite values, a disk faster than 1000 x the platen speed, a disk
