@@ -11,23 +11,60 @@ def pyplot():
     return plt
 
 
+def curve_sets(group):
+    """The curves a stored point holds, {label: (strain, stress)}: "" for a scene's one test, the test's label for
+    each test of a test list (its datasets are curve_LABEL.axial_strain, ...)."""
+    out = {}
+    for key in group:
+        if key.startswith("curve_") and key.endswith("axial_strain"):
+            prefix = key[len("curve_"):-len("axial_strain")]
+            stress = "curve_" + prefix + "stress_MPa"
+            if stress in group:
+                out[prefix.rstrip(".")] = (group[key][:], group[stress][:])
+    return out
+
+
+def confined(group, label):
+    """Whether the label's curve is a confined test's (its stress is then sigma_1 - sigma_3)."""
+    return "curve_" + (label + "." if label else "") + "confining_stress_MPa" in group
+
+
+def pieces(strain, stress):
+    """A curve split where its strain starts again (a biaxial series: one specimen per confinement)."""
+    start = 0
+    for k in range(1, len(strain)):
+        if strain[k] < strain[k - 1]:
+            yield strain[start:k], stress[start:k]
+            start = k
+    yield strain[start:], stress[start:]
+
+
 def curves_png(runs_h5, out_png):
     try:
         import h5py
         plt = pyplot()
     except ImportError as e:
         return f"(no curve plot: {e})"
-    fig, ax = plt.subplots(figsize=(6, 4))
     with h5py.File(runs_h5, "r") as f:
-        for name in sorted(f["points"]):
-            g = f["points"][name]
-            if "curve_axial_strain" in g and "curve_stress_MPa" in g:
-                ax.plot(g["curve_axial_strain"][:] * 100, g["curve_stress_MPa"][:], label=name.replace("run1_", ""))
-    ax.set_xlabel("axial strain (%)")
-    ax.set_ylabel("axial stress (MPa)")
-    ax.set_title("Verification runs at the calibrated parameters")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+        runs = {name: curve_sets(f["points"][name]) for name in sorted(f["points"])}
+        deviatoric = {label for name in f["points"] for label in runs[name] if confined(f["points"][name], label)}
+    labels = sorted({label for sets in runs.values() for label in sets})
+    if not labels:
+        return "(no curves stored)"
+    fig, axes = plt.subplots(1, len(labels), figsize=(6 * len(labels), 4), squeeze=False)
+    for ax, label in zip(axes[0], labels):
+        for name, sets in runs.items():
+            if label not in sets:
+                continue
+            for k, (strain, stress) in enumerate(pieces(*sets[label])):
+                ax.plot(strain * 100, stress, color=f"C{list(runs).index(name) % 10}",
+                        label=name.replace("run1_", "") if k == 0 else None)
+        ax.set_xlabel("axial strain (%)" if label != "brazilian" else "platen approach / D (%)")
+        ax.set_ylabel("deviatoric stress (MPa)" if label in deviatoric else
+                      "2F / (pi D t) (MPa)" if label == "brazilian" else "axial stress (MPa)")
+        ax.set_title(f"{label + ': ' if label else ''}verification runs at the calibrated parameters", fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out_png, dpi=150)
     plt.close(fig)  # as the other figures: a long-lived process would keep every figure open
