@@ -92,7 +92,7 @@ def output_path(out, response, several):
     if not several:
         return out
     root, ext = os.path.splitext(out)
-    return f"{root}_{response}{ext or '.png'}"
+    return f"{root}_{response.replace('/', '_over_')}{ext or '.png'}"  # a ratio A/B: no sub-folder
 
 
 def save(fig, path):

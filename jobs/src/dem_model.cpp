@@ -1,5 +1,7 @@
 #include "demcal/jobs/dem_model.hpp"
 
+#include <set>
+
 #include <sys/stat.h>
 
 #include <chrono>
@@ -49,6 +51,20 @@ DemModel::DemModel(const std::string& scene_path, const ParameterSpace& space, s
   if (options_.jobs < 1) throw Error("DEM in the loop: jobs must be at least 1");
   if (this->outputs().empty()) throw Error("DEM in the loop: no output to predict");
   scene_.check_space(space_, options_.space_path);
+  // Every output must be one the tests give, or a ratio of two: found out now, not after the first batch.
+  std::set<std::string> known;
+  for (const dem::OutputSpec& o : scene_.outputs()) known.insert(o.name);
+  for (const std::string& name : this->outputs()) {
+    const std::optional<OutputRatio> ratio = parse_output_ratio(name, scene_path + ": output");
+    for (const std::string& part : ratio ? std::vector<std::string>{ratio->numerator, ratio->denominator}
+                                         : std::vector<std::string>{name})
+      if (!known.count(part)) {
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        throw Error(scene_path + ": the DEM gives no output \"" + part + "\"" +
+                    (ratio ? " (in the ratio " + name + ")" : "") + " (it gives " + list + ")");
+      }
+  }
   make_folder(options_.work_dir);
   make_folder(options_.work_dir + "/points");
 }

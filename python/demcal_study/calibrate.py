@@ -610,11 +610,13 @@ def calibrate(args):
     fixed = parse_assignments(args.fixed, "--fixed")
     if not (0 < args.tolerance < 1):
         fail(f"--tolerance: {args.tolerance} must lie in (0, 1)")
-    if args.budget < 10:
-        fail(f"--budget: {args.budget} DEM runs cannot hold a design and a verification (at least 10)")
     for path, what in ((args.scene, "--scene"), (args.space, "--space")):
         if path and not os.path.exists(path):
             fail(f"{what}: {path} does not exist")
+    tests = outputs.tests_per_point(args.scene)
+    if args.budget < 10 * tests:
+        fail(f"--budget: {args.budget} DEM runs cannot hold a design and a verification (at least 10"
+             + (f" points of {tests} tests: {10 * tests} test runs" if tests > 1 else "") + ")")
     name = args.name or default_name(args.scene, targets) + ("_kriging" if args.strategy == "kriging" else "")
     out = os.path.join(args.out_root, name)
     config = {"scene": args.scene, "space": args.space, "targets": targets, "fixed": fixed,

@@ -14,6 +14,11 @@ def ratio_parts(name, where):
     return a, b
 
 
+def stem(name):
+    """An output's name as part of a file name: a ratio's '/' becomes '_over_' (sigma_t_MPa_over_sigma_u_MPa)."""
+    return name.replace("/", "_over_")
+
+
 def is_output(outputs, name, where):
     """Whether `name` is one of `outputs` (describe's dict) or a ratio of two of them."""
     parts = ratio_parts(name, where)
@@ -40,7 +45,8 @@ def with_ratios(values, names):
     for name in names:
         parts = ratio_parts(name, name)
         if parts and name not in out and all(isinstance(out.get(p), (int, float)) for p in parts):
-            out[name] = out[parts[0]] / out[parts[1]]
+            b = out[parts[1]]
+            out[name] = out[parts[0]] / b if b != 0 else float("nan")  # as the executables: no number
     return out
 
 

@@ -7,6 +7,7 @@ from . import commands, executables, scatter, schema, strategy
 from .commands import IN_MAKE, for_make
 from .errors import fail, load_json
 from .files import write_if_changed
+from .outputs import stem
 from .validate import validate
 from .values import choose_factors, fixed_values, subspace
 
@@ -64,7 +65,7 @@ def plan(study_path, out):
     models = []
     for k, surface in enumerate(study.get("surfaces", [])):
         rules += surface_rules(study, scene, space, cfg, code, f"g{k + 1}", surface)
-        models += surface["outputs"]
+        models += [stem(o) for o in surface["outputs"]]
     rules += calibration_rules(study, scene, space, cfg, out, code, models)
     rules += ["stages: $(D)/report.md", ""] if first_phase else ["all: $(D)/report.md", ".PHONY: all",
                                                                ".DEFAULT_GOAL := all", ""]
@@ -174,15 +175,16 @@ def surface_rules(study, scene, space, cfg, code, g, surface):
                                    f"$(D)/config/batch_{g}.json", study["scene"], seeds, code) + [""]
     for output in surface["outputs"]:
         fit = {"kind": surrogate, "x": surface["factors"], "y": output}
-        write_if_changed(os.path.join(cfg, f"fit_{output}.json"), json.dumps(fit) + "\n")
+        name = stem(output)  # a ratio A/B as a file name
+        write_if_changed(os.path.join(cfg, f"fit_{name}.json"), json.dumps(fit) + "\n")
         rules += [
-            f"$(D)/models/{output}.json: $(D)/{g}/responses.csv $(D)/config/fit_{output}.json",
+            f"$(D)/models/{name}.json: $(D)/{g}/responses.csv $(D)/config/fit_{name}.json",
             "\t@mkdir -p $(D)/models",
             "\t" + for_make(commands.fit(IN_MAKE, surrogate, "$<", surface["factors"], output,
-                                         f"$(D)/config/space_{g}.json", "$@", report=f"$(D)/models/{output}.md",
-                                         residuals=f"$(D)/models/{output}_residuals.csv")),
-            "\t" + for_make(commands.plot(IN_MAKE, "fit", f"$(D)/models/{output}_residuals.csv",
-                                          f"$(D)/models/{output}_fit.png")) + " > /dev/null",
+                                         f"$(D)/config/space_{g}.json", "$@", report=f"$(D)/models/{name}.md",
+                                         residuals=f"$(D)/models/{name}_residuals.csv")),
+            "\t" + for_make(commands.plot(IN_MAKE, "fit", f"$(D)/models/{name}_residuals.csv",
+                                          f"$(D)/models/{name}_fit.png")) + " > /dev/null",
             ""]
     return rules
 

@@ -6,6 +6,7 @@ import os
 import subprocess
 
 from . import commands
+from .outputs import stem
 from .errors import fail, load_json
 from .files import write_target
 from .surfaces import factors_of, merged_rows
@@ -41,7 +42,7 @@ def refine(out):
                 for row in rows:
                     w.writerow([row[c] for c in columns])
             for o in surface["outputs"]:
-                model = os.path.join(rd, "models", f"{o}.json")
+                model = os.path.join(rd, "models", f"{stem(o)}.json")
                 cmd = commands.fit(tools, surrogate, data, factors, o, os.path.join(out, "config", f"space_g{g}.json"),
                                    model)
                 if subprocess.run(cmd).returncode != 0:

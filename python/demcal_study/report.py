@@ -4,7 +4,7 @@ import os
 
 from . import strategy
 from .cost import count_rows, make_wall_s
-from .outputs import tests_per_point
+from .outputs import stem, tests_per_point
 from .errors import load_json
 from .files import write_if_changed
 from .plots import convergence_png, curves_png
@@ -85,7 +85,10 @@ def loop_lines(study, solution, out):
              f"No surrogate: every evaluation of {solution['algorithm']} was a DEM run of `{study['scene']}` "
              f"({dem.get('seeds_per_point', 1)} specimen(s) per point, {dem.get('jobs', 1)} at once). "
              f"{solution['evaluations']} evaluations asked for {dem.get('points', 0)} distinct points: "
-             f"**{dem.get('runs', 0)} DEM runs** ({dem.get('runs_failed', 0)} failed), "
+             f"**{dem.get('runs', 0)} DEM runs** ({dem.get('runs_failed', 0)} failed"
+             + (f"; each ran {tests_per_point(study['scene'])} tests, "
+                f"{dem.get('runs', 0) * tests_per_point(study['scene'])} test runs" if tests_per_point(study['scene']) > 1 else "")
+             + "), "
              f"{dem.get('dem_wall_s', 0) / 60:.1f} min of DEM wall time"
              + (f"; {dem['runs_reused']} of them were made by an interrupted earlier attempt and reused"
                 if dem.get("runs_reused") else "") + ". The verification below uses other specimens (seeds "
@@ -117,7 +120,7 @@ def surrogate_lines(study, solution, out):
     figures = []
     for surface in study["surfaces"]:
         for o in surface["outputs"]:
-            m = load_json(os.path.join(out, "models", f"{o}.json"), "model")
+            m = load_json(os.path.join(out, "models", f"{stem(o)}.json"), "model")
             if m["kind"] == "gabp":
                 # Training R^2 and the hold-out R^2 of the rows it never trained on.
                 t, v = m.get("training", {}), m.get("validation", {})
@@ -127,7 +130,7 @@ def surrogate_lines(study, solution, out):
             r = m["responses"][0] if "responses" in m else {}
             lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
                          f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
-            figures.append(f"![fit of {o}](models/{o}_fit.png)")
+            figures.append(f"![fit of {o}](models/{stem(o)}_fit.png)")
     return lines + [""] + figures + ["", "## Inversion", "",
                     f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
                     f"{solution['evaluations']} evaluations, status **{solution['status']}**"

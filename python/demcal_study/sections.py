@@ -3,6 +3,7 @@ import csv
 import os
 
 from .cost import study_cost
+from .outputs import stem, tests_per_point
 from .errors import load_json
 from .plots import comparison_png
 
@@ -25,17 +26,20 @@ def screening_section(study, out):
     lines = ["## Screening", "",
              f"Orthogonal plan of {sc['design'].get('runs', '?')} runs over the whole space "
              f"({sc['design'].get('blank', 0)} blank column(s)), {sc.get('seeds', 1)} seed(s) per point: "
-             f"{len(rows)} DEM runs, {len(failed)} failed" + (" (left out of the analysis)" if failed else "") + ".", ""]
+             f"{len(rows)} DEM runs" + (f" of {tests_per_point(study['scene'])} tests each "
+                                          f"({len(rows) * tests_per_point(study['scene'])} test runs)"
+                                          if tests_per_point(study["scene"]) > 1 else "")
+             + f", {len(failed)} failed" + (" (left out of the analysis)" if failed else "") + ".", ""]
     with open(os.path.join(d, "range.md")) as f:
         lines += f.read().rstrip().split("\n")
     for o in sc["outputs"]:
-        if os.path.exists(os.path.join(d, f"main_effects_{o}.png")):
-            lines += ["", f"![main effects on {o}](screening/main_effects_{o}.png)"]
+        if os.path.exists(os.path.join(d, f"main_effects_{stem(o)}.png")):
+            lines += ["", f"![main effects on {o}](screening/main_effects_{stem(o)}.png)"]
     with open(os.path.join(d, "anova.md")) as f:
         lines += [""] + f.read().rstrip().split("\n")
     for o in sc["outputs"]:
-        if os.path.exists(os.path.join(d, f"pareto_{o}.png")):
-            lines += ["", f"![Pareto chart of F for {o}](screening/pareto_{o}.png)"]
+        if os.path.exists(os.path.join(d, f"pareto_{stem(o)}.png")):
+            lines += ["", f"![Pareto chart of F for {o}](screening/pareto_{stem(o)}.png)"]
     if "surfaces" not in study:
         return lines + [""]
     lines += ["", "### Factors kept for the response surfaces", "",

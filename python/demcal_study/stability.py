@@ -6,6 +6,7 @@ import os
 import subprocess
 
 from . import commands
+from .outputs import stem
 from .errors import load_json
 from .files import write_target
 from .surfaces import factors_of
@@ -57,7 +58,7 @@ def stability(out):
     # The surrogates the calibration ended with (after its refinement rounds, if any).
     refined = load_json(os.path.join(out, "refined.json"), "refinement record")
     models_dir = os.path.join(os.path.dirname(refined["final"]["solution"]), "models")
-    models = [os.path.join(models_dir, f"{o}.json") for surface in study["surfaces"] for o in surface["outputs"]]
+    models = [os.path.join(models_dir, f"{stem(o)}.json") for surface in study["surfaces"] for o in surface["outputs"]]
     record = {"seeds": [], "edge": None, "small_design": []}
     for seed in range(1, int(stab.get("seeds", 5)) + 1):
         record["seeds"].append(invert_and_verify(out, f"seed{seed}", models, study["targets"], 100 + seed, where))
@@ -90,7 +91,7 @@ def small_designs(out, study, stab, models_dir, where):
     k = len(factors)
     terms = (k + 1) * (k + 2) // 2 if surrogate == "quadratic" else None
     sizes = stab.get("small_design_runs") or ([terms - 1, terms + 2] if terms else [max(4, len(rows) // 4)])
-    others = [os.path.join(models_dir, f"{o}.json") for s2 in study["surfaces"][1:] for o in s2["outputs"]]
+    others = [os.path.join(models_dir, f"{stem(o)}.json") for s2 in study["surfaces"][1:] for o in s2["outputs"]]
     cases = []
     for n in sizes:
         n = min(int(n), len(rows))
@@ -103,7 +104,7 @@ def small_designs(out, study, stab, models_dir, where):
         case = {"case": f"first {n} of {len(rows)} design runs", "runs": n, "terms": terms}
         ok = True
         for o in surface["outputs"]:
-            model = os.path.join(where, f"small{n}_{o}.json")
+            model = os.path.join(where, f"small{n}_{stem(o)}.json")
             code, message = run_quiet(commands.fit(tools, surrogate, data, factors, o,
                                                    os.path.join(out, "config", "space_g1.json"), model))
             if code != 0:

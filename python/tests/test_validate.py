@@ -149,6 +149,7 @@ def rock_with_tensile_ratio():
     study["targets"]["sigma_t_MPa/sigma_u_MPa"] = 0.2
     study["screening"]["outputs"].append("sigma_t_MPa/sigma_u_MPa")
     study["surfaces"][0]["outputs"].append("sigma_t_MPa/sigma_u_MPa")
+    study["surfaces"][0]["factors"] = ["Ec_Pa", "kn_ks", "cb_sigma_c_mean_Pa"]  # planned now, not after the screening
     return study
 
 
@@ -166,6 +167,9 @@ def test_a_study_of_several_tests_plans_them_as_one_list(tmp_path, bin_dir):
     # A stage that runs the tests is remade when one of their scene files changes.
     plan = (tmp_path / "s" / "plan.mk").read_text()
     assert "data/scenes/brazilian_rock_cb.json" in plan
+    # A ratio's surface is a file of its own, not a sub-folder.
+    assert "$(D)/models/sigma_t_MPa_over_sigma_u_MPa.json:" in plan
+    assert (config / "fit_sigma_t_MPa_over_sigma_u_MPa.json").exists()
 
 
 def test_tests_must_be_scene_files(tmp_path, bin_dir):

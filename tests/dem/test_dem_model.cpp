@@ -124,12 +124,11 @@ TEST(DemModel, AFailedRunGivesNoNumberAndBadSetupsAreErrors) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("\"porosity_target\" is not a parameter of the scene"), std::string::npos) << e.what();
   }
-  DemModel unknown_output(kScene, space(), {"UCS"}, options("unknown"));
   try {
-    unknown_output.predict(std::vector<double>{10.0, 20.0});
+    DemModel unknown_output(kScene, space(), {"UCS"}, options("unknown"));
     FAIL() << "an output the DEM does not give was accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no output \"UCS\""), std::string::npos) << e.what();
+  } catch (const Error& e) {  // found before any run
+    EXPECT_NE(std::string(e.what()).find("the DEM gives no output \"UCS\" (it gives "), std::string::npos) << e.what();
   }
 }
 
@@ -155,7 +154,12 @@ TEST(DemModel, ARatioOutputIsFormedPerSpecimenOverATestList) {
   EXPECT_DOUBLE_EQ(y[0], mean_ratio);
   EXPECT_DOUBLE_EQ(y[1], mean_ucs);
   EXPECT_EQ(model.runs_made(), 2);  // points x seeds; each ran all three tests
-  // A ratio of something the tests do not give is an error naming it.
-  DemModel bad(list, space(), {"sigma_t_MPa/nothing"}, options("ratio_bad"));
-  EXPECT_THROW(bad.predict(std::vector<double>{12.0, 20.0}), demcal::Error);
+  // A ratio of something the tests do not give is an error naming it, before any run.
+  try {
+    DemModel bad(list, space(), {"sigma_t_MPa/nothing"}, options("ratio_bad"));
+    ADD_FAILURE() << "no error";
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("gives no output \"nothing\" (in the ratio sigma_t_MPa/nothing)"),
+              std::string::npos) << e.what();
+  }
 }

@@ -11,6 +11,8 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/scene.hpp"
 #include "demcal/dem/world.hpp"
 #include "imposed_motion.hpp"
 
@@ -164,5 +166,23 @@ TEST(FlatJoint, BadParametersAreRefusedWithTheField) {
       EXPECT_NE(std::string(e.what()).find("s.json: contacts.disk-disk"), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
     }
+  }
+}
+
+TEST(FlatJoint, ALockedInStressIsRefusedNamingTheField) {
+  // Its joints are installed force-free: a locked-in stress would silently not be there.
+  nlohmann::json scene = Scene::resolved_json(std::string(DEMCAL_SOURCE_DIR) + "/data/scenes/ucs_rock_fj.json");
+  scene["specimen"]["width_m"] = 0.01;
+  scene["specimen"]["height_m"] = 0.02;
+  scene["specimen"]["locked_in_stress_pa"] = 1e6;
+  const Scene s = Scene::from_json(scene, "fj.json");
+  RunOptions options;
+  options.cache_dir = "";
+  try {
+    run_test(s, s.resolve({}), options);
+    ADD_FAILURE() << "no error";
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fj.json: specimen.locked_in_stress_pa: not supported with the flat_joint"),
+              std::string::npos) << e.what();
   }
 }

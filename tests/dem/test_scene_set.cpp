@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -156,4 +157,41 @@ TEST(SceneSet, BadListsAreRefusedNamingTheFileAndField) {
   const SceneSet two = SceneSet::load(write("l_two.json", {{"tests", {"ucs_a.json", "ucs_other.json"}}}));
   EXPECT_EQ(two.label(0), "ucs_small");
   EXPECT_EQ(two.label(1), "other");
+}
+
+TEST(SceneSet, ATestThatThrowsFailsThePointWithItsLabel) {
+  json brazilian = Scene::resolved_json(data("brazilian_small.json"));
+  brazilian["specimen"]["locked_in_stress_pa"] = 1e12;  // more than any packing's overlaps give: run_test throws
+  write("brazilian_locked.json", brazilian);
+  write("ucs_small.json", Scene::resolved_json(data("ucs_small.json")));
+  const SceneSet set = SceneSet::load(write("throwing_list.json", {{"tests", {"ucs_small.json", "brazilian_locked.json"}}}));
+  const json r = set.run(set.resolve({}), RunOptions{});
+  EXPECT_EQ(r.at("status"), "failed");
+  EXPECT_EQ(r.at("reason").get<std::string>().rfind("brazilian: ", 0), 0u) << r.at("reason");
+  EXPECT_NE(r.at("reason").get<std::string>().find("locked_in_stress_pa"), std::string::npos) << r.at("reason");
+  EXPECT_EQ(r.at("test_runs"), 2);
+  EXPECT_GT(r.at("steps").get<double>(), 0.0);  // the UCS that ran is still counted
+}
+
+TEST(SceneSet, AFinerListKeepsItsLabelsAndFindsItsScenesFromARelativeFolder) {
+  json ucs = Scene::resolved_json(data("ucs_small.json"));
+  write("ucs_a.json", ucs);
+  ucs["name"] = "other";
+  write("ucs_b.json", ucs);  // two UCS scenes: labelled by their names
+  const std::string list = write("two_ucs.json", {{"tests", {"ucs_a.json", "ucs_b.json"}}});
+  std::filesystem::create_directories(demcal::test::scratch_path("work"));
+  const std::string relative =
+      std::filesystem::relative(demcal::test::scratch_path("work"), std::filesystem::current_path()).string();
+  const std::string finer = SceneSet::write_with_finer_disks(list, 2.0, relative + "/finer.json");
+  const SceneSet coarse_set = SceneSet::load(list), finer_set = SceneSet::load(finer);
+  ASSERT_EQ(finer_set.size(), 2u);
+  EXPECT_EQ(finer_set.label(0), coarse_set.label(0));
+  EXPECT_EQ(finer_set.label(1), "other");
+  EXPECT_NEAR(finer_set.scenes()[0].specimen(finer_set.resolve({}), 1).radius_min_m,
+              coarse_set.scenes()[0].specimen(coarse_set.resolve({}), 1).radius_min_m / 2, 1e-15);
+  // A name that cannot label outputs is refused.
+  ucs["name"] = "a/b";
+  write("ucs_slash.json", ucs);
+  const std::string e = error_of(write("slash_list.json", {{"tests", {"ucs_a.json", "ucs_slash.json"}}}));
+  EXPECT_NE(e.find("must be letters, digits"), std::string::npos) << e;
 }

@@ -1,5 +1,7 @@
 #include "demcal/dem/biaxial_test.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -41,10 +43,17 @@ void servo(World& world, std::size_t w, double target_pa, double length_m, doubl
 }
 
 // All four walls servoed to the confining stress until each holds it within
-// 0.5 % and the specimen is at rest; the reason when it does not get there.
-std::string consolidate(World& world, double sigma_3_pa, double max_speed_m_s, std::uint64_t max_steps) {
+// 0.5 % and the specimen is at rest; the reason when it does not get there
+// (too many steps, loading.max_wall_s since `start`, or an instability).
+std::string consolidate(World& world, double sigma_3_pa, double max_speed_m_s, std::uint64_t max_steps,
+                        const LoadingSpec& loading, std::chrono::steady_clock::time_point start) {
   constexpr int kBlock = 50;
   for (std::uint64_t done = 0; done < max_steps; done += kBlock) {
+    const std::string unstable = instability(world, loading.platen_velocity_m_s);
+    if (!unstable.empty()) return unstable + " while confining";
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (elapsed > loading.max_wall_s)
+      return "timeout after " + std::to_string(elapsed) + " s while confining (loading.max_wall_s)";
     const double W = width_m(world), H = height_m(world);
     servo(world, kBottom, sigma_3_pa, W, max_speed_m_s);
     servo(world, kTop, sigma_3_pa, W, max_speed_m_s);
@@ -100,8 +109,13 @@ TestResult confine_and_load(World& world, double confining_stress_pa, const Load
   const double max_speed = kServoSpeedOverPlatenSpeed * v;
   TestResult result;
   world.refresh();
-  result.reason = consolidate(world, confining_stress_pa, max_speed, 2000000);
+  result.reason = consolidate(world, confining_stress_pa, max_speed, 2000000, loading, start);
   if (!result.reason.empty()) return result;
+  // The loading starts here: bonds broken while confining are reported on
+  // their own, not as cracks of the test (nor as its post-peak sign).
+  result.macro["cracks_confining"] = static_cast<double>(world.breaks().size());
+  const std::uint64_t confining_steps = world.steps_done();
+  world.start_test();
 
   // Loading: the platens at the loading velocity, the side walls still servoed.
   const double H0 = height_m(world), W0 = width_m(world);
@@ -131,9 +145,10 @@ TestResult confine_and_load(World& world, double confining_stress_pa, const Load
     point.cracks = world.breaks().size();
     if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
   }
+  result.steps = confining_steps;  // added to the loading's steps by record_run_end's caller
   if (!result.ok) return result;
   try {
-    result.macro = ucs_macro_values(result.curve);
+    for (const auto& [name, value] : ucs_macro_values(result.curve)) result.macro[name] = value;
   } catch (const Error& e) {
     result.ok = false;
     result.reason = e.what();
@@ -163,9 +178,17 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
     std::map<std::string, double> info;
     World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &info, true);
     if (k == 0) series.specimen_info = info;
+    RunOptions own = options;  // each specimen's snapshots in a folder of its own
+    if (!options.vtk_dir.empty()) {
+      ::mkdir(options.vtk_dir.c_str(), 0755);
+      own.vtk_dir = options.vtk_dir + "/confinement_" + n;
+    }
+    // loading.max_wall_s holds for each specimen of the series.
     const auto loading_start = std::chrono::steady_clock::now();
-    TestResult one = confine_and_load(world, confinements[k], scene.loading(), options, start);
-    record_run_end(world, options, start, loading_start, one);
+    TestResult one = confine_and_load(world, confinements[k], scene.loading(), own, loading_start);
+    const std::uint64_t confining_steps = one.steps;
+    record_run_end(world, own, loading_start, loading_start, one);
+    one.steps += confining_steps;
     loading_time += std::chrono::steady_clock::now() - loading_start;
     series.steps += one.steps;
     series.dt_s = one.dt_s;
@@ -184,6 +207,7 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
     series.macro["peak_strain_" + n] = one.macro.at("peak_strain");
     series.macro["cracks_tension_" + n] = one.macro.at("cracks_tension");
     series.macro["cracks_shear_" + n] = one.macro.at("cracks_shear");
+    series.macro["cracks_confining_" + n] = one.macro.at("cracks_confining");
     if (one.macro.count("reached_strain_limit")) series.macro["reached_strain_limit_" + n] = 1;
     series.ended_by += (series.ended_by.empty() ? "" : "; ") + n + ": " + one.ended_by;
     sigma_3.push_back(one.macro.at("sigma_3_peak_MPa") * 1e6);
@@ -235,6 +259,7 @@ class BiaxialTest : public LabTest {
       out.push_back({"peak_strain_" + n, "1", "axial strain at the peak" + at});
       out.push_back({"cracks_tension_" + n, "1", "bonds broken in tension" + at});
       out.push_back({"cracks_shear_" + n, "1", "bonds broken in shear" + at});
+      out.push_back({"cracks_confining_" + n, "1", "bonds broken while the confinement was applied" + at});
       out.push_back({"reached_strain_limit_" + n, "1",
                      "1 when loading.strain_limit ended the test before the post-peak stop" + at, false});
     }

@@ -76,6 +76,10 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   const double locked_in_pa = scene.specimen(parameters, seed).locked_in_stress_pa;
   double locked_in_fraction = 0;
   if (locked_in_pa > 0) {
+    for (const auto& [role, contact] : scene.contacts())
+      if (contact.model == "flat_joint")  // its elements start force-free; the linear share it would keep is unused
+        throw Error(scene.origin() + ": specimen.locked_in_stress_pa: not supported with the flat_joint model of contacts." +
+                    role + " (its joints are installed force-free)");
     world.refresh();
     const double full_pa = contact_mean_stress_pa(world, area_m2);
     if (!(full_pa > locked_in_pa))

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 #include "demcal/core/atomic_file.hpp"
@@ -78,10 +79,11 @@ std::string SceneSet::write_with_finer_disks(const std::string& path, double fac
   const std::string stem = out_path.substr(0, out_path.rfind(".json"));
   for (std::size_t k = 0; k < set.size(); ++k) {
     const std::string scene_path = stem + "." + set.label(k) + ".json";
-    write_file_atomically(scene_path,
-                          Scene::with_finer_disks(Scene::resolved_json(set.scenes()[k].origin()), factor,
-                                                  set.scenes()[k].origin()).dump(1) + "\n");
-    list["tests"].push_back(scene_path);
+    json finer = Scene::with_finer_disks(Scene::resolved_json(set.scenes()[k].origin()), factor, set.scenes()[k].origin());
+    finer["name"] = set.scenes()[k].name();  // the same labels, so the outputs keep their names
+    write_file_atomically(scene_path, finer.dump(1) + "\n");
+    // Entries are relative to the list file, which sits beside them.
+    list["tests"].push_back(scene_path.substr(scene_path.find_last_of('/') + 1));
   }
   write_file_atomically(out_path, list.dump(1) + "\n");
   return out_path;
@@ -93,11 +95,19 @@ SceneSet SceneSet::of(std::vector<Scene> scenes, const std::string& origin, cons
   set.origin_ = origin;
   set.name_ = name;
   set.scenes_ = std::move(scenes);
-  // Labels: the test's name, unless another scene runs the same test.
+  // Labels: the test's name, unless another scene runs the same test. A
+  // label prefixes output names and names files, so it is a plain word.
   for (const Scene& s : set.scenes_) {
     const auto same_test = std::count_if(set.scenes_.begin(), set.scenes_.end(),
                                          [&](const Scene& o) { return o.test() == s.test(); });
-    set.labels_.push_back(same_test > 1 ? s.name() : s.test());
+    const std::string label = same_test > 1 ? s.name() : s.test();
+    const bool plain = !label.empty() && std::all_of(label.begin(), label.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+    });
+    if (!plain)
+      throw Error(origin + ": tests: " + s.origin() + ": its name \"" + label +
+                  "\" labels its outputs (another scene runs the same test) and must be letters, digits, '_' or '-'");
+    set.labels_.push_back(label);
   }
   for (std::size_t a = 0; a < set.labels_.size(); ++a)
     for (std::size_t b = a + 1; b < set.labels_.size(); ++b)
@@ -218,7 +228,13 @@ json SceneSet::run(const std::map<std::string, double>& parameters, const RunOpt
       ::mkdir(options.vtk_dir.c_str(), 0755);
       own_options.vtk_dir = options.vtk_dir + "/" + labels_[k];
     }
-    const TestResult r = run_test(s, own, own_options);
+    TestResult r;
+    try {
+      r = run_test(s, own, own_options);
+    } catch (const std::exception& e) {  // bad input for this test: the point fails naming it
+      r = TestResult{};
+      r.reason = e.what();
+    }
     ++runs;
     json one = result_json(r, own, options.seed);
     one.erase("seed");

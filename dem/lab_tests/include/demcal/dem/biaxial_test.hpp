@@ -42,9 +42,12 @@ constexpr double kServoSpeedOverPlatenSpeed = 50.0;
 // loading.platen_velocity_m_s with the side walls servoed. The curve's
 // stress is sigma_1 - sigma_3 (platen and side-wall forces over the current
 // width and height), its strains relative to the confined specimen, the
-// lateral strain from the side walls. Returns the curve, ok/reason/ended_by
-// and the macro values of ucs_macro_values on that curve plus sigma_1 at the
-// peak (`sigma_1_peak_MPa`); counts steps and wall time from `start`.
+// lateral strain from the side walls. The test's counters start once the
+// confinement holds (World::start_test): bonds broken before are
+// `cracks_confining`. Returns the curve, ok/reason/ended_by, the macro values
+// of ucs_macro_values on that curve plus sigma_1 and sigma_3 at the peak, and
+// in `steps` the confining steps (the world's counter then holds the
+// loading's); loading.max_wall_s counts from `start`.
 TestResult confine_and_load(World& world, double confining_stress_pa, const LoadingSpec& loading,
                             const RunOptions& options, std::chrono::steady_clock::time_point start);
 
