@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/file_path.hpp"
+#include "demcal/core/fnv_hash.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/parameter_space.hpp"
@@ -93,11 +95,7 @@ json resolve_extends(const std::string& path, std::vector<std::string>& chain) {
   const json& base_name = root.at("extends");
   if (!base_name.is_string() || base_name.get<std::string>().empty())
     throw Error(path + ": \"extends\" must be the path of another scene file");
-  std::string base_path = base_name.get<std::string>();
-  if (base_path[0] != '/') {
-    const std::size_t slash = path.find_last_of('/');
-    if (slash != std::string::npos) base_path = path.substr(0, slash + 1) + base_path;
-  }
+  const std::string base_path = path_beside(path, base_name.get<std::string>());
   chain.push_back(canonical_path(path));
   if (std::find(chain.begin(), chain.end(), canonical_path(base_path)) != chain.end())
     throw Error(path + ": \"extends\": " + base_name.get<std::string>() + " extends this file again (a cycle)");
@@ -193,13 +191,8 @@ std::string scene_fingerprint(const json& root, int test_version) {
     if (physics.contains(key)) drop_notes(physics[key]);
   std::string text = physics.dump() + "|results-v" + std::to_string(kResultsVersion);
   if (test_version > 0) text += "|test-v" + std::to_string(test_version);
-  std::uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%016llx-v%d", static_cast<unsigned long long>(hash), kResultsVersion);
+  std::snprintf(buffer, sizeof buffer, "%016llx-v%d", static_cast<unsigned long long>(fnv1a_64(text)), kResultsVersion);
   return buffer;
 }
 

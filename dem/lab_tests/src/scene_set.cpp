@@ -8,6 +8,8 @@
 
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/error.hpp"
+#include "demcal/core/file_path.hpp"
+#include "demcal/core/fnv_hash.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/result_json.hpp"
@@ -17,20 +19,9 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string relative_to(const std::string& file, const std::string& path) {
-  if (!path.empty() && path[0] == '/') return path;
-  const std::size_t slash = file.find_last_of('/');
-  return slash == std::string::npos ? path : file.substr(0, slash + 1) + path;
-}
-
-std::string fnv_fingerprint(const std::string& text) {
-  std::uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
+std::string set_fingerprint(const std::string& text) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%016llx-set", static_cast<unsigned long long>(hash));
+  std::snprintf(buffer, sizeof buffer, "%016llx-set", static_cast<unsigned long long>(fnv1a_64(text)));
   return buffer;
 }
 
@@ -58,7 +49,7 @@ SceneSet SceneSet::load(const std::string& path) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     if (!list[k].is_string() || list[k].get<std::string>().empty())
       throw Error(path + ": tests: entry " + std::to_string(k + 1) + " must be the path of a scene file");
-    const std::string scene_path = relative_to(path, list[k].get<std::string>());
+    const std::string scene_path = path_beside(path, list[k].get<std::string>());
     if (is_test_list(scene_path))
       throw Error(path + ": tests: " + list[k].get<std::string>() + " is itself a test list (name its scenes instead)");
     scenes.push_back(Scene::load(scene_path));
@@ -83,7 +74,7 @@ std::string SceneSet::write_with_finer_disks(const std::string& path, double fac
     finer["name"] = set.scenes()[k].name();  // the same labels, so the outputs keep their names
     write_file_atomically(scene_path, finer.dump(1) + "\n");
     // Entries are relative to the list file, which sits beside them.
-    list["tests"].push_back(scene_path.substr(scene_path.find_last_of('/') + 1));
+    list["tests"].push_back(file_name(scene_path));
   }
   write_file_atomically(out_path, list.dump(1) + "\n");
   return out_path;
@@ -143,7 +134,7 @@ SceneSet SceneSet::of(std::vector<Scene> scenes, const std::string& origin, cons
   } else {
     std::string text;
     for (std::size_t k = 0; k < set.scenes_.size(); ++k) text += set.labels_[k] + "=" + set.scenes_[k].fingerprint() + ";";
-    set.fingerprint_ = fnv_fingerprint(text);
+    set.fingerprint_ = set_fingerprint(text);
   }
   return set;
 }
