@@ -30,21 +30,12 @@ constexpr double kArea = 2 * kRadius;
 constexpr double kInertia = 2.0 / 3.0 * kRadius * kRadius * kRadius;
 
 World joined_pair(int elements, double sigma_c, double cohesion, double phi_deg = 0, double mu = 0.5) {
-  WorldSettings settings;
-  settings.fixed_dt_s = kDt;
-  settings.damping = 0;
-  World world(settings);
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "flat_joint",
-                        {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"joint_modulus_pa", kJointModulus},
-                         {"joint_kn_ks", kJointKnKs}, {"elements", elements}, {"tensile_strength_pa", sigma_c},
-                         {"cohesion_pa", cohesion}, {"friction_angle_deg", phi_deg}, {"joint_friction", mu}},
-                        "test")));
-  world.bodies.add_disk(0, 0, kRadius, 2650, 1, 0);
-  world.bodies.add_disk(2 * kRadius, 0, kRadius, 2650, 1, 0);
-  world.bodies.fixed[0] = world.bodies.fixed[1] = 1;  // kinematics are imposed below
-  EXPECT_EQ(world.install_bonds(1e-9, 1), 1u);
-  return world;
+  return demcal::dem::testing::bonded_fixed_pair(
+      "flat_joint",
+      {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"joint_modulus_pa", kJointModulus},
+       {"joint_kn_ks", kJointKnKs}, {"elements", elements}, {"tensile_strength_pa", sigma_c}, {"cohesion_pa", cohesion},
+       {"friction_angle_deg", phi_deg}, {"joint_friction", mu}},
+      kRadius, kDt);
 }
 
 }  // namespace

@@ -25,20 +25,11 @@ constexpr double kInertia = 2.0 / 3.0 * kRadius * kRadius * kRadius;
 
 // Two touching disks held by a parallel bond; the test prescribes their motion.
 World bonded_pair(double sigma_c, double tau_c) {
-  WorldSettings settings;
-  settings.fixed_dt_s = kDt;
-  settings.damping = 0;
-  World world(settings);
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "parallel_bond",
-                        {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"bond_modulus_pa", kBondModulus},
-                         {"bond_kn_ks", kBondKnKs}, {"tensile_strength_pa", sigma_c}, {"shear_strength_pa", tau_c}},
-                        "test")));
-  world.bodies.add_disk(0, 0, kRadius, 2650, 1, 0);
-  world.bodies.add_disk(2 * kRadius, 0, kRadius, 2650, 1, 0);
-  world.bodies.fixed[0] = world.bodies.fixed[1] = 1;  // kinematics are imposed below
-  EXPECT_EQ(world.install_bonds(1e-9, 1), 1u);
-  return world;
+  return demcal::dem::testing::bonded_fixed_pair(
+      "parallel_bond",
+      {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"bond_modulus_pa", kBondModulus},
+       {"bond_kn_ks", kBondKnKs}, {"tensile_strength_pa", sigma_c}, {"shear_strength_pa", tau_c}},
+      kRadius, kDt);
 }
 
 }  // namespace
