@@ -19,6 +19,13 @@ namespace {
 
 using json = nlohmann::json;
 
+// A scene's own parameters out of the set's (a resolved set holds them all).
+std::map<std::string, double> own_parameters(const Scene& scene, const std::map<std::string, double>& parameters) {
+  std::map<std::string, double> own;
+  for (const auto& [name, p] : scene.parameters()) own[name] = parameters.at(name);
+  return own;
+}
+
 std::string set_fingerprint(const std::string& text) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%016llx-set", static_cast<unsigned long long>(fnv1a_64(text)));
@@ -169,9 +176,7 @@ bool SceneSet::shapes_specimen(const std::string& parameter) const {
 std::vector<SpecimenSpec> SceneSet::specimens(const std::map<std::string, double>& parameters, std::uint64_t seed) const {
   std::vector<SpecimenSpec> out;
   for (const Scene& s : scenes_) {
-    std::map<std::string, double> own;
-    for (const auto& [pname, p] : s.parameters()) own[pname] = parameters.at(pname);
-    out.push_back(s.specimen(own, seed));
+    out.push_back(s.specimen(own_parameters(s, parameters), seed));
   }
   return out;
 }
@@ -212,8 +217,7 @@ json SceneSet::run(const std::map<std::string, double>& parameters, const RunOpt
   std::string ended_by, reason;
   for (std::size_t k = 0; k < size() && reason.empty(); ++k) {
     const Scene& s = scenes_[k];
-    std::map<std::string, double> own;
-    for (const auto& [pname, p] : s.parameters()) own[pname] = parameters.at(pname);
+    const std::map<std::string, double> own = own_parameters(s, parameters);
     RunOptions own_options = options;
     if (!options.vtk_dir.empty()) {
       ::mkdir(options.vtk_dir.c_str(), 0755);
