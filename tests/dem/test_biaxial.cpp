@@ -50,6 +50,39 @@ TEST(MohrCoulombFit, RefusesWhatHasNoEnvelope) {
   EXPECT_THROW(fit_mohr_coulomb({1e6, 2e6}, {10e6, 9e6}), demcal::Error);  // strength falls with confinement
 }
 
+// Peaks on an exact Hoek-Brown curve (sigma_c 100 MPa, m_i 12): the fit
+// gives both back, since (sigma_1 - sigma_3)^2 is then linear in sigma_3.
+TEST(HoekBrownFit, RecoversTheCriterionFromExactPeaks) {
+  const double sigma_c = 100e6, m_i = 12.0;
+  std::vector<double> s3 = {0.0, 5e6, 10e6, 20e6}, s1;
+  for (double s : s3) s1.push_back(s + sigma_c * std::sqrt(m_i * s / sigma_c + 1));
+  const HoekBrownFit fit = fit_hoek_brown(s3, s1);
+  EXPECT_NEAR(fit.sigma_c_pa, sigma_c, 1e-3);
+  EXPECT_NEAR(fit.m_i, m_i, 1e-9);
+  EXPECT_NEAR(fit.r2, 1.0, 1e-12);
+}
+
+// Peaks on a Mohr-Coulomb line are not a Hoek-Brown curve: the fit is the
+// least-squares line through (sigma_3, (sigma_1 - sigma_3)^2), worked by hand
+// for sigma_1 = 10 + 3 sigma_3 (MPa) at sigma_3 = 0, 1, 2: y = 100, 144, 196,
+// so slope 48, intercept 98.67, sigma_c = sqrt(98.67), m_i = 48 / sigma_c.
+TEST(HoekBrownFit, IsTheLeastSquaresLineOfTheSquaredDeviator) {
+  const std::vector<double> s3 = {0, 1e6, 2e6}, s1 = {10e6, 13e6, 16e6};
+  const HoekBrownFit fit = fit_hoek_brown(s3, s1);
+  const double intercept_mpa2 = (100.0 + 144.0 + 196.0) / 3 - 48.0 * 1.0;
+  EXPECT_NEAR(fit.sigma_c_pa / 1e6, std::sqrt(intercept_mpa2), 1e-9);
+  EXPECT_NEAR(fit.m_i, 48.0 / std::sqrt(intercept_mpa2), 1e-9);
+  EXPECT_LT(fit.r2, 1.0);
+  EXPECT_GT(fit.r2, 0.99);
+}
+
+TEST(HoekBrownFit, RefusesWhatHasNoCriterion) {
+  EXPECT_THROW(fit_hoek_brown({1e6}, {10e6}), demcal::Error);
+  EXPECT_THROW(fit_hoek_brown({1e6, 1e6}, {10e6, 11e6}), demcal::Error);
+  EXPECT_THROW(fit_hoek_brown({1e6, 2e6}, {10e6, 9e6}), demcal::Error);       // deviator falls: m_i < 0
+  EXPECT_THROW(fit_hoek_brown({10e6, 20e6}, {11e6, 41e6}), demcal::Error);    // line through y < 0 at sigma_3 = 0
+}
+
 // A regular hexagonal packing joined by unbreakable bonds is an isotropic
 // elastic sheet (test_hexagonal_lattice.cpp): E = 2 sqrt(3) kn (kn + ks) /
 // ((3 kn + ks) t), nu = (kn - ks) / (3 kn + ks). Under a held confinement the

@@ -72,36 +72,6 @@ std::string consolidate(World& world, double sigma_3_pa, double max_speed_m_s, s
 
 }  // namespace
 
-MohrCoulombFit fit_mohr_coulomb(const std::vector<double>& sigma_3_pa, const std::vector<double>& sigma_1_pa) {
-  if (sigma_3_pa.size() != sigma_1_pa.size() || sigma_3_pa.size() < 2)
-    throw Error("the Mohr-Coulomb fit needs at least two peaks");
-  const double n = static_cast<double>(sigma_3_pa.size());
-  double s3 = 0, s1 = 0;
-  for (std::size_t k = 0; k < sigma_3_pa.size(); ++k) {
-    s3 += sigma_3_pa[k];
-    s1 += sigma_1_pa[k];
-  }
-  const double m3 = s3 / n, m1 = s1 / n;
-  double sxx = 0, sxy = 0, syy = 0;
-  for (std::size_t k = 0; k < sigma_3_pa.size(); ++k) {
-    const double dx = sigma_3_pa[k] - m3, dy = sigma_1_pa[k] - m1;
-    sxx += dx * dx;
-    sxy += dx * dy;
-    syy += dy * dy;
-  }
-  if (!(sxx > 0)) throw Error("the Mohr-Coulomb fit needs at least two different confining stresses");
-  MohrCoulombFit fit;
-  fit.n_phi = sxy / sxx;
-  fit.sigma_c_pa = m1 - fit.n_phi * m3;
-  if (!(fit.n_phi > 0))
-    throw Error("the Mohr-Coulomb fit gives a slope N_phi = " + format_double(fit.n_phi) +
-                " <= 0 (the peak strength falls as the confinement rises): no friction angle");
-  fit.phi_deg = std::asin((fit.n_phi - 1) / (fit.n_phi + 1)) * 180 / M_PI;
-  fit.c_pa = fit.sigma_c_pa / (2 * std::sqrt(fit.n_phi));
-  fit.r2 = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
-  return fit;
-}
-
 TestResult confine_and_load(World& world, double confining_stress_pa, const LoadingSpec& loading,
                             const RunOptions& options, std::chrono::steady_clock::time_point start) {
   if (world.walls.size() != 4) throw Error("the biaxial test needs four walls (bottom, top, left, right)");
@@ -227,6 +197,17 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
       series.reason = e.what();
       return series;
     }
+    // Hoek-Brown is an extra reading of the same peaks: where its line has no
+    // positive intercept the Mohr-Coulomb outputs still stand, and ended_by
+    // says why the hb_ outputs are missing.
+    try {
+      const HoekBrownFit hb = fit_hoek_brown(sigma_3, sigma_1);
+      series.macro["hb_m_i"] = hb.m_i;
+      series.macro["hb_sigma_c_MPa"] = hb.sigma_c_pa / 1e6;
+      series.macro["hb_r2"] = hb.r2;
+    } catch (const Error& e) {
+      series.ended_by += std::string("; no Hoek-Brown envelope: ") + e.what();
+    }
   }
   series.ok = true;
   return series;
@@ -237,9 +218,11 @@ namespace {
 class BiaxialTest : public LabTest {
  public:
   std::string name() const override { return "biaxial"; }
+  // 1: a series also reports the Hoek-Brown hb_ outputs (2026-12-03).
+  int results_version() const override { return 1; }
   std::string description() const override {
     return "biaxial (2D triaxial) compression: servo side walls hold each of loading.confining_stresses_MPa while "
-           "frictionless platens approach; a series fits the Mohr-Coulomb envelope";
+           "frictionless platens approach; a series fits the Mohr-Coulomb and Hoek-Brown envelopes";
   }
   std::vector<BoundaryRole> boundary_roles() const override {
     return {{"disk-platen", kPlatenGroup, "the specimen's disks against the platens and the confining side walls"}};
@@ -269,6 +252,11 @@ class BiaxialTest : public LabTest {
       out.push_back({"phi_deg", "deg", "Mohr-Coulomb friction angle, asin((N_phi - 1) / (N_phi + 1))"});
       out.push_back({"mc_sigma_c_MPa", "MPa", "the envelope's intercept sigma_c (its uniaxial strength)"});
       out.push_back({"mc_r2", "1", "coefficient of determination of the envelope's line"});
+      out.push_back({"hb_m_i", "1", "Hoek-Brown m_i of intact rock: the slope of (sigma_1 - sigma_3)^2 on sigma_3 "
+                                    "over sigma_c (Hoek & Brown 1997); missing when that line has no positive "
+                                    "intercept (ended_by says so)", false});
+      out.push_back({"hb_sigma_c_MPa", "MPa", "Hoek-Brown sigma_c: the square root of that line's intercept", false});
+      out.push_back({"hb_r2", "1", "coefficient of determination of the Hoek-Brown line", false});
     }
     return out;
   }

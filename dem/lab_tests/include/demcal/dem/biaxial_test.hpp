@@ -4,29 +4,18 @@
 // servos on all four walls; then the platens approach at the loading velocity
 // while the side walls' servos hold the confinement. A series runs one
 // specimen (same seed, so the same packing) per confining stress and fits the
-// Mohr-Coulomb envelope to the peaks.
+// Mohr-Coulomb and Hoek-Brown envelopes to the peaks (strength_envelope.hpp).
 #include <chrono>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "demcal/dem/scene.hpp"
+#include "demcal/dem/strength_envelope.hpp"
 #include "demcal/dem/test_result.hpp"
 #include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
-
-// sigma_1 = sigma_c + N_phi sigma_3 fitted by least squares at the peaks:
-// N_phi = (1 + sin phi) / (1 - sin phi), c = sigma_c / (2 sqrt(N_phi)).
-struct MohrCoulombFit {
-  double sigma_c_pa = 0;  // intercept: the envelope's uniaxial strength
-  double n_phi = 0;       // slope
-  double phi_deg = 0;
-  double c_pa = 0;
-  double r2 = 0;          // of the line (1 for two points)
-};
-// Needs at least two different sigma_3 and a positive slope (else an Error saying so).
-MohrCoulombFit fit_mohr_coulomb(const std::vector<double>& sigma_3_pa, const std::vector<double>& sigma_1_pa);
 
 // The servo of a confining wall closes this share of its stress error per
 // step against the stiffness of the disks touching it (PFC's relaxation
