@@ -12,8 +12,8 @@ every stress output by s and leaves strains, nu and crack counts unchanged (test
 
 Coordinates: every varied ratio or dimensionless parameter is coded to u in [-1, 1], on a log scale when its range
 spans more than a decade (or the space says log_scale). Without a space, the scene's physical bounds are used, lows of
-zero raised to 1e-3 of the high; parameters that shape the specimen (radii, size, density) and lengths stay at their
-defaults."""
+zero raised to 1e-3 of the high (angles keep theirs and are coded linearly); parameters that shape the specimen
+(radii, size, density) and lengths stay at their defaults."""
 import math
 
 from .errors import fail
@@ -95,13 +95,17 @@ class Problem:
                     continue
                 if p.get("shapes_specimen") or p["quantity"] == "length":
                     continue
-                if p["quantity"] not in ("stress", "stiffness", "dimensionless"):
-                    continue  # densities, velocities, times, angles: not micro-parameters of the contacts
+                if p["quantity"] not in ("stress", "stiffness", "dimensionless", "angle"):
+                    continue  # densities, velocities, times: not micro-parameters of the contacts
                 high = p["high"]
-                low = _positive_low(p["low"], high)
                 if not (math.isfinite(high) and high < 1e299):
                     fail(f"{where}: {name} has no finite high bound in the scene; give a space (SPACE=...)")
-                varied[name] = (low, high, p["value"], None)
+                if p["quantity"] == "angle":
+                    # A friction angle (the flat joint's phi_b) acts through tan and sin: coded linearly from its
+                    # own low, zero included; a log scale would crowd the search near zero degrees.
+                    varied[name] = (p["low"], high, p["value"], False)
+                else:
+                    varied[name] = (_positive_low(p["low"], high), high, p["value"], None)
         if not varied:
             fail(f"{where}: nothing to vary (every parameter is fixed, a length or shapes the specimen)")
         self.fixed = fixed

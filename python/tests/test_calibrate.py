@@ -170,6 +170,19 @@ def test_problem_codes_wide_ranges_on_a_log_scale_and_fixes_what_shapes_the_spec
     assert x["Ec_Pa"] == pytest.approx(40e9) and x["sc_Pa"] == pytest.approx(200e6) and x["mu"] == pytest.approx(0.5)
 
 
+def test_a_friction_angle_is_searched_linearly_from_its_own_low():
+    # The flat joint's phi_b (0..80 deg, default 0): varied, neither scaled nor log-coded, zero kept as its low.
+    described = json.loads(json.dumps(DESCRIPTION))
+    described["parameters"]["phi_deg"] = {"unit": "deg", "quantity": "angle", "stress_like": False,
+                                          "si_factor": 1.0, "value": 0.0, "low": 0.0, "high": 80.0,
+                                          "shapes_specimen": False}
+    p = Problem(described, {"E_GPa": 6.5, "nu": 0.2})
+    phi = {c.name: c for c in p.coordinates}["phi_deg"]
+    assert not phi.ratio and not phi.log_scale and (phi.low, phi.high, phi.reference) == (0.0, 80.0, 0.0)
+    assert phi.code(40.0) == pytest.approx(0.0) and phi.decode(0.5) == pytest.approx(60.0)
+    assert p.absolute(p.reference_point(), 3.0)["phi_deg"] == 0.0  # the scale factor leaves it alone
+
+
 def test_a_fixed_stress_like_parameter_turns_the_scaling_off():
     p = Problem(DESCRIPTION, {"E_GPa": 6.5, "nu": 0.2}, fixed={"sc_Pa": 50e6})
     assert p.scale_parameter is None and p.held_stress == ["sc_Pa"]
