@@ -1,10 +1,13 @@
 """The report of a calibration (report.md and a self-contained report.html): the problem in both forms (the scene's
 parameters and the dimensionless ratios), each round on specimen 1, each verification, the solution with the local
-model's prediction interval beside the DEM's 95 % interval, and the cost."""
+model's prediction interval beside the DEM's 95 % interval, each test's curves and a biaxial series' Mohr circles over
+the final verification's runs, and the cost."""
 import os
 
 from .errors import load_json
 from .files import write_target
+from .mohr import mohr_section
+from .plots import curves_png
 from .to_html import to_html
 
 
@@ -15,6 +18,22 @@ def pct(value, spec):
 
 def _g(x):
     return "-" if x is None else f"{x:.4g}"
+
+
+def final_runs_lines(runs_dir, out):
+    """Each test's stress-strain curves over the final verification's runs, and the Mohr circles of a biaxial series
+    among them (its mean peaks and envelope)."""
+    lines = []
+    h5, runs_csv = os.path.join(runs_dir, "runs.h5"), os.path.join(runs_dir, "runs.csv")
+    if os.path.exists(h5):
+        why = curves_png(h5, os.path.join(out, "verification_curves.png"))
+        lines += ["", "## Curves of the final verification", "",
+                  "![stress-strain curves of the final verification](verification_curves.png)" if why is None else why]
+    if os.path.exists(runs_csv):
+        mohr = mohr_section(runs_csv, out)
+        if mohr:
+            lines += [""] + mohr
+    return lines
 
 
 def report(out):
@@ -29,6 +48,10 @@ def report(out):
              f"{solution['dem_runs']} DEM runs, {solution.get('wall_s_total', solution['wall_s']) / 60:.1f} min"
              + (f" over {len(solution['wall_s_parts'])} invocations" if len(solution.get("wall_s_parts", [])) > 1
                 else "") + ".", ""]
+    study_json = os.path.join(out, "config", "study.json")  # a "trust_region" study's calibration
+    if os.path.exists(study_json):
+        study = load_json(study_json, "study")
+        lines += [f"Study `{study['name']}`: {study.get('description', '')}", ""]
     lines += ["## The problem in dimensionless form", "",
               f"Scale parameter `{problem['scale_parameter']}` (reference {_g(problem['scale_reference'])}), met "
               f"through the scale target `{problem['scale_target']}` by an exact scale factor: every stress-like "
@@ -78,6 +101,8 @@ def report(out):
     if last and os.path.exists(os.path.join(out, last, "verification.md")):
         with open(os.path.join(out, last, "verification.md")) as f:
             lines += ["", "## The final verification (DEM mean over fresh seeds, 95 % interval)", "", f.read().strip()]
+    if last:
+        lines += final_runs_lines(os.path.join(out, last, "runs"), out)
     if solution.get("reachable"):
         lines += ["", "## What specimen 1 reached", "", "Lowest and highest error of each dimensionless target over "
                   "every point run, in %.", "", "| target | lowest | highest |", "|---|---|---|"]
