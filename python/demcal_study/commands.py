@@ -107,6 +107,25 @@ def verify(tools, solution, scene, space, verification, work, out, md=None, csv=
     return args
 
 
+def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=None, fixed=None, scale_parameter=None,
+              check_resolution=None):
+    """python -m demcal_study calibrate: the trust-region calibration (docs/calibration.md) of a
+    "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget)."""
+    args = stage(tools, "calibrate", "--scene", scene)
+    for key, value in targets.items():
+        args += ["--target", f"{key}={value!r}"]
+    for key, value in (fixed or {}).items():
+        args += ["--fixed", f"{key}={value!r}"]
+    args += ["--tolerance", repr(tolerance), "--budget", str(budget)]
+    if space:
+        args += ["--space", space]
+    if scale_parameter:
+        args += ["--scale-parameter", scale_parameter]
+    if check_resolution:
+        args += ["--check-resolution", repr(check_resolution)]
+    return args + ["--name", name, "--out-root", out_root]
+
+
 def analyze(tools, kind, data, factors, responses, fmt, out, error=None):
     """demcal-analyze range or anova of a screening table; `error` names the term that is the error."""
     args = [tools.program("demcal-analyze"), kind, "--data", data, "--factors", ",".join(factors),

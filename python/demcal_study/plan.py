@@ -16,6 +16,8 @@ PACKAGE = os.path.dirname(os.path.abspath(__file__))
 # The code each generated file is made by: a change to it remakes the file.
 DESIGN_CODE = ("design.py", "commands.py")
 REPORT_CODE = ("report.py", "sections.py", "cost.py", "plots.py", "to_html.py")
+TRUST_REGION_CODE = ("calibrate.py", "calibrate_report.py", "trust_region.py", "calibration_problem.py", "mohr.py",
+                     "plots.py")
 
 
 def plan(study_path, out):
@@ -27,6 +29,8 @@ def plan(study_path, out):
     code = Code(package)
     rules = header(study_path, out, os.path.dirname(package) or ".")
     write_if_changed(os.path.join(cfg, "study.json"), json.dumps(study, indent=1, sort_keys=True) + "\n")
+    if strategy.trust_region(study):
+        return finish(out, rules + trust_region_rules(study, scene, out))
     if "screening" in study:
         rules += screening_rules(study, scene, space, cfg, code)
     if strategy.screening_only(study):
@@ -108,6 +112,23 @@ def scene_files(scene):
         return scene
     base = os.path.dirname(scene)
     return " ".join([scene] + [os.path.relpath(os.path.join(base, p)) for p in listed])
+
+
+def trust_region_rules(study, scene, out):
+    """One stage: `make calibrate`'s command into the study's own folder, which then holds the calibration's
+    report.md. Its exits 3 (unreachable) and 4 (budget spent) are results the report states, not failures of the
+    study; any other non-zero exit stops make (rerunning resumes)."""
+    files = [study["scene"]] if "space" not in study else [study["scene"], study["space"]]
+    args = commands.calibrate(IN_MAKE, study["scene"], study["targets"],
+                              study.get("verification", {}).get("tolerance", 0.05), study["budget"],
+                              os.path.dirname(os.path.normpath(out)) or ".", os.path.basename(os.path.normpath(out)),
+                              space=study.get("space"), fixed=study.get("fixed"),
+                              scale_parameter=study.get("scale_parameter"),
+                              check_resolution=study.get("check_resolution"))
+    code = " ".join(os.path.join(os.path.relpath(PACKAGE), name) for name in TRUST_REGION_CODE)
+    return [f"$(D)/report.md: $(D)/config/study.json {scene_files(files[0])} {' '.join(files[1:])} {code}",
+            "\t" + for_make(args) + "; code=$$?; [ $$code -eq 0 ] || [ $$code -eq 3 ] || [ $$code -eq 4 ]",
+            "", "all: $(D)/report.md", ".PHONY: all", ".DEFAULT_GOAL := all", ""]
 
 
 def header(study_path, out, pythonpath):

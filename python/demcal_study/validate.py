@@ -6,7 +6,7 @@ import os
 
 from . import executables, schema, strategy
 from .errors import fail, load_json
-from .outputs import is_output
+from .outputs import is_output, tests_per_point
 
 
 def validate(study, path):
@@ -16,6 +16,13 @@ def validate(study, path):
     if ("scene" in study) == ("tests" in study):
         fail(f"{where}: give either \"scene\" (one lab test) or \"tests\" (several, sharing each point's parameters)")
     check_strategy_fields(study, where)
+    if strategy.trust_region(study):
+        return validate_trust_region(study, where)
+    if "space" not in study:
+        fail(f"{where}: missing \"space\" (the parameter space file)")
+    for key in ("budget", "scale_parameter", "check_resolution"):
+        if key in study:
+            fail(f"{where}: \"{key}\" applies to strategy trust_region only")
     if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):
         fail(f"{where}: seeds_per_point \"auto\" chooses the specimens per DEM-in-the-loop evaluation; "
              "give a number for designs")
@@ -59,8 +66,54 @@ def validate(study, path):
     return scene, space
 
 
+def validate_trust_region(study, where):
+    """A "strategy": "trust_region" study: what `make calibrate` takes, as fields. Returns (scene described, space
+    file or None)."""
+    space_path = study.get("space")
+    try:
+        scene = executables.describe(study["scene"], space_path)
+    except executables.ToolError as e:
+        fail(f"{where}: {'space' if space_path and space_path in str(e) else 'scene'}: {e}")
+    outputs = set(scene["outputs"])
+    for name in study["targets"]:
+        if not is_output(outputs, name, f"{where}: targets"):
+            fail(f"{where}: targets.{name}: not a DEM output, nor a ratio A/B of two (outputs of {study['scene']}: "
+                 f"{', '.join(sorted(outputs))})")
+    if "fixed" in study and not isinstance(study["fixed"], dict):
+        fail(f"{where}: fixed: strategy trust_region takes an object of parameter: value (it starts from the "
+             "scene's values, or the space's references, anyway)")
+    for name in study.get("fixed", {}):
+        if name not in scene["parameters"]:
+            fail(f"{where}: fixed.{name}: not a parameter of {study['scene']}")
+    scale = study.get("scale_parameter")
+    if scale is not None and scale not in scene["parameters"]:
+        fail(f"{where}: scale_parameter: {scale} is not a parameter of {study['scene']}")
+    ver = study.get("verification", {})
+    for key in ("seeds", "max_seeds"):
+        if key in ver:
+            fail(f"{where}: verification.{key}: the trust region starts its verifications at 5 seeds and adds up "
+                 "to 20 itself; give verification.tolerance only")
+    tolerance = ver.get("tolerance", 0.05)
+    if not 0 < tolerance < 1:
+        fail(f"{where}: verification.tolerance: {tolerance} must lie in (0, 1)")
+    tests = tests_per_point(study["scene"])
+    if study["budget"] < 10 * tests:
+        fail(f"{where}: budget: {study['budget']} DEM runs cannot hold a design and a verification (at least 10 "
+             f"points of {tests} test(s): {10 * tests} test runs)")
+    return scene, space_path
+
+
 def check_strategy_fields(study, where):
     """The fields each shape of study needs and those it refuses (strategy.py)."""
+    if strategy.trust_region(study):
+        for key in ("targets", "budget"):
+            if key not in study:
+                fail(f"{where}: missing \"{key}\" (strategy trust_region)")
+        for key in strategy.NOT_TRUST_REGION:
+            if key in study:
+                fail(f"{where}: \"{key}\" does not apply to strategy trust_region (it chooses its own designs; "
+                     "docs/calibration.md)")
+        return
     if strategy.screening_only(study):
         for key in strategy.CALIBRATION_ONLY:
             if key in study:

@@ -53,7 +53,7 @@ SCHEMA_CASES = [
     (lambda d: d["verification"].update(seeds=5, max_seeds=3), "verification.max_seeds (3) must be at least verification.seeds (5)"),
     (lambda d: d.update(screening={"design": {"kind": "oa"}, "outputs": ["nu"], "p_threshold": 1.5}),
      "screening.p_threshold must lie in (0, 1)"),
-    (lambda d: d.update(strategy="dem-in-loop"), "strategy must be one of dem_in_the_loop, surrogate"),
+    (lambda d: d.update(strategy="dem-in-loop"), "strategy must be one of dem_in_the_loop, surrogate, trust_region"),
     (lambda d: d.update(name="my study"), "name must be letters, digits"),
 ]
 
@@ -176,3 +176,47 @@ def test_tests_must_be_scene_files(tmp_path, bin_dir):
     study = rock_with_tensile_ratio()
     study["tests"][1] = "data/scenes/no_such.json"
     assert "tests[1]: data/scenes/no_such.json is not a scene file" in plan_error(tmp_path, study, bin_dir)
+
+
+def four_targets():
+    with open(os.path.join(REPO, "data", "studies", "rock_four_targets.json")) as f:
+        return json.load(f)
+
+
+TRUST_REGION_CASES = [
+    (lambda d: d.pop("budget"), 'missing "budget" (strategy trust_region)'),
+    (lambda d: d.update(surfaces=[]), '"surfaces" does not apply to strategy trust_region'),
+    (lambda d: d.update(budget=15), "budget: 15 DEM runs cannot hold a design and a verification (at least 10 points "
+                                    "of 2 test(s): 20 test runs)"),
+    (lambda d: d["targets"].update(c_MPa=10), "targets.c_MPa: not a DEM output"),
+    (lambda d: d.update(fixed={"R_min_mm": 1}), "fixed.R_min_mm: not a parameter of"),
+    (lambda d: d.update(scale_parameter="mu_x"), "scale_parameter: mu_x is not a parameter of"),
+    (lambda d: d["verification"].update(max_seeds=30), "verification.max_seeds: the trust region starts"),
+]
+
+
+@pytest.mark.parametrize("change,expected", TRUST_REGION_CASES, ids=[c[1][:30] for c in TRUST_REGION_CASES])
+def test_trust_region_study_errors_name_the_field(tmp_path, bin_dir, change, expected):
+    assert expected in plan_error(tmp_path, edited(four_targets, change), bin_dir)
+
+
+def test_only_a_trust_region_study_takes_a_budget_and_may_leave_out_the_space(tmp_path, bin_dir):
+    assert 'missing "space"' in plan_error(tmp_path, edited(demo, lambda d: d.pop("space")), bin_dir)
+    assert '"budget" applies to strategy trust_region only' in plan_error(
+        tmp_path, edited(demo, lambda d: d.update(budget=80)), bin_dir)
+
+
+def test_a_trust_region_study_plans_one_calibration_into_its_folder(tmp_path, bin_dir):
+    out = tmp_path / "studies" / "rock_four_targets"
+    done = run_study_layer(["plan", "data/studies/rock_four_targets.json", str(out)], bin_dir)
+    assert done.returncode == 0, done.stderr
+    plan = (out / "plan.mk").read_text()
+    recipe = [line for line in plan.splitlines() if "demcal_study calibrate" in line]
+    assert len(recipe) == 1
+    assert f"--scene {out}/config/tests.json" in recipe[0]
+    assert "--target sigma_t_MPa=4.57" in recipe[0] and "--budget 120" in recipe[0]
+    assert f"--name rock_four_targets --out-root {tmp_path / 'studies'}" in recipe[0]
+    # Unreachable (3) and budget spent (4) are results the report states; other exits stop make.
+    assert recipe[0].endswith("; code=$$?; [ $$code -eq 0 ] || [ $$code -eq 3 ] || [ $$code -eq 4 ]")
+    rule = [line for line in plan.splitlines() if line.startswith("$(D)/report.md:")]
+    assert len(rule) == 1 and "data/scenes/brazilian_rock_fj.json" in rule[0] and "mohr.py" in rule[0]
