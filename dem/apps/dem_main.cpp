@@ -94,6 +94,10 @@ int main(int argc, char** argv) {
   run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
   std::string vtk_dir;
   run->add_option("--vtk", vtk_dir, "folder for VTK snapshots (disks and bonds, bond breaks) for ParaView");
+  std::string work_dir;
+  run->add_option("--work", work_dir,
+                  "folder for an external test's files (params.json, out.json, stdout.txt, stderr.txt; default: "
+                  "OUT without .json + \".work\", or demcal_work_SEED)");
   int run_threads = 0;
   run->add_option("--threads", run_threads,
                   "threads of the run's force loop (0: OpenMP's default, OMP_NUM_THREADS or every core; "
@@ -215,6 +219,7 @@ int main(int argc, char** argv) {
       if (dem::SceneSet::is_test_list(export_scene))
         throw Error("export: " + export_scene + " is a test list; name one of its scenes");
       dem::Scene scene = dem::Scene::load(export_scene);
+      if (scene.is_external()) throw Error("export: " + export_scene + " is an external test: it has no specimen of ours");
       const dem::Specimen s = packed_specimen(scene, export_seed, cache_dir);
       dem::write_lammps_data(s, export_lammps, scene.name() + ", seed " + std::to_string(export_seed));
       log::info("wrote " + std::to_string(s.size()) + " disks to " + export_lammps);
@@ -223,7 +228,10 @@ int main(int argc, char** argv) {
     if (released_cmd->parsed()) {
       if (dem::SceneSet::is_test_list(released_scene))
         throw Error("released: " + released_scene + " is a test list; name one of its scenes");
-      const dem::Specimen s = packed_specimen(dem::Scene::load(released_scene), released_seed, cache_dir);
+      const dem::Scene scene = dem::Scene::load(released_scene);
+      if (scene.is_external())
+        throw Error("released: " + released_scene + " is an external test: it has no specimen of ours");
+      const dem::Specimen s = packed_specimen(scene, released_seed, cache_dir);
       std::cout << dem::run_released_specimen(s, released).dump() << "\n";
       return 0;
     }
@@ -235,6 +243,9 @@ int main(int argc, char** argv) {
     options.cache_dir = cache_dir;
     options.progress = !quiet;
     options.vtk_dir = vtk_dir;
+    options.work_dir = !work_dir.empty() ? work_dir
+                       : !out.empty()    ? out.substr(0, out.size() - (out.size() > 5 && out.substr(out.size() - 5) == ".json" ? 5 : 0)) + ".work"
+                                         : "demcal_work_" + std::to_string(seed);
     json summary = scene.run(parameters, options);
     const json curves = summary.at("curve");
     summary.erase("curve");

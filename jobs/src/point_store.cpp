@@ -162,6 +162,10 @@ json compute_point(const SceneSet& scene, const PointSpec& p, const std::string&
     RunOptions options;
     options.seed = p.seed;
     options.cache_dir = cache_dir;
+    // Beside its result file: run1_seed2.json keeps the point, run1_seed2/ an external command's files.
+    options.work_dir = p.file.size() > 5 && p.file.compare(p.file.size() - 5, 5, ".json") == 0
+                           ? p.file.substr(0, p.file.size() - 5)
+                           : p.file + ".work";
     json out = scene.run(parameters, options);
     out["run"] = p.run;
     out["scene_fingerprint"] = p.scene_fingerprint;

@@ -25,6 +25,7 @@ nlohmann::json describe_scene(const Scene& scene) {
   out["test"] = scene.test();
   out["test_description"] = scene.lab_test().description();
   out["fingerprint"] = scene.fingerprint();
+  out["exact_scaling"] = !scene.is_external() || scene.external().exact_scaling;
   out["parameters"] = json::object();
   for (const auto& [name, p] : scene.parameters()) {
     json item = {{"unit", p.unit}, {"quantity", quantity_name(p.quantity)}, {"stress_like", is_stress_like(p.quantity)},
@@ -37,7 +38,8 @@ nlohmann::json describe_scene(const Scene& scene) {
   for (const OutputSpec& o : scene.lab_test().outputs(scene)) out["outputs"][o.name] = output_json(o);
   out["contacts"] = json::object();
   for (const ContactRole& role : scene.contact_roles())
-    out["contacts"][role.name] = {{"model", scene.contacts().at(role.name).model}, {"description", role.description}};
+    out["contacts"][role.name] = {{"model", scene.contacts().at(role.name).model}, {"description", role.description},
+                                  {"parameters", scene.contacts().at(role.name).parameters}};
   return out;
 }
 
@@ -55,6 +57,9 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   out["test"] = "list";
   out["test_description"] = "several lab tests per point, sharing one parameter set";
   out["fingerprint"] = set.fingerprint();
+  bool exact_scaling = true;
+  for (const Scene& s : set.scenes()) exact_scaling = exact_scaling && (!s.is_external() || s.external().exact_scaling);
+  out["exact_scaling"] = exact_scaling;
   out["tests"] = json::array();
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Scene& s = set.scenes()[k];
@@ -79,7 +84,8 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   for (std::size_t k = 0; k < set.size(); ++k)
     for (const ContactRole& role : set.scenes()[k].contact_roles())
       out["contacts"][set.label(k)][role.name] = {{"model", set.scenes()[k].contacts().at(role.name).model},
-                                                  {"description", role.description}};
+                                                  {"description", role.description},
+                                                  {"parameters", set.scenes()[k].contacts().at(role.name).parameters}};
   return out;
 }
 

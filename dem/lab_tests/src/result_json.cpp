@@ -11,6 +11,7 @@ nlohmann::json result_json(const TestResult& r, const std::map<std::string, doub
   if (!r.ended_by.empty()) out["ended_by"] = r.ended_by;
   out["macro"] = nlohmann::json::object();
   for (const auto& [name, value] : r.macro) out["macro"][name] = value;
+  if (!r.extra_outputs.empty()) out["extra_outputs"] = r.extra_outputs;
   out["parameters"] = parameters;
   out["seed"] = seed;
   out["particles"] = r.particles;

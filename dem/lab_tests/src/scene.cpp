@@ -124,6 +124,8 @@ Scene Scene::load(const std::string& path) { return from_json(resolved_json(path
 
 json Scene::with_finer_disks(json scene, double factor, const std::string& origin) {
   if (!(factor >= 1.0) || !std::isfinite(factor)) throw Error(origin + ": a finer resolution needs a factor >= 1");
+  if (scene.value("test", json()) == "external")
+    throw Error(origin + ": an external test has no disks of ours to make finer (its program sets its resolution)");
   if (!scene.contains("specimen") || !scene.at("specimen").is_object()) throw Error(origin + ": no specimen");
   json& specimen = scene["specimen"];
   for (const char* key : {"radius_min_m", "radius_max_m"}) {
@@ -199,8 +201,14 @@ std::string scene_fingerprint(const json& root, int test_version) {
 }  // namespace
 
 Scene Scene::from_json(const json& root, const std::string& origin) {
-  require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
-                       origin);
+  const bool external = root.is_object() && root.value("test", json()) == "external";
+  if (external)
+    require_known_fields(root, {"name", "test", "description", "parameters", "command", "workdir", "timeout_s", "inputs",
+                                "outputs", "exact_scaling"},
+                         origin);
+  else
+    require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
+                         origin);
   Scene scene;
   scene.origin_ = origin;
   if (root.contains("name") && !root.at("name").is_string()) throw Error(origin + ": \"name\" must be a string");
@@ -211,37 +219,19 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   scene.test_ = root.at("test").get<std::string>();
   scene.lab_test_ = &LabTestRegistry::instance().find(scene.test_, origin);
 
+  scene.read_parameters(root);
+  if (external) {
+    scene.external_ = parse_external_spec(root, origin, scene.parameters_);
+    json physics = root;  // the driver's contents count, so an edited driver never reuses a result
+    physics["inputs_content"] = scene.external_->inputs_hash;
+    scene.fingerprint_ = scene_fingerprint(physics, scene.lab_test_->results_version());
+    return scene;
+  }
   if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
   scene.specimen_ = root.at("specimen");
   require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
                               "radius_max_m", "density_kg_m3", "isotropic_stress_pa", "locked_in_stress_pa"},
             origin + ": specimen");
-
-  if (root.contains("parameters")) {
-    const json& params = root.at("parameters");
-    if (!params.is_object()) throw Error(origin + ": \"parameters\" must be an object of name: {value, low, high}");
-    for (auto it = params.begin(); it != params.end(); ++it) {
-      const std::string where = origin + ": parameters." + it.key();
-      if (!it.value().is_object()) throw Error(where + ": must be an object {value, low, high, unit}");
-      require_known_fields(it.value(), {"value", "low", "high", "unit", "note"}, where);
-      SceneParameter p;
-      if (!it.value().contains("value")) throw Error(where + ": missing \"value\" (the default)");
-      if (!it.value().contains("unit") || !it.value().at("unit").is_string())
-        throw Error(where + ": missing \"unit\" (a string such as \"MPa\", \"m\", or \"1\" for dimensionless)");
-      p.unit = it.value().at("unit").get<std::string>();
-      p.quantity = quantity_of_unit(p.unit, where + ".unit");
-      if (it.value().contains("note")) {
-        if (!it.value().at("note").is_string()) throw Error(where + ": \"note\" must be a string");
-        p.note = it.value().at("note").get<std::string>();
-      }
-      p.value = number_field(it.value(), "value", 0, where);
-      p.low = number_field(it.value(), "low", p.low, where);
-      p.high = number_field(it.value(), "high", p.high, where);
-      if (!(p.low <= p.value && p.value <= p.high))
-        throw Error(where + ": value " + format_double(p.value) + " lies outside [low, high]");
-      scene.parameters_[it.key()] = p;
-    }
-  }
 
   if (root.contains("aggregates")) scene.aggregates_ = aggregate_spec(root.at("aggregates"), origin + ": aggregates");
   // The contact roles: the specimen's own, then the test's boundaries (each
@@ -326,6 +316,40 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
   }
   scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version());  // on the validated file
   return scene;
+}
+
+void Scene::read_parameters(const json& root) {
+  if (root.contains("parameters")) {
+    const json& params = root.at("parameters");
+    if (!params.is_object()) throw Error(origin_ + ": \"parameters\" must be an object of name: {value, low, high}");
+    for (auto it = params.begin(); it != params.end(); ++it) {
+      const std::string where = origin_ + ": parameters." + it.key();
+      if (!it.value().is_object()) throw Error(where + ": must be an object {value, low, high, unit}");
+      require_known_fields(it.value(), {"value", "low", "high", "unit", "note"}, where);
+      SceneParameter p;
+      if (!it.value().contains("value")) throw Error(where + ": missing \"value\" (the default)");
+      if (!it.value().contains("unit") || !it.value().at("unit").is_string())
+        throw Error(where + ": missing \"unit\" (a string such as \"MPa\", \"m\", or \"1\" for dimensionless)");
+      p.unit = it.value().at("unit").get<std::string>();
+      p.quantity = quantity_of_unit(p.unit, where + ".unit");
+      if (it.value().contains("note")) {
+        if (!it.value().at("note").is_string()) throw Error(where + ": \"note\" must be a string");
+        p.note = it.value().at("note").get<std::string>();
+      }
+      p.value = number_field(it.value(), "value", 0, where);
+      p.low = number_field(it.value(), "low", p.low, where);
+      p.high = number_field(it.value(), "high", p.high, where);
+      if (!(p.low <= p.value && p.value <= p.high))
+        throw Error(where + ": value " + format_double(p.value) + " lies outside [low, high]");
+      parameters_[it.key()] = p;
+    }
+  }
+
+}
+
+const ExternalSpec& Scene::external() const {
+  if (!external_) throw Error(origin_ + ": not an external test (its test: " + test_ + ")");
+  return *external_;
 }
 
 void Scene::check_space(const ParameterSpace& space, const std::string& space_path) const {

@@ -175,9 +175,8 @@ bool SceneSet::shapes_specimen(const std::string& parameter) const {
 
 std::vector<SpecimenSpec> SceneSet::specimens(const std::map<std::string, double>& parameters, std::uint64_t seed) const {
   std::vector<SpecimenSpec> out;
-  for (const Scene& s : scenes_) {
-    out.push_back(s.specimen(own_parameters(s, parameters), seed));
-  }
+  for (const Scene& s : scenes_)
+    if (!s.is_external()) out.push_back(s.specimen(own_parameters(s, parameters), seed));  // a command packs its own
   return out;
 }
 
@@ -223,6 +222,7 @@ json SceneSet::run(const std::map<std::string, double>& parameters, const RunOpt
       ::mkdir(options.vtk_dir.c_str(), 0755);
       own_options.vtk_dir = options.vtk_dir + "/" + labels_[k];
     }
+    if (!options.work_dir.empty()) own_options.work_dir = options.work_dir + "/" + labels_[k];
     TestResult r;
     try {
       r = run_test(s, own, own_options);

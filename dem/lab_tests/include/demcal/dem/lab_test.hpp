@@ -68,6 +68,7 @@ TestResult run_test(const Scene& scene, const std::map<std::string, double>& par
 void register_ucs_test(LabTestRegistry& registry);
 void register_brazilian_test(LabTestRegistry& registry);
 void register_biaxial_test(LabTestRegistry& registry);
+void register_external_test(LabTestRegistry& registry);
 void register_builtin_tests(LabTestRegistry& registry);
 
 }  // namespace demcal::dem

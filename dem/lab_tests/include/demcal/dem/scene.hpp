@@ -41,6 +41,7 @@
 
 #include "demcal/core/units.hpp"
 #include "demcal/dem/aggregates.hpp"
+#include "demcal/dem/external_test.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/specimen_roles.hpp"
 
@@ -110,6 +111,10 @@ class Scene {
   const std::map<std::string, SceneParameter>& parameters() const { return parameters_; }
   const std::map<std::string, ContactSpec>& contacts() const { return contacts_; }
   const LoadingSpec& loading() const { return loading_; }
+  // An external test's command, inputs and outputs (external_test.hpp):
+  // such a scene has no specimen, contacts or loading. Throws for any other.
+  bool is_external() const { return external_.has_value(); }
+  const ExternalSpec& external() const;
   // The aggregates of a concrete scene; empty for a one-phase specimen.
   const std::optional<AggregateSpec>& aggregates() const { return aggregates_; }
   const std::string& origin() const { return origin_; }
@@ -150,6 +155,9 @@ class Scene {
   std::map<std::string, ContactSpec> contacts_;
   LoadingSpec loading_;
   std::optional<AggregateSpec> aggregates_;
+  std::optional<ExternalSpec> external_;
+
+  void read_parameters(const nlohmann::json& root);
 };
 
 // Scene::check_space against any declared parameters (a scene's, or the

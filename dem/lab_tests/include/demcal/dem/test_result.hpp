@@ -23,6 +23,7 @@ struct TestResult {
   std::string reason;          // why it failed
   std::string ended_by;        // why a successful test stopped (post-peak fraction, strain limit, burst)
   std::map<std::string, double> macro;  // sigma_u_MPa, E_GPa, E50_GPa, nu, peak_strain, cracks_*
+  std::map<std::string, double> extra_outputs;  // an external command's numbers beyond its declared outputs
   std::vector<CurvePoint> curve;
   std::size_t particles = 0;
   std::uint64_t steps = 0;
@@ -41,6 +42,7 @@ struct RunOptions {
   bool progress = false;  // a progress line on stderr
   std::string vtk_dir;    // VTK snapshots (disks + bonds, breaks) when set
   int vtk_every = 25;     // a snapshot every this many curve points, plus the first and last
+  std::string work_dir;   // the point's own folder: an external test's files (params, out, stdout, stderr)
 };
 
 }  // namespace demcal::dem
