@@ -119,7 +119,12 @@ class Problem:
         if scale_parameter is not None and self.held_stress:
             fail(f"{where}: scale parameter {scale_parameter} given, but {', '.join(self.held_stress)} is held fixed "
                  "and stress-like: the exact scaling needs every stress-like value to follow the scale factor")
-        if scale_parameter is None and stress_varied and not self.held_stress:
+        # An external program need not scale with its stress-like parameters: only when its scene says so.
+        self.exact_scaling = scene_description.get("exact_scaling", True)
+        if scale_parameter is not None and not self.exact_scaling:
+            fail(f"{where}: scale parameter {scale_parameter} given, but the scene does not declare \"exact_scaling\": "
+                 "true (an external program's outputs need not scale with its stress-like parameters)")
+        if scale_parameter is None and stress_varied and not self.held_stress and self.exact_scaling:
             scale_parameter = max(stress_varied, key=lambda n: (varied[n][2] * params[n]["si_factor"], n))
         if scale_parameter is not None and scale_parameter not in stress_varied:
             fail(f"{where}: scale parameter {scale_parameter} is not a varied stress-like parameter"
@@ -242,4 +247,5 @@ class Problem:
         return {"targets": self.targets, "dimensionless_targets": self.dimensionless_targets(),
                 "scale_parameter": self.scale_parameter, "scale_reference": self.scale_reference,
                 "scale_target": self.scale_target, "coordinates": [c.describe() for c in self.coordinates],
-                "fixed": self.fixed, "tied": self.tied, "held_stress_like": self.held_stress}
+                "fixed": self.fixed, "tied": self.tied, "held_stress_like": self.held_stress,
+                "exact_scaling": self.exact_scaling}

@@ -170,6 +170,17 @@ def test_problem_codes_wide_ranges_on_a_log_scale_and_fixes_what_shapes_the_spec
     assert x["Ec_Pa"] == pytest.approx(40e9) and x["sc_Pa"] == pytest.approx(200e6) and x["mu"] == pytest.approx(0.5)
 
 
+def test_a_scene_that_does_not_declare_the_scaling_is_searched_without_it():
+    # An external program: its stress-like parameters are searched as they are, no scale factor.
+    described = dict(DESCRIPTION, exact_scaling=False)
+    p = Problem(described, {"E_GPa": 6.5, "sigma_u_MPa": 48})
+    assert p.scale_parameter is None and p.scale_target is None
+    assert sorted(c.name for c in p.coordinates) == ["Ec_Pa", "kn_ks", "mu", "sc_Pa"]
+    assert not any(c.ratio for c in p.coordinates)
+    with pytest.raises(StudyError, match='does not declare "exact_scaling": true'):
+        Problem(described, {"E_GPa": 6.5}, scale_parameter="Ec_Pa")
+
+
 def test_a_friction_angle_is_searched_linearly_from_its_own_low():
     # The flat joint's phi_b (0..80 deg, default 0): varied, neither scaled nor log-coded, zero kept as its low.
     described = json.loads(json.dumps(DESCRIPTION))
