@@ -8,6 +8,9 @@
     python -m demcal_study refine OUT_DIR              while verification fails: add its DEM runs to the data,
                                                        refit, re-invert, re-verify (up to refinement.rounds)
     python -m demcal_study report OUT_DIR              OUT_DIR/report.md and a self-contained report.html
+    python -m demcal_study calibrate --scene S --target NAME=VALUE ...   make calibrate (docs/calibration.md)
+    python -m demcal_study export --solution S.json --scene S --to pfc|yade|liggghts   a calibrated set as input
+                                                       of the simulator a user runs (docs/external.md)
 
 Run from the source tree with PYTHONPATH=python; `make study STUDY=data/studies/NAME.json` (scripts/run_study.sh)
 plans, then runs make on the plan: design -> DEM responses -> models -> solution -> verification -> refinement ->

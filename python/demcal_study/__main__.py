@@ -21,6 +21,11 @@ def parser():
                        ("refine", "while verification fails: add its DEM runs, refit, re-invert, re-verify"),
                        ("report", "OUT_DIR/report.md and a self-contained report.html")):
         sub.add_parser(name, help=what).add_argument("out", metavar="OUT_DIR")
+    exp = sub.add_parser("export", help="a calibrated parameter set as PFC, YADE or LIGGGHTS input")
+    exp.add_argument("--solution", required=True, metavar="SOLUTION.json")
+    exp.add_argument("--scene", required=True, metavar="SCENE.json", help="the scene the solution belongs to")
+    exp.add_argument("--to", required=True, choices=("pfc", "yade", "liggghts"))
+    exp.add_argument("--out", metavar="FILE", help="default: print it")
     cal = sub.add_parser("calibrate", help="a scene and its targets to verified micro-parameters (no study file)")
     cal.add_argument("--scene", required=True, metavar="SCENE.json")
     cal.add_argument("--target", action="append", metavar="NAME=VALUE", help="a target (repeatable)")
@@ -60,6 +65,9 @@ def run(args):
     elif args.command == "report":
         from .report import report
         report(args.out)
+    elif args.command == "export":
+        from .export import export
+        return export(args)
     elif args.command == "calibrate":
         from .calibrate import calibrate
         return calibrate(args)
