@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark
+.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark yade-study
 
 all: build
 
@@ -56,6 +56,11 @@ fidelity-benchmark: build
 
 bench: build
 	@scripts/bench.sh $(BUILD)
+
+# The whole chain on YADE's CPM concrete as an external simulator (docs/external.md); installs Debian's yade on demand.
+yade-study: build
+	/usr/bin/python3 -c "import sys; sys.path.insert(0, 'scripts'); import debian_package; debian_package.ensure('yade', 'yade', 'make yade-study')"
+	@scripts/run_study.sh data/studies/yade_cpm.json $(BUILD) $(JOBS)
 
 sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEMCAL_SANITIZE=ON $(CMAKE_ARGS)
