@@ -34,7 +34,7 @@ study: build
 # One scene and its targets, no study file (docs/calibration.md); resumable, exit 0 met, 3 unreachable, 4 budget:
 #   make calibrate SCENE=data/scenes/ucs_rock_cb.json TARGETS="sigma_u_MPa=48 E_GPa=6.5 nu=0.27"
 #                  [SPACE=...] [FIXED="R_min_m=0.00075 ..."] [TOLERANCE=0.05] [BUDGET=80] [NAME=...]
-#                  [STRATEGY=kriging] [CHECK_RESOLUTION=2]
+#                  [STRATEGY=kriging] [CHECK_RESOLUTION=2] [CHECK_TESTS="data/scenes/biaxial_rock_fj.json"]
 TOLERANCE ?= 0.05
 BUDGET    ?= 80
 calibrate: build
@@ -43,6 +43,7 @@ calibrate: build
 	  --scene $(SCENE) $(foreach t,$(TARGETS),--target $(t)) $(if $(SPACE),--space $(SPACE)) \
 	  $(foreach f,$(FIXED),--fixed $(f)) --tolerance $(TOLERANCE) --budget $(BUDGET) $(if $(NAME),--name $(NAME)) \
 	  $(if $(STRATEGY),--strategy $(STRATEGY)) $(if $(CHECK_RESOLUTION),--check-resolution $(CHECK_RESOLUTION)) \
+	  $(foreach c,$(CHECK_TESTS),--check-test $(c)) \
 	  --out-root $(BUILD)/calibrations
 
 # Hours: every target of data/benchmarks/calibration_targets.json (resumable; ONLY=a,b runs a part; GLOBAL=1 adds

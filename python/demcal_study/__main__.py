@@ -39,6 +39,9 @@ def parser():
                           "processes with expected improvement")
     cal.add_argument("--check-resolution", type=float, metavar="F",
                      help="once met, verify again with the disk radii divided by F (> 1) and report the shift")
+    cal.add_argument("--check-test", action="append", metavar="SCENE.json",
+                     help="once verified, run this test too at the solution on 4 fresh seeds (a prediction, not a "
+                          "target; e.g. a biaxial series for c and phi); repeatable")
     cal.add_argument("--name", help="folder name under --out-root (default: the scene's name and the targets)")
     cal.add_argument("--out-root", default="build/calibrations")
     cal.add_argument("--quiet", action="store_true")

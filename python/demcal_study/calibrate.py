@@ -46,6 +46,8 @@ NOISE_CAP_FRACTION = 0.5
 MAX_ROUNDS = 12
 FIRST_VERIFICATION_SEEDS = 5
 MAX_VERIFICATION_SEEDS = 20
+CHECK_SEEDS = 4  # specimens of each check test at the solution
+CHECK_SHOWN = ("c_MPa", "phi_deg", "hb_m_i", "sigma_u_MPa", "sigma_t_MPa", "E_GPa", "nu")  # in the progress line
 EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
 
 
@@ -89,6 +91,16 @@ class Calibration:
         # scale held at its bound and the scale target as one more residual (bounded_scale_residual).
         self.bounded_scale = False
         self.started = time.time()
+        # Other tests run at the solution once it is verified (predictions, not targets): each must take every
+        # parameter the calibration sets, or it would not be the same material.
+        self.defaults = {name: q["value"] for name, q in description["parameters"].items()}
+        self.check_tests = list(config.get("check_tests", []))
+        for path in self.check_tests:
+            have = executables.describe(path)["parameters"]
+            missing = sorted(set(self.defaults) - set(have))
+            if missing:
+                fail(f"--check-test {path}: it lacks the calibrated scene's parameter(s) {', '.join(missing)}: "
+                     "it would not test the same material")
 
     def say(self, message):
         if not self.quiet:
@@ -586,8 +598,30 @@ class Calibration:
             write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")
         if verification is not None:
             write_target(os.path.join(self.out, "verification.json"), json.dumps(verification, indent=1) + "\n")
+        if status in ("met", "noisy") and point is not None and self.check_tests:
+            solution["checks"] = self.run_checks(point["x"])
+            write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")
         self.say(f"{status}: {why} ({self.runs} DEM runs, {(time.time() - self.started) / 60:.1f} min)")
         return code
+
+    def run_checks(self, x):
+        """Each check test at the solution, on fresh seeds after the verifications' (runs listed apart from the
+        budget, as the resolution check's)."""
+        first = 1 + max((v["first_seed"] + v["seeds"] - 1 for v in self.verifications), default=1)
+        values = dict(self.defaults, **x)
+        out = []
+        for k, path in enumerate(self.check_tests):
+            name = os.path.splitext(os.path.basename(path))[0]
+            folder = os.path.join("checks", f"c{k + 1}_{name}")
+            have = executables.describe(path)["parameters"]
+            result = calibrate_runs.check(self.tools, path, os.path.join(self.out, folder),
+                                          {n: v for n, v in values.items() if n in have}, first, CHECK_SEEDS,
+                                          self.quiet)
+            out.append(dict(result, scene=path, folder=folder, first_seed=first, seeds=CHECK_SEEDS,
+                            note="runs beyond the calibration's budget"))
+            self.say(f"check {name} on seeds {first}-{first + CHECK_SEEDS - 1}: " + ", ".join(
+                f"{o} {s['mean']:.4g}" for o, s in sorted(result["outputs"].items()) if o in CHECK_SHOWN))
+        return out
 
     def reachable(self):
         """The range of every dimensionless target seen on specimen 1: what the model reaches."""
@@ -625,14 +659,19 @@ def calibrate(args):
         if not args.check_resolution > 1:
             fail(f"--check-resolution: {args.check_resolution} must be above 1 (the radii are divided by it)")
         config["check_resolution"] = args.check_resolution
+    for path in args.check_test or []:
+        if not os.path.exists(path):
+            fail(f"--check-test: {path} does not exist")
+    if args.check_test:
+        config["check_tests"] = list(args.check_test)
     if args.strategy != "trust-region":  # absent for the default, so calibrations stored before the option resume
         config["strategy"] = args.strategy
     stored = os.path.join(out, "calibration.json")
     if os.path.exists(stored):
         before = load_json(stored, "calibration")
         # A check after the calibration changes none of its decisions: it may be added to a finished one.
-        if {k: v for k, v in before.items() if k != "check_resolution"} != \
-                {k: v for k, v in config.items() if k != "check_resolution"}:
+        checks = ("check_resolution", "check_tests")
+        if {k: v for k, v in before.items() if k not in checks} != {k: v for k, v in config.items() if k not in checks}:
             fail(f"{stored}: another calibration is stored here (different scene, targets or settings); remove "
                  f"{out} or give --name")
         if before != config:

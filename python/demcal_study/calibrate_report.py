@@ -36,6 +36,27 @@ def final_runs_lines(runs_dir, out):
     return lines
 
 
+def check_lines(k, check, out):
+    """A test run at the solution but not calibrated on: its outputs over fresh seeds, curves and Mohr circles."""
+    lines = ["", f"## Check {k}: `{check['scene']}` at the solution (not a target)", "",
+             f"{check['ok']} of {check['runs']} runs ok on seeds {check['first_seed']}-"
+             f"{check['first_seed'] + check['seeds'] - 1} ({check['note']}).", "",
+             "| output | mean | SD | runs |", "|---|---|---|---|"]
+    lines += [f"| {o} | {_g(s['mean'])} | {_g(s['sd'])} | {s['n']} |" for o, s in sorted(check["outputs"].items())]
+    folder = os.path.join(out, check["folder"])
+    h5 = os.path.join(folder, "responses.h5")
+    if os.path.exists(h5):
+        png = f"check{k}_curves.png"
+        why = curves_png(h5, os.path.join(out, png))
+        lines += ["", f"![curves of check {k}]({png})" if why is None else why]
+    table = os.path.join(folder, "responses.csv")
+    if os.path.exists(table):
+        mohr = mohr_section(table, out, heading="###", png_prefix=f"check{k}_mohr")
+        if mohr:
+            lines += [""] + mohr
+    return lines
+
+
 def report(out):
     config = load_json(os.path.join(out, "calibration.json"), "calibration")
     solution = load_json(os.path.join(out, "solution.json"), "calibration solution")
@@ -103,6 +124,8 @@ def report(out):
             lines += ["", "## The final verification (DEM mean over fresh seeds, 95 % interval)", "", f.read().strip()]
     if last:
         lines += final_runs_lines(os.path.join(out, last, "runs"), out)
+    for k, c in enumerate(solution.get("checks", [])):
+        lines += check_lines(k + 1, c, out)
     if solution.get("reachable"):
         lines += ["", "## What specimen 1 reached", "", "Lowest and highest error of each dimensionless target over "
                   "every point run, in %.", "", "| target | lowest | highest |", "|---|---|---|"]

@@ -53,6 +53,43 @@ def point_reason(out, run):
         return ""
 
 
+def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
+    """Another test at the calibrated parameters, not calibrated on (a prediction): a batch of one point over
+    `seeds` fresh seeds. Returns {"runs", "ok", "outputs": {name: {"mean", "sd", "n"}}} and leaves responses.csv and
+    responses.h5 in `folder` for the report's curves and Mohr circles."""
+    os.makedirs(folder, exist_ok=True)
+    names = sorted(parameters)
+    design = os.path.join(folder, "design.csv")
+    text = ",".join(["run"] + names) + "\n" + ",".join(["1"] + [repr(float(parameters[n])) for n in names]) + "\n"
+    if not (os.path.exists(design) and open(design).read() == text):
+        write_target(design, text)
+    out, table = os.path.join(folder, "responses.h5"), os.path.join(folder, "responses.csv")
+    done = subprocess.run(commands.dem_batch(tools, scene, design, out, table, seeds, first_seed),
+                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL if quiet else None)
+    if done.returncode not in (0, 4):
+        fail(f"{folder}: demcal-dem batch failed (exit {done.returncode})")
+    values, runs, ok = {}, 0, 0
+    with open(table) as f:
+        for row in csv.DictReader(f):
+            runs += 1
+            if row["status"] != "ok":
+                continue
+            ok += 1
+            for key, value in row.items():
+                if key in names or key in ("run", "seed", "status") or value in ("", None):
+                    continue
+                try:
+                    values.setdefault(key, []).append(float(value))
+                except ValueError:
+                    pass
+    summary = {}
+    for key, xs in values.items():
+        mean = sum(xs) / len(xs)
+        sd = (sum((x - mean) ** 2 for x in xs) / (len(xs) - 1)) ** 0.5 if len(xs) > 1 else None
+        summary[key] = {"mean": mean, "sd": sd, "n": len(xs)}
+    return {"runs": runs, "ok": ok, "outputs": summary}
+
+
 def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet,
            intervals=None, scale_resolution=None):
     """demcal-verify at absolute `parameters` on seeds first_seed.. (seeds to start with, up to max_seeds);

@@ -48,10 +48,11 @@ def doe(tools, design, space, out):
     return args
 
 
-def dem_batch(tools, scene, design, out, csv, seeds):
+def dem_batch(tools, scene, design, out, csv, seeds, first_seed=1):
     """demcal-dem batch: every point of `design` x `seeds` (resumable: out.points/ keeps the finished ones)."""
     return [tools.program("demcal-dem"), "batch", "--scene", scene, "--design", design, "--out", out, "--csv", csv,
-            "--seeds", str(seeds), "--jobs", tools.jobs, "--cache", tools.cache]
+            "--seeds", str(seeds), "--jobs", tools.jobs, "--cache", tools.cache] + (
+        ["--first-seed", str(first_seed)] if first_seed != 1 else [])
 
 
 def fit(tools, kind, data, factors, output, space, out, report=None, residuals=None):
@@ -108,7 +109,7 @@ def verify(tools, solution, scene, space, verification, work, out, md=None, csv=
 
 
 def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=None, fixed=None, scale_parameter=None,
-              check_resolution=None):
+              check_resolution=None, check_tests=()):
     """python -m demcal_study calibrate: the trust-region calibration (docs/calibration.md) of a
     "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget)."""
     args = stage(tools, "calibrate", "--scene", scene)
@@ -123,6 +124,8 @@ def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=No
         args += ["--scale-parameter", scale_parameter]
     if check_resolution:
         args += ["--check-resolution", repr(check_resolution)]
+    for path in check_tests:
+        args += ["--check-test", path]
     return args + ["--name", name, "--out-root", out_root]
 
 

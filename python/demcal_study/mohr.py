@@ -102,7 +102,7 @@ def _mean_sd(values):
     return f"{m:.4g} (SD {sd:.2g})"
 
 
-def mohr_section(runs_csv, out_dir, heading="##"):
+def mohr_section(runs_csv, out_dir, heading="##", png_prefix="mohr"):
     """The report's Markdown for every biaxial series among the runs: a table of the mean peaks, the envelope of
     the means beside the mean of the per-run envelopes, and the figure (mohr_LABEL.png in out_dir)."""
     import os
@@ -118,7 +118,7 @@ def mohr_section(runs_csv, out_dir, heading="##"):
                   (f"c {line[2]:.4g} MPa, phi {line[3]:.2f} deg" if line else "none (no positive slope)") +
                   f"; per run (mean, SD): c_MPa {_mean_sd(per_run['c_MPa'])}, phi_deg {_mean_sd(per_run['phi_deg'])}"
                   + (f", Hoek-Brown m_i {_mean_sd(per_run['hb_m_i'])}" if per_run["hb_m_i"] else "") + ".", ""]
-        png = f"mohr{'_' + label if label else ''}.png"
+        png = f"{png_prefix}{'_' + label if label else ''}.png"
         why = mohr_png(label, points, os.path.join(out_dir, png))
         lines += [f"![Mohr circles]({png})" if why is None else why, ""]
     return lines

@@ -20,7 +20,7 @@ def validate(study, path):
         return validate_trust_region(study, where)
     if "space" not in study:
         fail(f"{where}: missing \"space\" (the parameter space file)")
-    for key in ("budget", "scale_parameter", "check_resolution"):
+    for key in ("budget", "scale_parameter", "check_resolution", "check_tests"):
         if key in study:
             fail(f"{where}: \"{key}\" applies to strategy trust_region only")
     if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):
@@ -88,6 +88,13 @@ def validate_trust_region(study, where):
     scale = study.get("scale_parameter")
     if scale is not None and scale not in scene["parameters"]:
         fail(f"{where}: scale_parameter: {scale} is not a parameter of {study['scene']}")
+    for k, path in enumerate(study.get("check_tests", [])):
+        if not os.path.isfile(path):
+            fail(f"{where}: check_tests[{k}]: {path} is not a scene file")
+        have = executables.describe(path)["parameters"]
+        missing = sorted(set(scene["parameters"]) - set(have))
+        if missing:
+            fail(f"{where}: check_tests[{k}]: {path} lacks the calibrated parameter(s) {', '.join(missing)}")
     ver = study.get("verification", {})
     for key in ("seeds", "max_seeds"):
         if key in ver:

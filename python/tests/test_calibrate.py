@@ -96,7 +96,7 @@ def fake(monkeypatch, tmp_path):
     return calls
 
 
-def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None, check_resolution=None):
+def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None, check_resolution=None, check_tests=None):
     out = str(tmp_path / "cal")
     os.makedirs(out, exist_ok=True)
     config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05,
@@ -105,6 +105,8 @@ def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None, check_
         config["strategy"] = strategy
     if check_resolution:
         config["check_resolution"] = check_resolution
+    if check_tests:
+        config["check_tests"] = check_tests
     with open(os.path.join(out, "calibration.json"), "w") as f:
         json.dump(config, f)
     tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
@@ -150,6 +152,30 @@ def test_a_target_outside_the_bounds_is_unreachable(fake, tmp_path, bin_dir, str
     assert solution["status"] == "unreachable"
     assert solution["reachable"]["nu"]["highest_error_pct"] < -25  # the best reached is far below the target
     assert solution["dem_runs"] <= 60
+
+
+def test_check_tests_run_at_the_verified_solution_on_fresh_seeds_apart_from_the_budget(fake, tmp_path, bin_dir,
+                                                                                      monkeypatch):
+    asked = []
+
+    def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
+        asked.append((scene, dict(parameters), first_seed, seeds))
+        return {"runs": seeds, "ok": seeds, "outputs": {"phi_deg": {"mean": 40.0, "sd": 1.5, "n": seeds}}}
+    monkeypatch.setattr(calibrate_runs, "check", check)
+    code, solution, out = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2},
+                                          check_tests=["biaxial.json"])
+    assert code == calibrate.EXIT_MET
+    assert len(asked) == 1
+    scene, parameters, first_seed, seeds = asked[0]
+    last = solution["verifications"][-1]
+    assert scene == "biaxial.json" and first_seed == last["first_seed"] + last["seeds"] and seeds == 4
+    # Every parameter of the calibrated scene, at the solution where it was calibrated, else at its default.
+    assert parameters == dict({n: q["value"] for n, q in DESCRIPTION["parameters"].items()}, **solution["x"])
+    assert solution["checks"][0]["outputs"]["phi_deg"]["mean"] == 40.0
+    assert solution["dem_runs"] == fake["points"] + fake["seeds"]  # the check's runs are not in the budget
+    report(out)
+    md = open(os.path.join(out, "report.md")).read()
+    assert "## Check 1: `biaxial.json` at the solution (not a target)" in md and "| phi_deg | 40 | 1.5 | 4 |" in md
 
 
 def test_problem_codes_wide_ranges_on_a_log_scale_and_fixes_what_shapes_the_specimen():

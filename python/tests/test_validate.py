@@ -192,6 +192,10 @@ TRUST_REGION_CASES = [
     (lambda d: d.update(fixed={"R_min_mm": 1}), "fixed.R_min_mm: not a parameter of"),
     (lambda d: d.update(scale_parameter="mu_x"), "scale_parameter: mu_x is not a parameter of"),
     (lambda d: d["verification"].update(max_seeds=30), "verification.max_seeds: the trust region starts"),
+    (lambda d: d.update(check_tests=["data/scenes/nope.json"]), "check_tests[0]: data/scenes/nope.json is not a scene file"),
+    (lambda d: d.update(check_tests=["data/scenes/biaxial_rock_pb.json"]),
+     "check_tests[0]: data/scenes/biaxial_rock_pb.json lacks the calibrated parameter(s) fj_c_MPa, fj_phi_deg, "
+     "fj_sigma_c_MPa"),
 ]
 
 
