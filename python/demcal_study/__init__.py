@@ -17,3 +17,8 @@ plans, then runs make on the plan: design -> DEM responses -> models -> solution
 report, so an interrupted study resumes, `make -j2` runs independent stages together, and a change to the study
 rewrites only the stage configs it touches (their contents are compared), so only what depends on them runs again.
 """
+import os as _os
+
+# One BLAS thread: the least-squares fits of a calibration then give the same bits however many cores the BLAS would
+# have used, so a rerun makes the same decisions (a candidate differing in its last digit is another DEM point).
+_os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")

@@ -379,3 +379,30 @@ def test_ratio_outputs_are_formed_per_run_and_refused_when_they_make_no_sense():
         outputs.output_info(DESCRIPTION["outputs"], "nu/E_GPa", "w")
     with pytest.raises(StudyError, match="is not an output or a ratio"):
         Problem(DESCRIPTION, {"E_GPa/": 3})
+
+
+def test_a_point_computed_again_in_its_last_digits_reuses_the_stored_one(tmp_path, monkeypatch):
+    # On resume a candidate may differ in its last bits (sums in another order): the stored design is the decision,
+    # so its points are run (resumed), not new ones that the batch would take for other parameter values.
+    folder = tmp_path / "r02"
+    folder.mkdir()
+    stored = [{"a": 0.1 + 0.2, "b": 2.0}, {"a": 1.0 / 3.0, "b": 5.0}]
+    (folder / "design.csv").write_text("run,a,b\n" + "".join(f"{k + 1},{p['a']!r},{p['b']!r}\n"
+                                                             for k, p in enumerate(stored)))
+    ran = []
+
+    def batch(cmd, **kwargs):
+        design = cmd[cmd.index("--design") + 1]
+        ran.append(open(design).read())
+        with open(cmd[cmd.index("--csv") + 1], "w") as f:
+            f.write("run,a,b,seed,status,y\n1,0,0,1,ok,1.5\n2,0,0,1,ok,2.5\n")
+        return type("Done", (), {"returncode": 0})()
+    monkeypatch.setattr(calibrate_runs.subprocess, "run", batch)
+    tools = commands.Tools(bin="bin", jobs="1", cache="c", python="")
+    again = [{"a": 0.3, "b": 2.0}, {"a": 0.3333333333333333 * (1 + 1e-15), "b": 5.0}]  # 0.1 + 0.2 != 0.3
+    results = calibrate_runs.run_points(tools, "s.json", str(folder), again, quiet=True)
+    assert ran == [(folder / "design.csv").read_text()] and "0.30000000000000004" in ran[0]
+    assert [r["outputs"]["y"] for r in results] == [1.5, 2.5]
+    moved = [{"a": 0.3 * (1 + 1e-6), "b": 2.0}, {"a": 1.0 / 3.0, "b": 5.0}]  # a real step: a new design
+    calibrate_runs.run_points(tools, "s.json", str(folder), moved, quiet=True)
+    assert repr(0.3 * (1 + 1e-6)) in ran[1]
