@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# demcal-dem describe works on every shipped scene, names a test, its parameters with units and its outputs.
+# demcal-dem describe works on every shipped scene (the external templates too), names a test, its parameters with units and its outputs.
 set -euo pipefail
 bin=$1
 cd "$2"
 count=0
-for scene in $(find data/scenes tests/data -name '*.json' | sort); do
+for scene in $(find data/scenes data/external tests/data -name '*.json' | sort); do
   case "$(basename "$scene")" in study_*|space_*) continue ;; esac
   out=$("$bin/demcal-dem" describe --scene "$scene") || { echo "FAIL: describe $scene"; exit 1; }
   /usr/bin/python3 -c "
