@@ -155,6 +155,8 @@ void World::merge_into(ContactSet& fresh, ContactSet& old, bool wall) {
     info.wall = wall;
     info.radius_j = wall ? 0.0 : bodies.radius[j];
     info.group_j = wall ? walls[j].group : bodies.group[j];
+    info.mass_i_kg = moving_mass(i);
+    info.mass_j_kg = wall ? 0.0 : moving_mass(j);
     if (fresh.model[k] != block_model) {
       block_model = fresh.model[k];
       block = fresh.block(block_model);

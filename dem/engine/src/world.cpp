@@ -150,6 +150,12 @@ double World::pair_state(std::size_t k, const std::string& column) const {
   throw Error("contact model " + models_[pairs_.model[k]]->name() + " keeps no state column \"" + column + "\"");
 }
 
+double World::moving_mass(std::size_t i) const {
+  if (bodies.fixed[i]) return 0.0;
+  const std::int32_t clump = bodies.clump[i];
+  return clump >= 0 ? clumps_[static_cast<std::size_t>(clump)].mass : bodies.mass[i];
+}
+
 void World::refresh_inverse_masses() {
   const std::size_t n = bodies.size();
   inverse_mass_.resize(n);
@@ -191,6 +197,11 @@ void World::update_time_step() {
   double dt = std::numeric_limits<double>::infinity();
   // Critical step each disk must reach under density scaling.
   const double scaled_step = settings_.density_scaling_dt_s / settings_.safety_factor;
+  if (scaled_step > 0)
+    for (const auto& m : models_)
+      if (m->depends_on_masses())
+        throw Error("density scaling would change the masses contact model " + m->name() +
+                    " set its damping from (its coefficient of restitution); run it without density scaling");
   for (std::size_t i = 0; i < n; ++i) {
     if (bodies.fixed[i]) continue;
     if (kt[i] <= 0) {

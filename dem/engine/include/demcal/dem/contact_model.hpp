@@ -43,6 +43,10 @@ struct PairInfo {
   std::uint8_t group_i = 0, group_j = 0;
   bool wall = false;
   double overlap = 0;  // current overlap (negative: a gap), set when a bond is installed
+  // The mass each side moves with (a clump's for its member disks), kg; 0 for
+  // a side that does not move (a wall, a fixed disk). Set when a pair enters
+  // the neighbour list; models with a viscous damping take it from here.
+  double mass_i_kg = 0, mass_j_kg = 0;
 };
 
 class ContactModel {
@@ -82,6 +86,10 @@ class ContactModel {
   // The stiffer spring (normal or shear) of a contact between two disks of
   // radius r, for a disk that has no neighbour yet (time step bound).
   virtual double stiffness_estimate(double radius_m, double thickness_m) const = 0;
+  // True when the model's forces depend on the masses it was given in
+  // PairInfo (a damping set for a coefficient of restitution): density
+  // scaling, which raises masses later, is then refused.
+  virtual bool depends_on_masses() const { return false; }
 };
 
 using ContactModelFactory =

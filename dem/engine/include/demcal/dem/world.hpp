@@ -137,6 +137,8 @@ class World {
   void move_walls();
   void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
+  // The mass disk i moves with: its clump's, its own, or 0 when it is fixed.
+  double moving_mass(std::size_t i) const;
 
   WorldSettings settings_;
   std::vector<std::unique_ptr<ContactModel>> models_;
