@@ -259,5 +259,5 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   EXPECT_EQ(rock["parameters"]["cb_sigma_c_mean_Pa"]["shapes_specimen"], false);
   json registries = describe_registries();
   EXPECT_EQ(registries["tests"], json({"ucs", "brazilian", "biaxial", "external"}));
-  EXPECT_EQ(registries["contact_models"], json({"linear", "parallel_bond", "contact_bond", "flat_joint"}));
+  EXPECT_EQ(registries["contact_models"], json({"linear", "parallel_bond", "contact_bond", "flat_joint", "hertz_mindlin", "jkr"}));
 }

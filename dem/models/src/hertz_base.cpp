@@ -1,0 +1,116 @@
+#include "demcal/dem/hertz_base.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/dem/model_parameters.hpp"
+
+namespace demcal::dem {
+namespace {
+
+double poisson_of(const nlohmann::json& p, const std::string& key, const std::string& where) {
+  if (!p.contains(key)) throw Error(where + ": missing parameter \"" + key + "\"");
+  if (!p.at(key).is_number()) throw Error(where + ": parameter \"" + key + "\" must be a number");
+  const double nu = p.at(key).get<double>();
+  if (!(nu > -1.0 && nu < 0.5))
+    throw Error(where + ": " + key + " must lie in (-1, 0.5) (got " + format_double(nu) + ")");
+  return nu;
+}
+
+}  // namespace
+
+double restitution_beta(double restitution) {
+  const double log_e = std::log(restitution);
+  return log_e / std::sqrt(log_e * log_e + M_PI * M_PI);
+}
+
+HertzBase::HertzBase(const nlohmann::json& p, const std::string& where) {
+  const double g1 = positive(p, "shear_modulus_pa", where);
+  const double nu1 = poisson_of(p, "poisson", where);
+  const double g2 = p.contains("shear_modulus_2_pa") ? positive(p, "shear_modulus_2_pa", where) : g1;
+  const double nu2 = p.contains("poisson_2") ? poisson_of(p, "poisson_2", where) : nu1;
+  const double e1 = 2 * g1 * (1 + nu1), e2 = 2 * g2 * (1 + nu2);
+  e_eff_pa_ = 1.0 / ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2);
+  g_eff_pa_ = 1.0 / ((2 - nu1) / g1 + (2 - nu2) / g2);
+  const double e = positive(p, "restitution", where);
+  if (e > 1) throw Error(where + ": restitution must lie in (0, 1] (got " + format_double(e) + ")");
+  damping_ = -2.0 * std::sqrt(5.0 / 6.0) * restitution_beta(e);
+  friction_ = non_negative(p, "friction", where);
+  overlap_ratio_ = p.contains("time_step_overlap_ratio") ? positive(p, "time_step_overlap_ratio", where) : 0.01;
+  rolling_ = RollingResistance::read(p, where);
+}
+
+std::vector<std::string> HertzBase::state_columns() const {
+  return {"radius_eff_m",     "mass_eff_kg",      "rolling_inertia_kg_m2", "shear_force_n",
+          "rolling_moment_nm", "contact_radius_m", "max_contact_radius_m"};
+}
+
+void HertzBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double) const {
+  const double ri = pair.radius_i, rj = pair.radius_j;
+  c.column[kRadiusEff][k] = pair.wall ? ri : ri * rj / (ri + rj);
+  const double mi = pair.mass_i_kg, mj = pair.mass_j_kg;
+  c.column[kMassEff][k] = mi > 0 && mj > 0 ? mi * mj / (mi + mj) : std::max(mi, mj);
+  c.column[kRollingInertia][k] = rolling_inertia_kg_m2(mi, ri, mj, rj);
+  c.column[kHertzShearForce][k] = 0;
+  c.column[kRollingMoment][k] = 0;
+  c.column[kContactRadius][k] = 0;
+  c.column[kMaxContactRadius][k] = 0;
+}
+
+void HertzBase::release(const PairBlock& c, std::size_t k) {
+  c.column[kHertzShearForce][k] = 0;
+  c.column[kRollingMoment][k] = 0;
+  c.column[kContactRadius][k] = 0;
+  c.flags[k] &= ~static_cast<PairFlags>(kTouching);
+}
+
+PairForce HertzBase::hertz_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt_s,
+                                 const NormalForce& n) const {
+  PairForce f;
+  const double a = n.contact_radius_m;
+  const double mass = c.column[kMassEff][k];
+  const double sn = 2.0 * e_eff_pa_ * a, st = 8.0 * g_eff_pa_ * a;
+  c.flags[k] |= kTouching;
+  c.column[kContactRadius][k] = a;
+  c.column[kMaxContactRadius][k] = std::max(c.column[kMaxContactRadius][k], a);
+  // The dashpot may pull at the end of an impact: clipping it would change e.
+  f.fn = n.total_n - damping_ * std::sqrt(sn * mass) * g.vn;
+  double spring = c.column[kHertzShearForce][k] - st * g.vs * dt_s;
+  const double limit = friction_ * std::max(0.0, n.repulsive_n);
+  if (std::abs(spring) >= limit) {
+    spring = std::copysign(limit, spring);
+    f.fs = spring;
+  } else {
+    f.fs = spring - damping_ * std::sqrt(st * mass) * g.vs;
+  }
+  c.column[kHertzShearForce][k] = spring;
+  f.moment = rolling_.moment(c.column[kRollingMoment][k], g.relative_w, dt_s, sn, n.repulsive_n,
+                             c.column[kRadiusEff][k], c.column[kRollingInertia][k]);
+  return f;
+}
+
+void HertzBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                          double& rotational_nm_rad) const {
+  const double radius = c.column[kRadiusEff][k];
+  const double a = std::max(c.column[kMaxContactRadius][k], radius * std::sqrt(overlap_ratio_));
+  const double sn = 2.0 * e_eff_pa_ * a, st = 8.0 * g_eff_pa_ * a;
+  translational_n_m = std::max(sn, st);
+  rotational_nm_rad = st * arm_m * arm_m + rolling_.spring_nm_rad(sn, radius);
+}
+
+double HertzBase::normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const {
+  if (overlap_m <= 0) return 0.0;
+  const double radius = c.column[kRadiusEff][k];
+  return 4.0 / 3.0 * e_eff_pa_ * std::sqrt(radius) * overlap_m * std::sqrt(overlap_m);
+}
+
+double HertzBase::stiffness_estimate(double radius_m, double) const {
+  const double a = 0.5 * radius_m * std::sqrt(overlap_ratio_);  // two equal disks: R* = r / 2
+  return std::max(2.0 * e_eff_pa_ * a, 8.0 * g_eff_pa_ * a);
+}
+
+}  // namespace demcal::dem

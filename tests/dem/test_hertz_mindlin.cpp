@@ -1,0 +1,140 @@
+// Closed-form checks of the Hertz-Mindlin contact (hertz_mindlin_model.cpp):
+// an elastic head-on impact lasts Hertz's contact time, a damped one returns
+// the set coefficient of restitution (between disks and against a wall), and
+// bad parameters are refused with the parameter's name.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/world.hpp"
+#include "../common/error_of.hpp"
+
+using namespace demcal::dem;
+
+namespace {
+
+constexpr double kRadius = 1e-3, kDensity = 2650, kThickness = 1e-3;  // a disk about as heavy as its sphere
+constexpr double kShearModulus = 3.5e7, kPoisson = 0.4;
+
+nlohmann::json hertz(double restitution) {
+  return {{"shear_modulus_pa", kShearModulus}, {"poisson", kPoisson}, {"restitution", restitution}, {"friction", 0.5}};
+}
+
+World collision(const std::string& model, const nlohmann::json& parameters, double speed_m_s) {
+  WorldSettings settings;
+  settings.damping = 0.0;
+  settings.thickness_m = kThickness;
+  settings.safety_factor = 0.01;  // about 260 steps per contact, for a 1 % check
+  World world(settings);
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(model, parameters, "test")));
+  world.bodies.add_disk(0.0, 0.0, kRadius, kDensity, kThickness, 0);
+  world.bodies.add_disk(2 * kRadius + 1e-6, 0.0, kRadius, kDensity, kThickness, 0);
+  world.bodies.vx[0] = speed_m_s / 2;
+  world.bodies.vx[1] = -speed_m_s / 2;
+  return world;
+}
+
+// Runs until the disks separate; returns the contact time, s.
+double run_until_apart(World& world) {
+  bool started = false;
+  double t_start = 0;
+  for (int s = 0; s < 1000000; ++s) {
+    world.step();
+    const bool touching = world.touching_pairs() > 0;
+    if (touching && !started) {
+      started = true;
+      t_start = world.time_s() - world.dt_s();
+    }
+    if (started && !touching) return world.time_s() - world.dt_s() - t_start;
+  }
+  ADD_FAILURE() << "the disks never separated";
+  return 0;
+}
+
+double effective_modulus() { return kShearModulus / (1 - kPoisson); }  // E / (2 (1 - nu^2)), E = 2 G (1 + nu)
+
+}  // namespace
+
+TEST(HertzMindlin, ElasticImpactLastsHertzsContactTime) {
+  const double speed = 0.2;
+  World world = collision("hertz_mindlin", hertz(1.0), speed);
+  const double duration = run_until_apart(world);
+  // t_c = 2.9432 (15 m* / (16 E* sqrt(R*)))^(2/5) v^(-1/5) (Johnson 1985, section 11.4).
+  const double m_eff = 0.5 * kDensity * M_PI * kRadius * kRadius * kThickness, r_eff = 0.5 * kRadius;
+  const double expected =
+      2.9432 * std::pow(15 * m_eff / (16 * effective_modulus() * std::sqrt(r_eff)), 0.4) * std::pow(speed, -0.2);
+  EXPECT_NEAR(duration, expected, 0.01 * expected);
+  EXPECT_NEAR(world.bodies.vx[1] - world.bodies.vx[0], speed, 1e-4 * speed);  // every joule returned
+}
+
+TEST(HertzMindlin, HeadOnImpactReturnsTheSetRestitution) {
+  for (double e : {0.1, 0.3, 0.5, 0.9}) {
+    for (double speed : {0.05, 0.5}) {  // Hertz with this dashpot: e does not depend on the speed
+      World world = collision("hertz_mindlin", hertz(e), speed);
+      run_until_apart(world);
+      const double rebound = world.bodies.vx[1] - world.bodies.vx[0];
+      EXPECT_NEAR(rebound / speed, e, 0.01 * e) << "e " << e << ", speed " << speed;
+      EXPECT_NEAR(world.bodies.vx[0] + world.bodies.vx[1], 0.0, 1e-12);  // momentum
+    }
+  }
+}
+
+TEST(HertzMindlin, DiskBouncesOffAWallWithTheWallsRestitution) {
+  WorldSettings settings;
+  settings.damping = 0.0;
+  settings.thickness_m = kThickness;
+  settings.safety_factor = 0.05;
+  World world(settings);
+  // A steel wall: its own modulus in E*, the particle-wall restitution.
+  nlohmann::json p = hertz(0.4);
+  p["shear_modulus_2_pa"] = 7.9e10;
+  p["poisson_2"] = 0.3;
+  world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test")));
+  world.bodies.add_disk(0.0, kRadius + 1e-6, kRadius, kDensity, kThickness, 0);
+  world.bodies.vy[0] = -0.3;
+  Wall floor;
+  floor.x0 = -1;
+  floor.x1 = 1;
+  floor.group = 1;
+  world.walls.push_back(floor);
+  // The wall pair's force on the floor tells when the disk touches it.
+  bool touched = false;
+  for (int s = 0; s < 100000; ++s) {
+    world.step();
+    if (world.walls[0].fy != 0.0)
+      touched = true;
+    else if (touched)
+      break;
+  }
+  ASSERT_TRUE(touched);
+  EXPECT_NEAR(world.bodies.vy[0] / 0.3, 0.4, 0.01 * 0.4);
+  EXPECT_NEAR(world.bodies.vx[0], 0.0, 1e-15);
+}
+
+TEST(HertzMindlin, DensityScalingIsRefusedSinceTheDashpotUsesTheMasses) {
+  World world = collision("hertz_mindlin", hertz(0.5), 0.1);
+  world.settings().density_scaling_dt_s = 1e-3;
+  EXPECT_THROW(world.step(), demcal::Error);
+}
+
+TEST(HertzMindlin, BadParametersNameTheParameter) {
+  auto create = [](nlohmann::json p) { ContactModelRegistry::instance().create("hertz_mindlin", p, "scene.json: contacts.disk-disk"); };
+  nlohmann::json p = hertz(0.5);
+  p["restitution"] = 0.0;
+  EXPECT_NE(demcal::test::error_of([&] { create(p); }).find("restitution"), std::string::npos);
+  p["restitution"] = 1.2;
+  EXPECT_NE(demcal::test::error_of([&] { create(p); }).find("restitution must lie in (0, 1]"), std::string::npos);
+  p = hertz(0.5);
+  p["poisson"] = 0.5;
+  EXPECT_NE(demcal::test::error_of([&] { create(p); }).find("poisson"), std::string::npos);
+  p = hertz(0.5);
+  p["rolling_friction_epsd"] = 0.1;
+  p["rolling_friction_cdt"] = 0.1;
+  EXPECT_NE(demcal::test::error_of([&] { create(p); }).find("not both"), std::string::npos);
+  p = hertz(0.5);
+  p["work_of_adhesion_j_m2"] = 1.0;  // that is the jkr model's
+  EXPECT_NE(demcal::test::error_of([&] { create(p); }).find("work_of_adhesion_j_m2"), std::string::npos);
+}
