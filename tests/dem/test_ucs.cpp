@@ -65,6 +65,46 @@ TEST(UcsMacroValues, EAndNuAreTangentsOverTheSameWindow) {
   EXPECT_NEAR(m.at("nu50"), a + b * e_h, 1e-12);           // ... and is reported apart
 }
 
+TEST(UcsMacroValues, NuTakesItsTangentFromTheSeriesGivenAndNu50FromTheCurve) {
+  // The curve's own lateral strain says nu = 0.25; the series given for the
+  // tangent says 0.3 (with an offset, which a tangent ignores).
+  std::vector<CurvePoint> curve;
+  std::vector<double> bulk;
+  for (int k = 0; k <= 10; ++k) {
+    curve.push_back({1e-4 * k, 2e6 * k, 0.25e-4 * k, 0});
+    bulk.push_back(1e-6 + 0.3e-4 * k);
+  }
+  curve.push_back({1.1e-3, 15e6, 5e-4, 10});
+  bulk.push_back(6e-4);
+  auto m = ucs_macro_values(curve, &bulk);
+  EXPECT_NEAR(m.at("nu"), 0.3, 1e-9);
+  EXPECT_NEAR(m.at("nu50"), 0.25, 1e-12);
+  bulk.pop_back();
+  EXPECT_THROW(ucs_macro_values(curve, &bulk), demcal::Error);  // one value per curve point
+}
+
+TEST(LateralStrainFit, RecoversAnAffineStrainAndIgnoresATranslation) {
+  // 200 disks on a 20 x 10 grid, 1 mm apart; x' = x0 (1 + e) + shift.
+  std::vector<double> x;
+  std::vector<std::size_t> ids;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 10; ++j) {
+      ids.push_back(x.size());
+      x.push_back(1e-3 * i);
+    }
+  const LateralStrainFit fit(x, ids);
+  const double e = 2.5e-4, shift = 3e-5;
+  std::vector<double> moved = x;
+  for (double& xi : moved) xi = xi * (1 + e) + shift;
+  EXPECT_NEAR(fit.strain(moved), e, 1e-15);
+  EXPECT_EQ(fit.strain(x), 0.0);
+  // One edge disk of 200 spalling by 20x the affine displacement at the edge
+  // moves the fitted strain by 6 x 20 / 200 (1 + O(1/20)) of it, about 0.6 e: bounded, not 20 e.
+  moved[x.size() - 1] += 20 * e * 19e-3;
+  EXPECT_LT(fit.strain(moved), 1.8 * e);
+  EXPECT_THROW(LateralStrainFit(std::vector<double>{1.0, 1.0}, {0, 1}), demcal::Error);
+}
+
 TEST(UcsScene, SmallBondedSpecimenGivesPlausibleMacroValues) {
   Scene scene = Scene::load(scene_path());
   RunOptions options;

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/progress.hpp"
@@ -50,8 +52,30 @@ double slope_on_axial_strain(const std::vector<CurvePoint>& curve, std::size_t f
 
 }  // namespace
 
-std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve) {
+LateralStrainFit::LateralStrainFit(const std::vector<double>& x, std::vector<std::size_t> ids) : ids_(std::move(ids)) {
+  double mean = 0;
+  for (std::size_t i : ids_) mean += x[i];
+  mean /= static_cast<double>(ids_.size());
+  for (std::size_t i : ids_) {
+    x0_.push_back(x[i]);
+    centred_x0_.push_back(x[i] - mean);
+    sxx_ += (x[i] - mean) * (x[i] - mean);
+  }
+  if (!(sxx_ > 0)) throw Error("a lateral strain fit needs disks at two or more x positions");
+}
+
+double LateralStrainFit::strain(const std::vector<double>& x) const {
+  double sxd = 0;
+  for (std::size_t k = 0; k < ids_.size(); ++k) sxd += centred_x0_[k] * (x[ids_[k]] - x0_[k]);
+  return sxd / sxx_;
+}
+
+std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve,
+                                               const std::vector<double>* tangent_lateral_strain) {
   if (curve.size() < 5) throw Error("too few curve points to evaluate the test");
+  if (tangent_lateral_strain && tangent_lateral_strain->size() != curve.size())
+    throw Error("the tangent lateral strain has " + std::to_string(tangent_lateral_strain->size()) +
+                " values for " + std::to_string(curve.size()) + " curve points");
   std::size_t peak = 0;
   for (std::size_t k = 1; k < curve.size(); ++k)
     if (curve[k].stress_pa > curve[peak].stress_pa) peak = k;
@@ -66,7 +90,14 @@ std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& cu
   macro["sigma_u_MPa"] = sigma_u / 1e6;
   macro["E_GPa"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.stress_pa; }) / 1e9;
   macro["E50_GPa"] = curve[half].stress_pa / curve[half].axial_strain / 1e9;
-  macro["nu"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.lateral_strain; });
+  if (tangent_lateral_strain) {
+    const CurvePoint* first = curve.data();
+    macro["nu"] = slope_on_axial_strain(curve, from, to, [&](const CurvePoint& p) {
+      return (*tangent_lateral_strain)[static_cast<std::size_t>(&p - first)];
+    });
+  } else {
+    macro["nu"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.lateral_strain; });
+  }
   // The secant at the same point, as Su et al. 2021 define their nu (E50's partner).
   macro["nu50"] = curve[half].lateral_strain / curve[half].axial_strain;
   macro["peak_strain"] = curve[peak].axial_strain;
@@ -97,6 +128,15 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   std::vector<double> left_x0, right_x0, scratch;
   for (std::size_t i : left) left_x0.push_back(world.bodies.x[i]);
   for (std::size_t i : right) right_x0.push_back(world.bodies.x[i]);
+  // nu's tangent comes from every disk of the middle third (LateralStrainFit):
+  // over E's short window the two edge gauges scattered 1.5-2x more from seed to seed.
+  std::vector<std::size_t> middle;
+  for (std::size_t i = 0; i < specimen.size(); ++i) {
+    const double y = specimen.y[i] - world.walls[0].y0;
+    if (y >= H0 / 3 && y <= 2 * H0 / 3) middle.push_back(i);
+  }
+  const LateralStrainFit bulk_gauge(world.bodies.x, std::move(middle));
+  std::vector<double> bulk_lateral_strain;
 
   TestResult result;
   result.specimen_info = specimen_info;
@@ -117,12 +157,13 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
     point.lateral_strain = (median_shift_x(world.bodies, right, right_x0, scratch) -
                             median_shift_x(world.bodies, left, left_x0, scratch)) / width0;
     point.cracks = world.breaks().size();
+    bulk_lateral_strain.push_back(bulk_gauge.strain(world.bodies.x));
     if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
   }
   record_run_end(world, options, start, loading_start, result);
   if (result.ok) {
     try {
-      for (const auto& [name, value] : ucs_macro_values(result.curve)) result.macro[name] = value;
+      for (const auto& [name, value] : ucs_macro_values(result.curve, &bulk_lateral_strain)) result.macro[name] = value;
     } catch (const Error& e) {
       result.ok = false;
       result.reason = e.what();
@@ -141,15 +182,18 @@ class UcsTest : public LabTest {
     return "uniaxial compression between two frictionless platens approaching at the loading velocity";
   }
   std::vector<BoundaryRole> boundary_roles() const override { return {platen_role()}; }
+  // 1: nu's tangent from the bulk lateral strain fit (LateralStrainFit).
+  int results_version() const override { return 1; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out = {
         {"sigma_u_MPa", "MPa", "peak axial stress (platen force / (W t))"},
         {"E_GPa", "GPa", "tangent Young's modulus where the stress first reaches half the peak (least squares over "
                          "the neighbouring points)"},
         {"E50_GPa", "GPa", "secant modulus at half the peak"},
-        {"nu", "1", "tangent Poisson's ratio d eps_lat / d eps_ax over the same window as E (median gauge disks)"},
+        {"nu", "1", "tangent Poisson's ratio d eps_lat / d eps_ax over the same window as E, the lateral strain "
+                    "fitted to every disk of the middle third"},
         {"nu50", "1", "secant Poisson's ratio eps_lat / eps_ax where the stress first reaches half the peak (the "
-                      "definition of Su et al. 2021)"},
+                      "definition of Su et al. 2021), the lateral strain from the median edge disks of the middle third"},
         {"peak_strain", "1", "axial strain at the peak"},
         {"reached_strain_limit", "1", "1 when the test ended at loading.strain_limit before the post-peak stop",
          false},
