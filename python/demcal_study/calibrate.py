@@ -248,12 +248,19 @@ class Calibration:
         each = f" (each point runs {self.tests} tests, each counted)" if self.tests > 1 else ""
         self.say(f"planned DEM points: 1 reference + {len(design)} design + up to {MAX_ROUNDS} rounds of 2 on specimen 1,"
                  f" then verification on {FIRST_VERIFICATION_SEEDS}-{MAX_VERIFICATION_SEEDS} fresh seeds per round{each};"
-                 f" at most {self.budget} test runs in all. One point took {wall:.1f} s: about "
+                 f" at most {self.budget} test runs in all. One point alone took {wall:.1f} s: about "
                  f"{self.estimate_min(min(self.budget, planned + 2 * MAX_VERIFICATION_SEEDS * self.tests) / self.tests, wall):.1f}"
-                 f" min at most with {self.tools.jobs} job(s)")
+                 f" min at most if each of {self.tools.jobs} job(s) ran as fast (jobs share the cores: measured again"
+                 " after the design)")
         if first and first[0]["status"] != "ok":
             self.say(f"the reference point failed: {first[0]['reason']}")
         self.run_round("r01_design", [(u, 1.0) for u in design])
+        shared_wall = self.point_wall_s("r01_design")
+        if shared_wall > 0:
+            left = max(self.budget - self.runs, 0) / self.tests
+            self.say(f"the design's points took {shared_wall:.1f} s each with {self.tools.jobs} job(s) at once: at most"
+                     f" about {self.estimate_min(left, shared_wall):.1f} min more for the {left:.0f} point(s) the"
+                     " budget has left")
         radius = INITIAL_RADIUS
         best = self.best_point()
         if best is None:
@@ -558,11 +565,16 @@ class Calibration:
         return best
 
     def point_wall_s(self, label):
-        path = os.path.join(self.out, "rounds", label, "responses.h5.points", "run1_seed1.json")
-        try:
-            return float(load_json(path, "DEM result").get("wall_s", 0.0))
-        except Exception:
-            return 0.0
+        """Mean wall time of a round's points (as they ran: alone, or sharing the cores with other jobs), s;
+        0 when none is stored."""
+        folder = os.path.join(self.out, "rounds", label, "responses.h5.points")
+        walls = []
+        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+            if name.endswith("_seed1.json"):
+                wall = load_json(os.path.join(folder, name), "DEM result").get("wall_s", 0.0)
+                if isinstance(wall, (int, float)) and wall > 0:
+                    walls.append(float(wall))
+        return sum(walls) / len(walls) if walls else 0.0
 
     def estimate_min(self, runs, wall_s):
         return runs * wall_s / max(int(self.tools.jobs), 1) / 60.0
