@@ -11,17 +11,22 @@
 
 namespace demcal {
 
-void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed,
                           const std::string& where, const char* noun) {
   if (!object.is_object()) throw Error(where + ": must be a JSON object");
   for (auto it = object.begin(); it != object.end(); ++it) {
     bool known = false;
-    for (const char* key : allowed) known = known || it.key() == key;
+    for (const std::string& key : allowed) known = known || it.key() == key;
     if (known) continue;
     std::string list;
-    for (const char* key : allowed) list += (list.empty() ? "" : ", ") + std::string(key);
+    for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
     throw Error(where + ": unknown " + noun + " \"" + it.key() + "\" (allowed: " + list + ")");
   }
+}
+
+void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+                          const std::string& where, const char* noun) {
+  require_known_fields(object, std::vector<std::string>(allowed.begin(), allowed.end()), where, noun);
 }
 
 nlohmann::json read_json_file(const std::string& path, const std::string& what) {

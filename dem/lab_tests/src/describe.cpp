@@ -25,7 +25,7 @@ nlohmann::json describe_scene(const Scene& scene) {
   out["test"] = scene.test();
   out["test_description"] = scene.lab_test().description();
   out["fingerprint"] = scene.fingerprint();
-  out["exact_scaling"] = !scene.is_external() || scene.external().exact_scaling;
+  out["exact_scaling"] = scene.lab_test().exact_scaling() && (!scene.is_external() || scene.external().exact_scaling);
   out["parameters"] = json::object();
   for (const auto& [name, p] : scene.parameters()) {
     json item = {{"unit", p.unit}, {"quantity", quantity_name(p.quantity)}, {"stress_like", is_stress_like(p.quantity)},
@@ -58,7 +58,7 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   out["test_description"] = "several lab tests per point, sharing one parameter set";
   out["fingerprint"] = set.fingerprint();
   bool exact_scaling = true;
-  for (const Scene& s : set.scenes()) exact_scaling = exact_scaling && (!s.is_external() || s.external().exact_scaling);
+  for (const Scene& s : set.scenes()) exact_scaling = exact_scaling && s.lab_test().exact_scaling() && (!s.is_external() || s.external().exact_scaling);
   out["exact_scaling"] = exact_scaling;
   out["tests"] = json::array();
   for (std::size_t k = 0; k < set.size(); ++k) {

@@ -126,17 +126,23 @@ json Scene::with_finer_disks(json scene, double factor, const std::string& origi
   if (!(factor >= 1.0) || !std::isfinite(factor)) throw Error(origin + ": a finer resolution needs a factor >= 1");
   if (scene.value("test", json()) == "external")
     throw Error(origin + ": an external test has no disks of ours to make finer (its program sets its resolution)");
-  if (!scene.contains("specimen") || !scene.at("specimen").is_object()) throw Error(origin + ": no specimen");
-  json& specimen = scene["specimen"];
+  // The disks' radii are in "specimen", or in the section of a test's own
+  // particles (LabTest::own_sections, shapes_specimen).
+  std::string section_key = "specimen";
+  if (!scene.contains("specimen") && scene.contains("test") && scene.at("test").is_string())
+    for (const SceneSection& section : LabTestRegistry::instance().find(scene.at("test").get<std::string>(), origin).own_sections())
+      if (section.shapes_specimen && scene.contains(section.name)) section_key = section.name;
+  if (!scene.contains(section_key) || !scene.at(section_key).is_object()) throw Error(origin + ": no specimen");
+  json& specimen = scene[section_key];
   for (const char* key : {"radius_min_m", "radius_max_m"}) {
-    if (!specimen.contains(key)) throw Error(origin + ": specimen." + key + " is missing");
+    if (!specimen.contains(key)) throw Error(origin + ": " + section_key + "." + key + " is missing");
     json& r = specimen[key];
     if (r.is_number())
       r = r.get<double>() / factor;
     else if (r.is_string())
       r = r.get<std::string>() + "*" + format_double(1.0 / factor);  // expressions are products
     else
-      throw Error(origin + ": specimen." + key + " must be a number or an expression");
+      throw Error(origin + ": " + section_key + "." + key + " must be a number or an expression");
   }
   if (scene.contains("name") && scene.at("name").is_string())
     scene["name"] = scene.at("name").get<std::string>() + "_finer_" + format_double(factor);
@@ -181,7 +187,7 @@ void drop_notes(json& value) {
 // FNV-1a over the canonical dump (keys sorted) of what changes results: the
 // same physics gives the same fingerprint, whatever the file's layout, name,
 // descriptions, notes, units or parameter bounds.
-std::string scene_fingerprint(const json& root, int test_version) {
+std::string scene_fingerprint(const json& root, int test_version, const std::vector<SceneSection>& own = {}) {
   json physics = root;
   for (const char* key : {"name", "description", "extends"}) physics.erase(key);
   if (physics.contains("parameters") && physics.at("parameters").is_object()) {
@@ -191,6 +197,8 @@ std::string scene_fingerprint(const json& root, int test_version) {
   }
   for (const char* key : {"specimen", "aggregates", "contacts", "loading"})
     if (physics.contains(key)) drop_notes(physics[key]);
+  for (const SceneSection& section : own)
+    if (physics.contains(section.name)) drop_notes(physics[section.name]);
   std::string text = physics.dump() + "|results-v" + std::to_string(kResultsVersion);
   if (test_version > 0) text += "|test-v" + std::to_string(test_version);
   char buffer[32];
@@ -206,9 +214,8 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     require_known_fields(root, {"name", "test", "description", "parameters", "command", "workdir", "timeout_s", "inputs",
                                 "outputs", "exact_scaling"},
                          origin);
-  else
-    require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
-                         origin);
+  else if (!root.is_object())
+    throw Error(origin + ": a scene must be a JSON object");
   Scene scene;
   scene.origin_ = origin;
   if (root.contains("name") && !root.at("name").is_string()) throw Error(origin + ": \"name\" must be a string");
@@ -227,16 +234,32 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     scene.fingerprint_ = scene_fingerprint(physics, scene.lab_test_->results_version());
     return scene;
   }
-  if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
-  scene.specimen_ = root.at("specimen");
-  require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
-                              "radius_max_m", "density_kg_m3", "isotropic_stress_pa", "locked_in_stress_pa"},
-            origin + ": specimen");
-
-  if (root.contains("aggregates")) scene.aggregates_ = aggregate_spec(root.at("aggregates"), origin + ": aggregates");
-  // The contact roles: the specimen's own, then the test's boundaries (each
-  // against every group of the specimen).
-  scene.roles_ = specimen_contact_roles(scene.aggregates_.has_value());
+  const std::vector<SceneSection> own = scene.lab_test_->own_sections();
+  if (own.empty())
+    require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
+                         origin);
+  if (!own.empty()) {
+    // A test that makes its own particles: its sections replace the packed
+    // specimen's "specimen", "aggregates" and "loading".
+    std::vector<std::string> known = {"name", "test", "description", "parameters", "contacts"};
+    for (const SceneSection& section : own) known.push_back(section.name);
+    require_known_fields(root, known, origin);
+    for (const SceneSection& section : own) {
+      if (!root.contains(section.name)) continue;
+      if (!root.at(section.name).is_object()) throw Error(origin + ": \"" + section.name + "\" must be an object");
+      scene.sections_[section.name] = root.at(section.name);
+    }
+  } else {
+    if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
+    scene.specimen_ = root.at("specimen");
+    require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
+                                "radius_max_m", "density_kg_m3", "isotropic_stress_pa", "locked_in_stress_pa"},
+              origin + ": specimen");
+    if (root.contains("aggregates")) scene.aggregates_ = aggregate_spec(root.at("aggregates"), origin + ": aggregates");
+  }
+  // The contact roles: the specimen's own (or the test's particles'), then
+  // the test's boundaries (each against every group of the specimen).
+  scene.roles_ = own.empty() ? specimen_contact_roles(scene.aggregates_.has_value()) : scene.lab_test_->particle_roles();
   for (const BoundaryRole& b : scene.lab_test_->boundary_roles()) {
     ContactRole role{b.name, {}, b.description};
     for (std::uint8_t g : specimen_groups(scene.aggregates_.has_value())) role.groups.emplace_back(g, b.group);
@@ -267,6 +290,16 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     scene.contacts_[role.name] = spec;
   }
 
+  if (!own.empty()) {
+    std::map<std::string, double> defaults = scene.resolve({});
+    for (const auto& [pair, contact] : scene.contacts_) {
+      const std::string where = origin + ": contacts." + pair;
+      ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
+    }
+    scene.lab_test_->check_scene(scene);
+    scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version(), own);
+    return scene;
+  }
   if (root.contains("loading")) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
@@ -345,6 +378,11 @@ void Scene::read_parameters(const json& root) {
     }
   }
 
+}
+
+const json& Scene::section(const std::string& name) const {
+  static const json empty = json::object();
+  return sections_.contains(name) ? sections_.at(name) : empty;
 }
 
 const ExternalSpec& Scene::external() const {
@@ -465,14 +503,22 @@ SpecimenSpec Scene::specimen(const std::map<std::string, double>& parameters, st
 }
 
 bool Scene::shapes_specimen(const std::string& parameter) const {
-  for (auto it = specimen_.begin(); it != specimen_.end(); ++it) {
-    // The locked-in stress is applied when bonding, after (and apart from) the packing.
-    if (!it.value().is_string() || it.key() == "locked_in_stress_pa") continue;
-    std::stringstream stream(it.value().get<std::string>());
-    std::string factor;
-    while (std::getline(stream, factor, '*'))
-      if (factor == parameter) return true;
-  }
+  auto names_it = [&](const json& object) {
+    if (!object.is_object()) return false;
+    for (auto it = object.begin(); it != object.end(); ++it) {
+      // The locked-in stress is applied when bonding, after (and apart from) the packing.
+      if (!it.value().is_string() || it.key() == "locked_in_stress_pa") continue;
+      std::stringstream stream(it.value().get<std::string>());
+      std::string factor;
+      while (std::getline(stream, factor, '*'))
+        if (factor == parameter) return true;
+    }
+    return false;
+  };
+  if (names_it(specimen_)) return true;
+  if (lab_test_)
+    for (const SceneSection& section : lab_test_->own_sections())
+      if (section.shapes_specimen && names_it(this->section(section.name))) return true;
   return false;
 }
 

@@ -3,6 +3,7 @@
 // model file is an error that names it instead of a silently ignored value.
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,9 @@ namespace demcal {
 // key of `object` not in `allowed`, and "<where>: must be a JSON object" when
 // it is not an object.
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+                          const std::string& where, const char* noun = "field");
+// The same for a list built at run time (a lab test's own scene sections).
+void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed,
                           const std::string& where, const char* noun = "field");
 
 // Reads a whole JSON file; errors say "<path>: cannot open <what>" or

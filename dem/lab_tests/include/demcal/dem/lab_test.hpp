@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "demcal/dem/specimen_roles.hpp"
 #include "demcal/dem/test_result.hpp"
 
 namespace demcal::dem {
@@ -29,16 +30,36 @@ struct BoundaryRole {
   std::string description;
 };
 
+// A scene section a test reads itself (the heap's "particles", "funnel").
+struct SceneSection {
+  std::string name;
+  std::string description;
+  bool shapes_specimen = false;  // its values make another particle set, not the same one with other contacts
+};
+
 class LabTest {
  public:
   virtual ~LabTest() = default;
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;
   virtual std::vector<BoundaryRole> boundary_roles() const = 0;
+  // A test that makes its own particles (a heap poured from a funnel) instead
+  // of loading a packed specimen names the scene sections it reads in place
+  // of "specimen" and "loading", and the contact roles of its particles
+  // (group 0; its boundaries join them). Empty for the tests of a packed specimen.
+  virtual std::vector<SceneSection> own_sections() const { return {}; }
+  virtual std::vector<ContactRole> particle_roles() const { return {}; }
+  // Checks the test's own sections with the parameters' defaults at load;
+  // throws an Error naming the file and field.
+  virtual void check_scene(const Scene& scene) const { (void)scene; }
   // Raised when a change to this test alone changes its results (0: none
   // yet), so stored results of its scenes are run again and the other
   // tests' stay valid; enters the scene's fingerprint when nonzero.
   virtual int results_version() const { return 0; }
+  // Whether every stress output scales by k when every stress-like parameter
+  // does (quasi-static bonded tests: docs/calibration.md). False for a test
+  // that gravity or inertia drives (a heap), so no calibration assumes it.
+  virtual bool exact_scaling() const { return true; }
   // What a run of `scene` reports (some outputs depend on the specimen, e.g.
   // the cracks in the mortar and the interface of a concrete).
   virtual std::vector<OutputSpec> outputs(const Scene& scene) const = 0;
@@ -69,6 +90,7 @@ void register_ucs_test(LabTestRegistry& registry);
 void register_brazilian_test(LabTestRegistry& registry);
 void register_biaxial_test(LabTestRegistry& registry);
 void register_external_test(LabTestRegistry& registry);
+void register_heap_test(LabTestRegistry& registry);
 void register_builtin_tests(LabTestRegistry& registry);
 
 }  // namespace demcal::dem

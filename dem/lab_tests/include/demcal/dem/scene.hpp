@@ -115,6 +115,9 @@ class Scene {
   // such a scene has no specimen, contacts or loading. Throws for any other.
   bool is_external() const { return external_.has_value(); }
   const ExternalSpec& external() const;
+  // A section the scene's test reads itself (LabTest::own_sections), e.g. a
+  // heap's "particles"; an empty object when the file has none.
+  const nlohmann::json& section(const std::string& name) const;
   // The aggregates of a concrete scene; empty for a one-phase specimen.
   const std::optional<AggregateSpec>& aggregates() const { return aggregates_; }
   const std::string& origin() const { return origin_; }
@@ -156,6 +159,7 @@ class Scene {
   LoadingSpec loading_;
   std::optional<AggregateSpec> aggregates_;
   std::optional<ExternalSpec> external_;
+  nlohmann::json sections_ = nlohmann::json::object();  // the test's own sections
 
   void read_parameters(const nlohmann::json& root);
 };
