@@ -1,0 +1,95 @@
+#include "demcal/dem/angle_of_repose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "demcal/core/error.hpp"
+
+namespace demcal::dem {
+namespace {
+
+struct Line {
+  double slope = 0, r2 = 0;
+};
+
+Line least_squares(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    mx += x[k] / n;
+    my += y[k] / n;
+  }
+  double sxx = 0, sxy = 0, syy = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    sxx += (x[k] - mx) * (x[k] - mx);
+    sxy += (x[k] - mx) * (y[k] - my);
+    syy += (y[k] - my) * (y[k] - my);
+  }
+  Line line;
+  line.slope = sxy / sxx;
+  line.r2 = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
+  return line;
+}
+
+}  // namespace
+
+ReposeFit fit_angle_of_repose(const std::vector<double>& x_m, const std::vector<double>& y_m,
+                              const std::vector<double>& radius_m, double base_y_m, const ReposeOptions& options) {
+  if (!(options.bin_width_m > 0)) throw Error("angle of repose: the bin width must be positive");
+  if (!(options.low_fraction >= 0 && options.low_fraction < options.high_fraction && options.high_fraction <= 1))
+    throw Error("angle of repose: the flank's height fractions must satisfy 0 <= low < high <= 1");
+  if (x_m.empty()) throw Error("angle of repose: no particles on the base");
+  double lo = x_m[0] - radius_m[0], hi = x_m[0] + radius_m[0];
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    lo = std::min(lo, x_m[i] - radius_m[i]);
+    hi = std::max(hi, x_m[i] + radius_m[i]);
+  }
+  const std::size_t bins = static_cast<std::size_t>(std::ceil((hi - lo) / options.bin_width_m)) + 1;
+  // Each bin's highest particle top; a disk counts in the bin of its centre.
+  std::vector<double> top(bins, -1.0);
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    const auto b = static_cast<std::size_t>((x_m[i] - lo) / options.bin_width_m);
+    top[b] = std::max(top[b], y_m[i] + radius_m[i] - base_y_m);
+  }
+  ReposeFit fit;
+  std::size_t apex = 0;
+  for (std::size_t b = 0; b < bins; ++b) {
+    if (top[b] < 0) continue;
+    fit.profile_x_m.push_back(lo + (b + 0.5) * options.bin_width_m);
+    fit.profile_height_m.push_back(top[b]);
+    if (top[b] > top[apex]) apex = b;
+  }
+  fit.height_m = top[apex];
+  fit.apex_x_m = lo + (apex + 0.5) * options.bin_width_m;
+  const double low = options.low_fraction * fit.height_m, high = options.high_fraction * fit.height_m;
+  std::vector<double> lx, ly, rx, ry;
+  for (std::size_t k = 0; k < fit.profile_x_m.size(); ++k) {
+    const double h = fit.profile_height_m[k], x = fit.profile_x_m[k];
+    if (h < low || h > high) continue;
+    if (x < fit.apex_x_m) {
+      lx.push_back(x);
+      ly.push_back(h);
+    } else if (x > fit.apex_x_m) {
+      rx.push_back(x);
+      ry.push_back(h);
+    }
+  }
+  fit.left_points = lx.size();
+  fit.right_points = rx.size();
+  if (lx.size() < options.min_points || rx.size() < options.min_points)
+    throw Error("angle of repose: the heap's flanks have " + std::to_string(lx.size()) + " and " +
+                std::to_string(rx.size()) + " surface points between " +
+                std::to_string(static_cast<int>(100 * options.low_fraction)) + " and " +
+                std::to_string(static_cast<int>(100 * options.high_fraction)) + " % of its height (at least " +
+                std::to_string(options.min_points) + " each needed): the heap is too low for the bin width");
+  const Line left = least_squares(lx, ly), right = least_squares(rx, ry);
+  fit.left_deg = std::atan(std::abs(left.slope)) * 180.0 / M_PI;
+  fit.right_deg = std::atan(std::abs(right.slope)) * 180.0 / M_PI;
+  fit.mean_deg = 0.5 * (fit.left_deg + fit.right_deg);
+  fit.left_r2 = left.r2;
+  fit.right_r2 = right.r2;
+  return fit;
+}
+
+}  // namespace demcal::dem
