@@ -284,14 +284,7 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
     }
   }
   if (progress) progress->finish();
-  // What every run reports (record_run_end's, without a platen test's crack counts).
-  const auto end = std::chrono::steady_clock::now();
-  result.steps = world.steps_done();
-  result.dt_s = world.dt_s();
-  result.threads = world.threads_in_use();
-  result.wall_s = std::chrono::duration<double>(end - start).count();
-  result.test_wall_s = std::chrono::duration<double>(end - loading_start).count();
-  snapshot(world, options, 1, true);
+  record_run_timing(world, options, start, loading_start, result);  // nothing is bonded: no crack counts
   if (!result.ok) return result;
 
   // The heap: the disks on the base, below the outlet.

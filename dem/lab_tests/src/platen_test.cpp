@@ -263,8 +263,8 @@ bool LoadingMonitor::record(const World& world, const CurvePoint& point, TestRes
   return true;
 }
 
-void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
-                    std::chrono::steady_clock::time_point loading_start, TestResult& result) {
+void record_run_timing(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
+                       std::chrono::steady_clock::time_point loading_start, TestResult& result) {
   const auto now = std::chrono::steady_clock::now();
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
@@ -273,6 +273,11 @@ void record_run_end(const World& world, const RunOptions& options, std::chrono::
   snapshot(world, options, result.curve.size(), true);
   result.wall_s = std::chrono::duration<double>(now - start).count();
   result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
+}
+
+void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point loading_start, TestResult& result) {
+  record_run_timing(world, options, start, loading_start, result);
   std::size_t tension = 0;
   for (const BreakEvent& b : world.breaks()) tension += b.mode == BreakMode::Tension;
   result.macro["cracks_tension"] = static_cast<double>(tension);

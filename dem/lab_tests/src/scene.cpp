@@ -235,9 +235,6 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     return scene;
   }
   const std::vector<SceneSection> own = scene.lab_test_->own_sections();
-  if (own.empty())
-    require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
-                         origin);
   if (!own.empty()) {
     // A test that makes its own particles: its sections replace the packed
     // specimen's "specimen", "aggregates" and "loading".
@@ -250,6 +247,8 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
       scene.sections_[section.name] = root.at(section.name);
     }
   } else {
+    require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
+                         origin);
     if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
     scene.specimen_ = root.at("specimen");
     require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
@@ -290,17 +289,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     scene.contacts_[role.name] = spec;
   }
 
-  if (!own.empty()) {
-    std::map<std::string, double> defaults = scene.resolve({});
-    for (const auto& [pair, contact] : scene.contacts_) {
-      const std::string where = origin + ": contacts." + pair;
-      ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
-    }
-    scene.lab_test_->check_scene(scene);
-    scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version(), own);
-    return scene;
-  }
-  if (root.contains("loading")) {
+  if (own.empty() && root.contains("loading")) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
@@ -337,17 +326,20 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     throw Error(origin + ": loading.confining_stresses_MPa: missing (the biaxial test's confining stresses, MPa, e.g. [1, 2, 4, 8])");
   // Evaluate everything once with the defaults, so a bad expression fails at load.
   std::map<std::string, double> defaults = scene.resolve({});
-  try {
-    scene.specimen(defaults, 1).validate();
-  } catch (const Error& e) {
-    throw Error(origin + ": " + e.what());
+  if (own.empty()) {
+    try {
+      scene.specimen(defaults, 1).validate();
+    } catch (const Error& e) {
+      throw Error(origin + ": " + e.what());
+    }
   }
   for (const auto& [pair, contact] : scene.contacts_) {
     // Building the model checks its parameters (names, signs) at load, not at the first run.
     const std::string where = origin + ": contacts." + pair;
     ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
   }
-  scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version());  // on the validated file
+  if (!own.empty()) scene.lab_test_->check_scene(scene);
+  scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version(), own);  // on the validated file
   return scene;
 }
 

@@ -100,9 +100,13 @@ class LoadingMonitor {
   double work_j_ = 0;  // done by the platens so far
 };
 
-// Fills in what every run reports at its end: steps, time step, wall times
-// (whole run since `start`, loading since `loading_start`) and cracks by mode,
-// and writes the final VTK snapshot when asked for.
+// Fills in what every run reports at its end: steps, time step, threads, wall
+// times (whole run since `start`, loading since `loading_start`), and writes
+// the final VTK snapshot when asked for.
+void record_run_timing(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
+                       std::chrono::steady_clock::time_point loading_start, TestResult& result);
+// record_run_timing and the platen tests' crack counts by mode (and, for a
+// concrete, by phase).
 void record_run_end(const World& world, const RunOptions& options, std::chrono::steady_clock::time_point start,
                     std::chrono::steady_clock::time_point loading_start, TestResult& result);
 
