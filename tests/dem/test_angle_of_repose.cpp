@@ -68,6 +68,11 @@ TEST(AngleOfRepose, FlanksAreFittedApartAndTheBaseHeightIsSubtracted) {
   EXPECT_NEAR(fit.left_deg, 30.0, 0.5);
   EXPECT_NEAR(fit.right_deg, 42.0, 0.5);
   EXPECT_NEAR(fit.mean_deg, 36.0, 0.5);
+  // The lines meet near the apex, 50 mm up, and rise to the left and fall to the right.
+  EXPECT_NEAR(fit.left_intercept_m, 0.05, 3 * r);
+  EXPECT_NEAR(fit.right_intercept_m, 0.05, 3 * r);
+  EXPECT_NEAR(fit.left_slope, std::tan(30.0 * M_PI / 180), 0.01);
+  EXPECT_NEAR(fit.right_slope, -std::tan(42.0 * M_PI / 180), 0.01);
 }
 
 TEST(AngleOfRepose, AFlatLayerOrBadOptionsAreErrors) {

@@ -10,7 +10,7 @@ namespace demcal::dem {
 namespace {
 
 struct Line {
-  double slope = 0, r2 = 0;
+  double slope = 0, intercept = 0, r2 = 0;
 };
 
 Line least_squares(const std::vector<double>& x, const std::vector<double>& y) {
@@ -28,6 +28,7 @@ Line least_squares(const std::vector<double>& x, const std::vector<double>& y) {
   }
   Line line;
   line.slope = sxy / sxx;
+  line.intercept = my - line.slope * mx;
   line.r2 = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
   return line;
 }
@@ -89,6 +90,10 @@ ReposeFit fit_angle_of_repose(const std::vector<double>& x_m, const std::vector<
   fit.mean_deg = 0.5 * (fit.left_deg + fit.right_deg);
   fit.left_r2 = left.r2;
   fit.right_r2 = right.r2;
+  fit.left_slope = left.slope;
+  fit.left_intercept_m = left.intercept;
+  fit.right_slope = right.slope;
+  fit.right_intercept_m = right.intercept;
   return fit;
 }
 

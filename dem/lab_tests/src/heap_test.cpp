@@ -312,6 +312,11 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
     result.specimen_info["heap_disks"] = static_cast<double>(x.size());
     result.specimen_info["aor_left_r2"] = fit.left_r2;
     result.specimen_info["aor_right_r2"] = fit.right_r2;
+    // The fitted lines, height = intercept + slope x (scripts/plot_heap.py draws them).
+    result.specimen_info["aor_left_slope"] = fit.left_slope;
+    result.specimen_info["aor_left_intercept_m"] = fit.left_intercept_m;
+    result.specimen_info["aor_right_slope"] = fit.right_slope;
+    result.specimen_info["aor_right_intercept_m"] = fit.right_intercept_m;
     result.specimen_info["settled_at_s"] = world.time_s();
     // The profile and the fitted flanks as the result's curve: x along the
     // base in axial_strain's column, surface height in lateral_strain's.

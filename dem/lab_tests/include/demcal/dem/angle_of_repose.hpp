@@ -15,6 +15,8 @@ struct ReposeFit {
   double apex_x_m = 0;                              // x of the highest bin's centre
   std::size_t left_points = 0, right_points = 0;    // surface points each line was fitted to
   double left_r2 = 0, right_r2 = 0;                 // each line's coefficient of determination
+  // Each line as height = intercept + slope x (m above the base; x in m).
+  double left_slope = 0, left_intercept_m = 0, right_slope = 0, right_intercept_m = 0;
   std::vector<double> profile_x_m, profile_height_m;  // the surface profile (bin centres, heights)
 };
 
