@@ -5,36 +5,9 @@
 #include <string>
 
 #include "demcal/core/error.hpp"
+#include "demcal/dem/line_fit.hpp"
 
 namespace demcal::dem {
-namespace {
-
-struct Line {
-  double slope = 0, intercept = 0, r2 = 0;
-};
-
-Line least_squares(const std::vector<double>& x, const std::vector<double>& y) {
-  const double n = static_cast<double>(x.size());
-  double mx = 0, my = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    mx += x[k] / n;
-    my += y[k] / n;
-  }
-  double sxx = 0, sxy = 0, syy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    sxx += (x[k] - mx) * (x[k] - mx);
-    sxy += (x[k] - mx) * (y[k] - my);
-    syy += (y[k] - my) * (y[k] - my);
-  }
-  Line line;
-  line.slope = sxy / sxx;
-  line.intercept = my - line.slope * mx;
-  line.r2 = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
-  return line;
-}
-
-}  // namespace
-
 ReposeFit fit_angle_of_repose(const std::vector<double>& x_m, const std::vector<double>& y_m,
                               const std::vector<double>& radius_m, double base_y_m, const ReposeOptions& options) {
   if (!(options.bin_width_m > 0)) throw Error("angle of repose: the bin width must be positive");
@@ -84,7 +57,9 @@ ReposeFit fit_angle_of_repose(const std::vector<double>& x_m, const std::vector<
                 std::to_string(static_cast<int>(100 * options.low_fraction)) + " and " +
                 std::to_string(static_cast<int>(100 * options.high_fraction)) + " % of its height (at least " +
                 std::to_string(options.min_points) + " each needed): the heap is too low for the bin width");
-  const Line left = least_squares(lx, ly), right = least_squares(rx, ry);
+  // Three or more bins per flank, each at its own x: neither message can arise.
+  const FittedLine left = fit_line(lx, ly, "angle of repose: too few flank points", "angle of repose: a flank's points share one x"),
+                   right = fit_line(rx, ry, "angle of repose: too few flank points", "angle of repose: a flank's points share one x");
   fit.left_deg = std::atan(std::abs(left.slope)) * 180.0 / M_PI;
   fit.right_deg = std::atan(std::abs(right.slope)) * 180.0 / M_PI;
   fit.mean_deg = 0.5 * (fit.left_deg + fit.right_deg);
