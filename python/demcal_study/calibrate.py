@@ -49,6 +49,7 @@ MAX_VERIFICATION_SEEDS = 20
 CHECK_SEEDS = 4  # specimens of each check test at the solution
 CHECK_SHOWN = ("c_MPa", "phi_deg", "hb_m_i", "sigma_u_MPa", "sigma_t_MPa", "E_GPa", "nu")  # in the progress line
 EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
+OFFSET_TRIM = 0.2  # share of the verified specimens cut from each end of the offset's mean (one of 5, 4 of 20)
 
 
 def parse_assignments(items, what):
@@ -63,6 +64,13 @@ def parse_assignments(items, what):
             if not sep or not name:
                 fail(f"{what}: \"{part}\" is not NAME=NUMBER")
     return out
+
+
+def trimmed_mean(rows, cut_fraction):
+    """Per column, the mean of the rows left after the int(cut_fraction * n) lowest and as many highest are cut."""
+    rows = np.sort(np.asarray(rows, dtype=float), axis=0)
+    cut = int(cut_fraction * len(rows))
+    return rows[cut:len(rows) - cut].mean(axis=0)
 
 
 def default_name(scene, targets):
@@ -455,7 +463,8 @@ class Calibration:
         p = self.problem
         offset = np.zeros(len(p.modelled_outputs()))
         next_seed = 2  # specimen 1 made the design; verify on others
-        pooled = []    # (n, offset per modelled output, variance over those specimens)
+        pooled = []    # (n, variance per modelled output over those specimens)
+        deviations = []  # per verified specimen: its modelled outputs less specimen 1's model at that centre
         verified = None  # the last point a verification ran at
         k = 0
         while True:
@@ -540,17 +549,20 @@ class Calibration:
                 return self.finish("noisy", f"the means are within the tolerance but {', '.join(wide)} scatter too "
                                    f"much for a {100 * self.tolerance:g} % half-width in {used} seeds: a larger "
                                    "specimen scatters less", EXIT_BUDGET, point=point, verification=v)
-            # The specimens' mean against specimen 1's model: an offset per response, pooled over verifications
-            # (weighted by seeds), and their scatter, which the prediction interval of one specimen must include.
+            # The specimens against specimen 1's model: an offset per response over every verified specimen, and
+            # their scatter, which the prediction interval of one specimen must include. The offset is a trimmed
+            # mean: one far seed (nu 2.5x the median at a dilatant point) would otherwise move the next point by
+            # its whole share of a plain mean and the verification after it would overshoot the other way.
             zs = [[p.to_model(o, s["macro"][o], point["scale_factor"]) for o in p.modelled_outputs()]
                   for s in v["seeds"] if s["status"] == "ok"
                   and all(isinstance(s["macro"].get(o), (int, float)) for o in p.modelled_outputs())]
             zs = np.array([row for row in zs if all(math.isfinite(x) for x in row)])
             if len(zs) >= 2:
-                pooled.append((len(zs), zs.mean(axis=0) - model.predict(centre), zs.var(axis=0, ddof=1)))
-                total = sum(n for n, _, _ in pooled)
-                offset = sum(n * b for n, b, _ in pooled) / total
-                self.specimen_variance = sum((n - 1) * var for n, _, var in pooled) / max(total - len(pooled), 1)
+                deviations.extend(zs - model.predict(centre))
+                pooled.append((len(zs), zs.var(axis=0, ddof=1)))
+                total = sum(n for n, _ in pooled)
+                offset = trimmed_mean(np.array(deviations), OFFSET_TRIM)
+                self.specimen_variance = sum((n - 1) * var for n, var in pooled) / max(total - len(pooled), 1)
             r0, jac = self.jacobian(model.significant(), centre, offset)
             delta, _, _ = trust_region.step(r0, jac, centre, max(radius, 0.05))
             centre = np.clip(centre + delta, -1, 1)

@@ -406,3 +406,16 @@ def test_a_point_computed_again_in_its_last_digits_reuses_the_stored_one(tmp_pat
     moved = [{"a": 0.3 * (1 + 1e-6), "b": 2.0}, {"a": 1.0 / 3.0, "b": 5.0}]  # a real step: a new design
     calibrate_runs.run_points(tools, "s.json", str(folder), moved, quiet=True)
     assert repr(0.3 * (1 + 1e-6)) in ran[1]
+
+
+def test_the_offset_is_a_trimmed_mean_that_one_far_seed_does_not_move():
+    # yineng_siltstone's second verification: nu of one seed at 2.7x the others moved a plain mean's correction by
+    # 14 % of the target (docs/calibration_benchmark.md).
+    rng = np.random.default_rng(7)
+    clean = rng.normal(0.0, 0.012, size=(19, 2))
+    far = np.vstack([clean, [[0.0, 0.33]]])
+    assert abs(far[:, 1].mean() - clean[:, 1].mean()) > 0.015
+    assert abs(calibrate.trimmed_mean(far, calibrate.OFFSET_TRIM)[1] - np.median(clean[:, 1])) < 0.006
+    # Five seeds lose the lowest and the highest; two or three seeds keep them all.
+    np.testing.assert_allclose(calibrate.trimmed_mean([[1.0], [2.0], [3.0], [4.0], [100.0]], 0.2), [3.0])
+    np.testing.assert_allclose(calibrate.trimmed_mean([[1.0], [2.0], [9.0]], 0.2), [4.0])
