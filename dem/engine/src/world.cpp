@@ -257,6 +257,35 @@ void World::compute_forces() {
   }
 }
 
+void World::wall_forces_on_disks(std::vector<double>& fx, std::vector<double>& fy, std::vector<double>& moment,
+                                 std::size_t wall) {
+  if (!built_ || inverse_mass_.size() != bodies.size()) rebuild();
+  // The wall models on a copy of their pairs, the walls and the disks' sums:
+  // shear springs advance and walls collect forces when a model runs, and
+  // none of that may happen outside a step.
+  ContactSet pairs = wall_pairs_;
+  std::vector<Wall> walls_copy = walls;
+  if (wall != static_cast<std::size_t>(-1))
+    for (std::size_t w = 0; w < walls_copy.size(); ++w) walls_copy[w].active = walls_copy[w].active && w == wall;
+  std::vector<BreakEvent> breaks;
+  const std::vector<double> keep_fx = bodies.fx, keep_fy = bodies.fy, keep_moment = bodies.moment;
+  std::fill(bodies.fx.begin(), bodies.fx.end(), 0.0);
+  std::fill(bodies.fy.begin(), bodies.fy.end(), 0.0);
+  std::fill(bodies.moment.begin(), bodies.moment.end(), 0.0);
+  // A zero step: the models see no relative motion, so shear springs keep their value.
+  StepContext context{0.0, time_s_, settings_.thickness_m, &breaks};
+  for (std::uint8_t m : wall_run_models_) {
+    PairBlock block = pairs.block(m);
+    models_[m]->wall_forces(block, bodies, walls_copy, context);
+  }
+  fx = bodies.fx;
+  fy = bodies.fy;
+  moment = bodies.moment;
+  bodies.fx = keep_fx;
+  bodies.fy = keep_fy;
+  bodies.moment = keep_moment;
+}
+
 namespace {
 
 // What the disks' integration reads and writes.
@@ -405,6 +434,7 @@ void World::step() {
     wall_move = std::max(wall_move, std::hypot(walls[w].x0 - wall_built_[w][0], walls[w].y0 - wall_built_[w][1]));
   if (2.0 * disk_move > skin_m_ || disk_move + wall_move > skin_m_ || wall_built_.size() != walls.size()) rebuild();
   compute_forces();
+  for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
   integrate();
   move_walls();
   time_s_ += dt_s_;

@@ -13,6 +13,7 @@
 #include "demcal/dem/contact_geometry.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/contacts.hpp"
+#include "demcal/dem/external_forces.hpp"
 #include "demcal/dem/walls.hpp"
 
 namespace demcal {
@@ -66,6 +67,21 @@ class World {
   std::uint8_t add_model(std::unique_ptr<ContactModel> model);
   void assign(std::uint8_t group_a, std::uint8_t group_b, std::uint8_t model_index);
   const ContactModel& model(std::uint8_t index) const { return *models_[index]; }
+
+  // Adds forces from outside the contacts (a boundary's), applied every step
+  // from now on in the order added; the world owns them.
+  template <typename T>
+  T& add_external_forces(std::unique_ptr<T> forces) {
+    T& held = *forces;
+    external_forces_.push_back(std::move(forces));
+    return held;
+  }
+  // The force and moment each disk gets from the walls now (what the wall
+  // contacts give at the current positions), without advancing anything:
+  // the static load a boundary takes over when its wall is removed. Pairs of
+  // `wall` only, or of every active wall when it is npos.
+  void wall_forces_on_disks(std::vector<double>& fx, std::vector<double>& fy, std::vector<double>& moment,
+                            std::size_t wall = static_cast<std::size_t>(-1));
 
   // Advances one time step (rebuilding the neighbour list when a body has
   // moved more than half the skin since the last build).
@@ -149,6 +165,7 @@ class World {
   std::vector<std::uint8_t> run_models_, wall_run_models_;  // models with pairs, in pair order
   std::vector<BreakEvent> breaks_;
   std::vector<Clump> clumps_;
+  std::vector<std::unique_ptr<ExternalForces>> external_forces_;
   // Positions at the last rebuild, for the skin criterion.
   std::vector<double> x_built_, y_built_;
   std::vector<std::array<double, 2>> wall_built_;
