@@ -15,6 +15,7 @@ const std::vector<std::pair<std::string, Quantity>>& table() {
       {"GPa", Quantity::Stress},    {"N/m", Quantity::Stiffness},    {"m", Quantity::Length},
       {"mm", Quantity::Length},     {"1", Quantity::Dimensionless},  {"kg/m3", Quantity::Density},
       {"m/s", Quantity::Velocity},  {"s", Quantity::Time},           {"deg", Quantity::Angle},
+      {"J", Quantity::Energy},  // per the model's thickness, as every 2D energy here
   };
   return units;
 }
@@ -39,6 +40,7 @@ const char* quantity_name(Quantity q) {
     case Quantity::Velocity: return "velocity";
     case Quantity::Time: return "time";
     case Quantity::Angle: return "angle";
+    case Quantity::Energy: return "energy";
   }
   return "unknown";
 }

@@ -47,8 +47,14 @@ std::map<std::string, double> parse_sets(const std::vector<std::string>& sets) {
 // in a test list's), in a fixed order; false when it has none of them.
 bool write_curve(const nlohmann::json& curve, const std::string& prefix, const std::string& path) {
   Table table;
-  for (const char* column : {"axial_strain", "stress_MPa", "lateral_strain", "cracks", "confining_stress_MPa"})
+  const std::vector<std::string> first = {"axial_strain", "stress_MPa", "lateral_strain", "cracks", "confining_stress_MPa"};
+  for (const std::string& column : first)
     if (curve.contains(prefix + column)) table.add_column(column, curve.at(prefix + column).get<std::vector<double>>());
+  // A test's own series (a wave strip's time and velocities), in name order.
+  if (table.names().empty())
+    for (auto it = curve.begin(); it != curve.end(); ++it)
+      if (it.key().rfind(prefix, 0) == 0 && (prefix.empty() || it.key().find('.', prefix.size()) == std::string::npos))
+        table.add_column(it.key().substr(prefix.size()), it.value().get<std::vector<double>>());
   if (table.names().empty()) return false;
   table.write(path, "/curve");
   return true;

@@ -28,15 +28,18 @@ double force_ratio(const World& world) {
   const Bodies& b = world.bodies;
   // Per body: each disk not in a clump (fixed ones included), and each clump
   // as one (its members' own forces do not balance, the clump's sum does).
+  // Gravity counts: the integration adds it, so a body at rest under gravity
+  // has contact forces that balance its weight, not zero.
+  const double gx = world.settings().gravity_x_m_s2, gy = world.settings().gravity_y_m_s2;
   double unbalanced = 0;
   std::size_t free_bodies = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
     if (b.clump[i] < 0) {
-      unbalanced += std::hypot(b.fx[i], b.fy[i]);
+      unbalanced += std::hypot(b.fx[i] + b.mass[i] * gx, b.fy[i] + b.mass[i] * gy);
       ++free_bodies;
     }
   for (const Clump& clump : world.clumps()) {
-    double fx = 0, fy = 0;
+    double fx = clump.mass * gx, fy = clump.mass * gy;
     for (std::size_t i : clump.members) {
       fx += b.fx[i];
       fy += b.fy[i];

@@ -42,6 +42,7 @@ void register_builtin_tests(LabTestRegistry& registry) {
   register_biaxial_test(registry);
   register_external_test(registry);
   register_heap_test(registry);
+  register_wave_strip_test(registry);
 }
 
 TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {

@@ -29,6 +29,11 @@ nlohmann::json result_json(const TestResult& r, const std::map<std::string, doub
 }
 
 nlohmann::json curve_json(const TestResult& r) {
+  if (!r.series.empty()) {
+    nlohmann::json columns = nlohmann::json::object();
+    for (const auto& [name, values] : r.series) columns[name] = values;
+    return columns;
+  }
   nlohmann::json curve = {{"axial_strain", nlohmann::json::array()}, {"stress_MPa", nlohmann::json::array()},
                           {"lateral_strain", nlohmann::json::array()}, {"cracks", nlohmann::json::array()}};
   for (const CurvePoint& c : r.curve) {

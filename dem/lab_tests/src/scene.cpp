@@ -247,8 +247,15 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
       scene.sections_[section.name] = root.at(section.name);
     }
   } else {
-    require_known_fields(root, {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts", "loading"},
-                         origin);
+    std::vector<std::string> known = {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts",
+                                      "loading"};
+    for (const SceneSection& section : scene.lab_test_->extra_sections()) {
+      known.push_back(section.name);
+      if (!root.contains(section.name)) continue;
+      if (!root.at(section.name).is_object()) throw Error(origin + ": \"" + section.name + "\" must be an object");
+      scene.sections_[section.name] = root.at(section.name);
+    }
+    require_known_fields(root, known, origin);
     if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
     scene.specimen_ = root.at("specimen");
     require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
@@ -338,8 +345,10 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const std::string where = origin + ": contacts." + pair;
     ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
   }
-  if (!own.empty()) scene.lab_test_->check_scene(scene);
-  scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version(), own);  // on the validated file
+  std::vector<SceneSection> sections = own;
+  for (const SceneSection& section : scene.lab_test_->extra_sections()) sections.push_back(section);
+  if (!sections.empty()) scene.lab_test_->check_scene(scene);
+  scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version(), sections);  // on the validated file
   return scene;
 }
 

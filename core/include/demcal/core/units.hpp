@@ -8,7 +8,7 @@
 
 namespace demcal {
 
-enum class Quantity { Stress, Stiffness, Length, Dimensionless, Density, Velocity, Time, Angle };
+enum class Quantity { Stress, Stiffness, Length, Dimensionless, Density, Velocity, Time, Angle, Energy };
 
 // The quantity of a unit ("MPa" -> Stress, "1" -> Dimensionless); throws an
 // Error "<where>: unknown unit "X" (known: ...)" otherwise.

@@ -8,8 +8,9 @@
 
 namespace demcal::dem {
 
-// Mean unbalanced force per body (a disk not in a clump, or a clump as a whole) over
-// the mean contact normal force (PFC's ratio); 0 when nothing touches.
+// Mean unbalanced force per body (a disk not in a clump, or a clump as a whole;
+// contact and external forces and gravity) over the mean contact normal
+// force (PFC's ratio); 0 when nothing touches.
 double force_ratio(const World& world);
 
 // Cycles in blocks of 50 steps until force_ratio < `ratio`; false when

@@ -49,7 +49,10 @@ class LabTest {
   // (group 0; its boundaries join them). Empty for the tests of a packed specimen.
   virtual std::vector<SceneSection> own_sections() const { return {}; }
   virtual std::vector<ContactRole> particle_roles() const { return {}; }
-  // Checks the test's own sections with the parameters' defaults at load;
+  // A test of a packed specimen that reads more than "specimen" and
+  // "loading" (a wave strip's "boundaries", "pulse") names those sections here.
+  virtual std::vector<SceneSection> extra_sections() const { return {}; }
+  // Checks the test's own (or extra) sections with the parameters' defaults at load;
   // throws an Error naming the file and field.
   virtual void check_scene(const Scene& scene) const { (void)scene; }
   // Raised when a change to this test alone changes its results (0: none
@@ -91,6 +94,7 @@ void register_brazilian_test(LabTestRegistry& registry);
 void register_biaxial_test(LabTestRegistry& registry);
 void register_external_test(LabTestRegistry& registry);
 void register_heap_test(LabTestRegistry& registry);
+void register_wave_strip_test(LabTestRegistry& registry);
 void register_builtin_tests(LabTestRegistry& registry);
 
 }  // namespace demcal::dem

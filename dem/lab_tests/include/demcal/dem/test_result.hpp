@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace demcal::dem {
@@ -25,6 +26,9 @@ struct TestResult {
   std::map<std::string, double> macro;  // sigma_u_MPa, E_GPa, E50_GPa, nu, peak_strain, cracks_*
   std::map<std::string, double> extra_outputs;  // an external command's numbers beyond its declared outputs
   std::vector<CurvePoint> curve;
+  // A test whose record is not a stress-strain curve (a wave's velocity
+  // histories) keeps named columns of equal length here; they are its curve.
+  std::vector<std::pair<std::string, std::vector<double>>> series;
   std::size_t particles = 0;
   std::uint64_t steps = 0;
   double wall_s = 0;           // whole run, packing or cache load included

@@ -1,0 +1,524 @@
+// Wave-strip test: the walls of a bonded strip at rest under gravity become
+// boundaries (fixed, free, viscous or input), a cosine pulse enters through
+// the input side, and monitoring points record how the strip rings and falls
+// quiet (wave_strip_test.hpp).
+#include "demcal/dem/wave_strip_test.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/core/progress.hpp"
+#include "demcal/dem/boundary_forces.hpp"
+#include "demcal/dem/equilibrium.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/platen_test.hpp"
+#include "demcal/dem/wave_signals.hpp"
+#include "demcal/dem/world.hpp"
+
+namespace demcal::dem {
+namespace {
+
+// Inward unit normal of each side (bottom, top, left, right).
+constexpr std::array<std::array<double, 2>, 4> kInward = {{{0, 1}, {0, -1}, {1, 0}, {-1, 0}}};
+
+// A monitoring point: the disks within its radius, whose mean velocity it records.
+struct Monitor {
+  std::string label;
+  double x_m = 0, y_m = 0, distance_m = 0;  // distance from the input face along the pulse's path
+  std::vector<std::size_t> disks;
+  std::vector<double> vx, vy;
+};
+
+void mean_velocity(const Bodies& b, const Monitor& m, double& vx, double& vy) {
+  vx = vy = 0;
+  for (std::size_t i : m.disks) {
+    vx += b.vx[i];
+    vy += b.vy[i];
+  }
+  vx /= static_cast<double>(m.disks.size());
+  vy /= static_cast<double>(m.disks.size());
+}
+
+std::array<double, 2> fraction_pair(const nlohmann::json& v, const std::string& where) {
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+    throw Error(where + ": must be [x / width, y / height]");
+  const std::array<double, 2> p = {v[0].get<double>(), v[1].get<double>()};
+  if (!(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1))
+    throw Error(where + ": [" + format_double(p[0]) + ", " + format_double(p[1]) +
+                "] lies outside the model (fractions of its width and height, each in [0, 1])");
+  return p;
+}
+
+}  // namespace
+
+double WaveStripSpec::p_speed_formula_m_s(double rho) const {
+  return std::sqrt(e_d_pa * (1 - nu_d) / (rho * (1 + nu_d) * (1 - 2 * nu_d)));
+}
+double WaveStripSpec::s_speed_formula_m_s(double rho) const { return std::sqrt(e_d_pa / (2 * rho * (1 + nu_d))); }
+double WaveStripSpec::p_speed_m_s(double rho) const {
+  return given_p_speed_m_s > 0 ? given_p_speed_m_s : p_speed_formula_m_s(rho);
+}
+double WaveStripSpec::s_speed_m_s(double rho) const {
+  return given_s_speed_m_s > 0 ? given_s_speed_m_s : s_speed_formula_m_s(rho);
+}
+
+WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::string, double>& parameters) {
+  const std::string& origin = scene.origin();
+  WaveStripSpec s;
+  auto number = [&](const std::string& where, const nlohmann::json& object, const char* key, double& target,
+                    bool required) {
+    if (!object.contains(key)) {
+      if (required) throw Error(origin + ": " + where + "." + key + ": missing");
+      return;
+    }
+    target = scene.evaluate(object.at(key), parameters, origin + ": " + where + "." + key);
+    if (!std::isfinite(target)) throw Error(origin + ": " + where + "." + key + ": not a finite number");
+  };
+
+  const nlohmann::json& b = scene.section("boundaries");
+  require_known_fields(b, {"bottom", "top", "left", "right", "note"}, origin + ": boundaries");
+  int inputs = 0;
+  for (std::size_t side = 0; side < 4; ++side) {
+    const std::string where = std::string("boundaries.") + kSideNames[side];
+    if (!b.contains(kSideNames[side])) continue;
+    const nlohmann::json& o = b.at(kSideNames[side]);
+    require_known_fields(o, {"type", "xi", "eta", "note"}, origin + ": " + where);
+    if (!o.contains("type") || !o.at("type").is_string())
+      throw Error(origin + ": " + where + ".type: missing (\"fixed\", \"free\", \"viscous\" or \"input\")");
+    const std::string type = o.at("type").get<std::string>();
+    SideSpec& side_spec = s.sides[side];
+    if (type == "fixed") side_spec.type = BoundaryType::fixed;
+    else if (type == "free") side_spec.type = BoundaryType::free;
+    else if (type == "viscous") side_spec.type = BoundaryType::viscous;
+    else if (type == "input") side_spec.type = BoundaryType::input;
+    else throw Error(origin + ": " + where + ".type: \"" + type + "\" (allowed: fixed, free, viscous, input)");
+    const bool dashpots = side_spec.type == BoundaryType::viscous || side_spec.type == BoundaryType::input;
+    if (dashpots) {
+      number(where, o, "xi", side_spec.xi, true);
+      number(where, o, "eta", side_spec.eta, true);
+      if (side_spec.xi < 0) throw Error(origin + ": " + where + ".xi must be >= 0 (got " + format_double(side_spec.xi) + ")");
+      if (side_spec.eta < 0) throw Error(origin + ": " + where + ".eta must be >= 0 (got " + format_double(side_spec.eta) + ")");
+    } else if (o.contains("xi") || o.contains("eta")) {
+      throw Error(origin + ": " + where + ": xi and eta belong to a viscous or input side, not a " + type + " one");
+    }
+    if (side_spec.type == BoundaryType::input) {
+      s.input_side = side;
+      ++inputs;
+    }
+  }
+  if (inputs != 1)
+    throw Error(origin + ": boundaries: exactly one side must be of type \"input\" (the pulse's way in), found " +
+                std::to_string(inputs));
+
+  const nlohmann::json& m = scene.section("medium");
+  require_known_fields(m, {"E_d_Pa", "nu_d", "wave_speed_p_m_s", "wave_speed_s_m_s", "note"}, origin + ": medium");
+  number("medium", m, "wave_speed_p_m_s", s.given_p_speed_m_s, false);
+  number("medium", m, "wave_speed_s_m_s", s.given_s_speed_m_s, false);
+  const bool given = s.given_p_speed_m_s > 0 && s.given_s_speed_m_s > 0;
+  number("medium", m, "E_d_Pa", s.e_d_pa, !given);
+  number("medium", m, "nu_d", s.nu_d, !given);
+  if (m.contains("E_d_Pa") && !(s.e_d_pa > 0)) throw Error(origin + ": medium.E_d_Pa must be positive");
+  if (m.contains("nu_d") && !(s.nu_d > -1 && s.nu_d < 0.5)) throw Error(origin + ": medium.nu_d must lie in (-1, 0.5)");
+  if (m.contains("wave_speed_p_m_s") && !(s.given_p_speed_m_s > 0))
+    throw Error(origin + ": medium.wave_speed_p_m_s must be positive");
+  if (m.contains("wave_speed_s_m_s") && !(s.given_s_speed_m_s > 0))
+    throw Error(origin + ": medium.wave_speed_s_m_s must be positive");
+
+  const nlohmann::json& p = scene.section("pulse");
+  require_known_fields(p, {"p_amplitude_m_s", "s_amplitude_m_s", "period_s", "note"}, origin + ": pulse");
+  number("pulse", p, "p_amplitude_m_s", s.p_amplitude_m_s, false);
+  number("pulse", p, "s_amplitude_m_s", s.s_amplitude_m_s, false);
+  number("pulse", p, "period_s", s.period_s, false);
+  if (!(s.p_amplitude_m_s >= 0 && s.s_amplitude_m_s >= 0 && s.p_amplitude_m_s + s.s_amplitude_m_s > 0))
+    throw Error(origin + ": pulse: p_amplitude_m_s and s_amplitude_m_s must be >= 0, and one of them positive");
+  if (!(s.period_s > 0)) throw Error(origin + ": pulse.period_s must be positive");
+
+  const nlohmann::json& mo = scene.section("monitors");
+  require_known_fields(mo, {"points", "reflection_point", "radius_m", "note"}, origin + ": monitors");
+  if (!mo.contains("points") || !mo.at("points").is_array() || mo.at("points").empty())
+    throw Error(origin + ": monitors.points: missing (a list of [x / width, y / height], the points T1, T2, ...)");
+  for (std::size_t k = 0; k < mo.at("points").size(); ++k)
+    s.points.push_back(fraction_pair(mo.at("points")[k], origin + ": monitors.points[" + std::to_string(k) + "]"));
+  if (mo.contains("reflection_point"))
+    s.reflection_point = fraction_pair(mo.at("reflection_point"), origin + ": monitors.reflection_point");
+  number("monitors", mo, "radius_m", s.monitor_radius_m, false);
+  if (s.monitor_radius_m < 0) throw Error(origin + ": monitors.radius_m must be >= 0");
+
+  const nlohmann::json& r = scene.section("run");
+  require_known_fields(r, {"duration_s", "gravity_m_s2", "record_every_s", "recovery_fraction", "quiet_time_s",
+                           "equilibrium_ratio", "max_equilibrium_steps", "local_damping", "max_wall_s", "note"},
+                       origin + ": run");
+  number("run", r, "duration_s", s.duration_s, false);
+  number("run", r, "gravity_m_s2", s.gravity_m_s2, false);
+  number("run", r, "record_every_s", s.record_every_s, false);
+  number("run", r, "recovery_fraction", s.recovery_fraction, false);
+  number("run", r, "quiet_time_s", s.quiet_time_s, false);
+  number("run", r, "equilibrium_ratio", s.equilibrium_ratio, false);
+  number("run", r, "max_equilibrium_steps", s.max_equilibrium_steps, false);
+  number("run", r, "local_damping", s.local_damping, false);
+  number("run", r, "max_wall_s", s.max_wall_s, false);
+  const std::string rw = origin + ": run";
+  if (!(s.duration_s > s.period_s)) throw Error(rw + ".duration_s must exceed pulse.period_s");
+  if (!(s.gravity_m_s2 >= 0)) throw Error(rw + ".gravity_m_s2 must be >= 0 (it acts downwards)");
+  if (!(s.record_every_s > 0 && s.record_every_s < s.period_s))
+    throw Error(rw + ".record_every_s must lie in (0, pulse.period_s)");
+  if (!(s.recovery_fraction > 0 && s.recovery_fraction < 1)) throw Error(rw + ".recovery_fraction must lie in (0, 1)");
+  if (!(s.quiet_time_s >= 0)) throw Error(rw + ".quiet_time_s must be >= 0");
+  if (!(s.equilibrium_ratio > 0 && s.equilibrium_ratio < 1)) throw Error(rw + ".equilibrium_ratio must lie in (0, 1)");
+  if (!(s.max_equilibrium_steps >= 50)) throw Error(rw + ".max_equilibrium_steps must be at least 50");
+  if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(rw + ".local_damping must lie in [0, 1)");
+  if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
+  return s;
+}
+
+TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double>& parameters,
+                          const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const WaveStripSpec s = WaveStripSpec::from_scene(scene, parameters);
+  const std::string& origin = scene.origin();
+  Specimen specimen = cached_specimen(scene.specimen(parameters, options.seed), options.cache_dir);
+  const double W = specimen.width_m, H = specimen.height_m;
+
+  TestResult result;
+  World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &result.specimen_info, true);
+  for (Wall& w : world.walls) w.vx = w.vy = 0;  // the vessel holds still
+  Bodies& b = world.bodies;
+  result.particles = b.size();
+  const double r_max = *std::max_element(b.radius.begin(), b.radius.end());
+  const double t = specimen.thickness_m;
+  double mass = 0;
+  for (double m : b.mass) mass += m;
+  const double rho = mass / (W * H * t);  // the equivalent continuum's (bulk) density
+  const double c_p = s.p_speed_m_s(rho), c_s = s.s_speed_m_s(rho);
+  result.specimen_info["bulk_density_kg_m3"] = rho;
+  result.specimen_info["dashpot_wave_speed_p_m_s"] = c_p;
+  result.specimen_info["dashpot_wave_speed_s_m_s"] = c_s;
+  if (s.e_d_pa > 0) {
+    result.specimen_info["formula_wave_speed_p_m_s"] = s.p_speed_formula_m_s(rho);
+    result.specimen_info["formula_wave_speed_s_m_s"] = s.s_speed_formula_m_s(rho);
+  }
+
+  // At rest under gravity against the vessel's walls.
+  world.settings().damping = scene.loading().local_damping;
+  world.settings().gravity_y_m_s2 = -s.gravity_m_s2;
+  world.refresh();
+  if (world.dt_s() * 10 > s.period_s)
+    throw Error(origin + ": pulse.period_s " + format_double(s.period_s) + " s is shorter than 10 time steps (dt " +
+                format_double(world.dt_s()) + " s): the pulse would not be resolved");
+  if (s.gravity_m_s2 > 0 &&
+      !cycle_to_equilibrium(world, s.equilibrium_ratio, static_cast<std::uint64_t>(s.max_equilibrium_steps))) {
+    result.reason = "the strip did not come to rest under gravity within run.max_equilibrium_steps (force ratio " +
+                    format_double(force_ratio(world)) + ", asked below " + format_double(s.equilibrium_ratio) + ")";
+    return result;
+  }
+  result.specimen_info["equilibrium_steps"] = static_cast<double>(world.steps_done());
+  result.specimen_info["equilibrium_force_ratio"] = force_ratio(world);
+
+  // The walls' load passes to their disks; fixed sides hold theirs.
+  auto boundary = std::make_unique<BoundaryForces>();
+  for (std::size_t side = 0; side < 4; ++side) {
+    std::vector<double> fx, fy, moment;
+    world.wall_forces_on_disks(fx, fy, moment, side);
+    const SideSpec& spec = s.sides[side];
+    std::vector<char> touching(b.size(), 0);
+    const ContactSet& wp = world.wall_pairs();
+    for (std::size_t k = 0; k < wp.size(); ++k)
+      if (static_cast<std::size_t>(wp.j[k]) == side && (wp.flags[k] & kTouching)) touching[static_cast<std::size_t>(wp.i[k])] = 1;
+    std::size_t count = 0;
+    double covered_m = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (!touching[i]) continue;
+      ++count;
+      covered_m += 2 * b.radius[i];
+      if (spec.type == BoundaryType::fixed) {
+        b.fixed[i] = 1;
+        b.vx[i] = b.vy[i] = b.w[i] = 0;
+      }
+      // A fixed disk keeps F_app too: it does not move it, but its unbalanced force is then the wave's
+      // reaction alone, not the wall's static load as well.
+      BoundaryDisk d;
+      d.disk = i;
+      d.outward_nx = -kInward[side][0];
+      d.outward_ny = -kInward[side][1];
+      d.applied_fx_n = fx[i];
+      d.applied_fy_n = fy[i];
+      d.applied_moment_nm = moment[i];
+      d.normal_dashpot_n_s_m = 2 * b.radius[i] * t * spec.xi * rho * c_p;
+      d.shear_dashpot_n_s_m = 2 * b.radius[i] * t * spec.eta * rho * c_s;
+      d.input = spec.type == BoundaryType::input;
+      boundary->add_disk(d);
+    }
+    const std::string name = WaveStripSpec::kSideNames[side];
+    if (count == 0 && spec.type != BoundaryType::free)  // a free side the strip left has no load to keep
+      throw Error(origin + ": boundaries." + name + ": no disk touches the " + name +
+                  " wall at rest, so the side has no boundary particles");
+    result.specimen_info["boundary_disks_" + name] = static_cast<double>(count);
+    // Sum of the tributary lengths 2R over the side's length (Ma's 2R assumes it is about 1).
+    result.specimen_info["boundary_coverage_" + name] = covered_m / (side < 2 ? W : H);
+    world.walls[side].active = false;
+  }
+  BoundaryForces& forces = world.add_external_forces(std::move(boundary));
+  world.settings().damping = s.local_damping;
+  world.refresh();
+
+  // A quiet period: the boundaries must hold the strip where the walls did.
+  const std::vector<double> x_rest = b.x, y_rest = b.y;
+  world.run(static_cast<std::uint64_t>(std::ceil(s.quiet_time_s / world.dt_s())));
+  double drift2 = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    drift2 = std::max(drift2, (b.x[i] - x_rest[i]) * (b.x[i] - x_rest[i]) + (b.y[i] - y_rest[i]) * (b.y[i] - y_rest[i]));
+  result.macro["quiet_drift_m"] = std::sqrt(drift2);
+  result.macro["quiet_force_ratio"] = force_ratio(world);
+  double quiet_speed = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) quiet_speed = std::max(quiet_speed, std::hypot(b.vx[i], b.vy[i]));
+  result.specimen_info["quiet_max_speed_m_s"] = quiet_speed;
+
+  // Monitors: the disks within the radius of each point.
+  const double radius = s.monitor_radius_m > 0 ? s.monitor_radius_m : 2 * r_max;
+  const std::size_t in = s.input_side;
+  const double length_m = in < 2 ? H : W;  // the pulse's path, from the input face to the opposite one
+  auto distance_from_input = [&](double x, double y) {
+    switch (in) {
+      case 0: return y;
+      case 1: return H - y;
+      case 2: return x;
+      default: return W - x;
+    }
+  };
+  std::vector<Monitor> monitors;
+  for (std::size_t k = 0; k <= s.points.size(); ++k) {
+    const bool reflection = k == s.points.size();
+    const std::array<double, 2> f = reflection ? s.reflection_point : s.points[k];
+    Monitor m;
+    m.label = reflection ? "R" : "T" + std::to_string(k + 1);
+    m.x_m = f[0] * W;
+    m.y_m = f[1] * H;
+    m.distance_m = distance_from_input(m.x_m, m.y_m);
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (std::hypot(b.x[i] - m.x_m, b.y[i] - m.y_m) <= radius && !b.fixed[i]) m.disks.push_back(i);
+    if (m.disks.empty())
+      throw Error(origin + ": monitors: no free disk within " + format_double(radius) + " m of point " + m.label +
+                  " (" + format_double(m.x_m) + ", " + format_double(m.y_m) + " m)");
+    monitors.push_back(std::move(m));
+  }
+
+  // The pulse, from t = 0 of the test.
+  world.start_test();
+  const double period = s.period_s, a_p = s.p_amplitude_m_s, a_s = s.s_amplitude_m_s;
+  auto cosine = [period](double amplitude, double time) {
+    return time <= period ? 0.5 * amplitude * (1 - std::cos(2 * M_PI * time / period)) : 0.0;
+  };
+  forces.set_input([=](double time) { return cosine(a_p, time); }, [=](double time) { return cosine(a_s, time); });
+  const double work_before_input = forces.applied_work_j(), absorbed_before = forces.dashpot_work_j();
+  const std::vector<double> x_start = b.x, y_start = b.y;
+
+  const auto loading_start = std::chrono::steady_clock::now();
+  std::unique_ptr<Progress> progress;
+  if (options.progress) progress = std::make_unique<Progress>("wave strip (% of run.duration_s)", 100);
+  int shown = 0;
+  const auto steps_per_record =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(s.record_every_s / world.dt_s())));
+  const double amplitude = std::max(a_p, a_s);
+  std::vector<double> times, kinetic;
+  auto record = [&] {
+    times.push_back(world.time_s());
+    kinetic.push_back(world.kinetic_energy());
+    for (Monitor& m : monitors) {
+      double vx, vy;
+      mean_velocity(b, m, vx, vy);
+      m.vx.push_back(vx);
+      m.vy.push_back(vy);
+    }
+  };
+  record();
+  result.ok = true;
+  while (world.time_s() < s.duration_s) {
+    world.run(steps_per_record);
+    record();
+    double fastest = 0;
+    bool finite = true;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      finite = finite && std::isfinite(b.vx[i]) && std::isfinite(b.vy[i]);
+      fastest = std::max(fastest, std::abs(b.vx[i]) + std::abs(b.vy[i]));
+    }
+    if (!finite || fastest > 100 * amplitude) {
+      result.ok = false;
+      result.reason = "unstable at t = " + format_double(world.time_s()) + " s: " +
+                      (finite ? "a disk moves faster than 100 x the pulse's amplitude" : "non-finite velocities");
+      break;
+    }
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > s.max_wall_s) {
+      result.ok = false;
+      result.reason = "timeout: the run took longer than run.max_wall_s " + format_double(s.max_wall_s) + " s";
+      break;
+    }
+    if (progress) {
+      const int percent = std::min(100, static_cast<int>(100 * world.time_s() / s.duration_s));
+      if (percent > shown) progress->advance(static_cast<std::uint64_t>(percent - shown));
+      shown = std::max(shown, percent);
+    }
+  }
+  if (progress) progress->finish();
+  record_run_timing(world, options, start, loading_start, result);
+
+  // The record: time, each point's velocity, the kinetic energy.
+  result.series.emplace_back("time_s", times);
+  result.series.emplace_back("kinetic_energy_J", kinetic);
+  for (const Monitor& m : monitors) {
+    result.series.emplace_back("vx_" + m.label + "_m_s", m.vx);
+    result.series.emplace_back("vy_" + m.label + "_m_s", m.vy);
+  }
+  if (!result.ok) return result;
+
+  // Velocity along the pulse's path (P) and across it (S), per point.
+  const double nx = kInward[in][0], ny = kInward[in][1], tx = -ny, ty = nx;
+  auto along = [&](const Monitor& m, bool p_wave) {
+    std::vector<double> v(m.vx.size());
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = p_wave ? m.vx[k] * nx + m.vy[k] * ny : m.vx[k] * tx + m.vy[k] * ty;
+    return v;
+  };
+  double total = 0;
+  for (std::size_t k = 0; k < s.points.size(); ++k) {
+    const Monitor& m = monitors[k];
+    std::vector<double> speed(m.vx.size());
+    for (std::size_t q = 0; q < speed.size(); ++q) speed[q] = std::hypot(m.vx[q], m.vy[q]);
+    const Recovery r = recovery_time(times, speed, s.recovery_fraction * amplitude);
+    result.macro["recovery_time_s_" + m.label] = r.time_s;
+    result.macro["recovered_" + m.label] = r.recovered ? 1.0 : 0.0;
+    total += r.time_s;
+  }
+  result.macro["total_recovery_time_s"] = total;
+
+  // Wave speeds from the arrivals (the first rise through half the pulse's
+  // peak at the point nearest the input), over the points T1, T2, ...
+  auto speed_of = [&](bool p_wave) {
+    std::size_t nearest = 0;
+    for (std::size_t k = 1; k < s.points.size(); ++k)
+      if (monitors[k].distance_m < monitors[nearest].distance_m) nearest = k;
+    const std::vector<double> first = along(monitors[nearest], p_wave);
+    const double level = 0.5 * *std::max_element(first.begin(), first.end());
+    std::vector<double> distance, arrival;
+    for (std::size_t k = 0; k < s.points.size(); ++k) {
+      distance.push_back(monitors[k].distance_m);
+      arrival.push_back(first_crossing(times, along(monitors[k], p_wave), level));
+    }
+    return arrival_speed(distance, arrival);
+  };
+  const double measured_p = speed_of(true);
+  if (!std::isfinite(measured_p) || !(measured_p > 0)) {
+    result.ok = false;
+    result.reason = "the P pulse did not reach two monitoring points within run.duration_s; lengthen it";
+    return result;
+  }
+  result.macro["wave_speed_p_m_s"] = measured_p;
+  if (a_s > 0) {
+    const double measured_s = speed_of(false);
+    if (std::isfinite(measured_s) && measured_s > 0) result.macro["wave_speed_s_m_s"] = measured_s;
+  }
+
+  // Reflection at the reflection point: the incident pulse passes it before the reflected front arrives
+  // from the far side, and the reflected one before the input side's own echo would.
+  const Monitor& rp = monitors.back();
+  const double d = rp.distance_m, pulse_m = measured_p * period;
+  const double reflected_at = (2 * length_m - d) / measured_p, echo_at = (2 * length_m + d) / measured_p;
+  if (d < 0.5 * pulse_m || length_m - d < 0.5 * pulse_m) {
+    result.ok = false;
+    result.reason = "monitors.reflection_point lies " + format_double(d) + " m from the input face and " +
+                    format_double(length_m - d) + " m from the far one; both must exceed half the pulse's length (" +
+                    format_double(0.5 * pulse_m) + " m at the measured speed) to tell the reflection from the pulse";
+    return result;
+  }
+  if (reflected_at + 1.25 * period > s.duration_s) {
+    result.ok = false;
+    result.reason = "run.duration_s " + format_double(s.duration_s) + " s ends before the reflection has passed the "
+                    "reflection point (" + format_double(reflected_at + 1.25 * period) + " s)";
+    return result;
+  }
+  const std::vector<double> v_r = along(rp, a_p > 0);
+  const double incident = signed_extreme(times, v_r, 0, reflected_at);
+  const double reflected = signed_extreme(times, v_r, reflected_at, std::min(echo_at, reflected_at + 1.25 * period));
+  result.macro["reflection_coefficient"] = incident != 0 ? reflected / incident : 0.0;
+
+  // Energy: what the input put in, what the dashpots took out, what is left moving.
+  result.macro["energy_input_J"] = forces.input_work_j();
+  result.macro["energy_absorbed_J"] = -(forces.dashpot_work_j() - absorbed_before);
+  result.macro["kinetic_energy_end_J"] = world.kinetic_energy();
+  // The static loads (gravity, the walls' forces the boundaries keep) balance at rest; over the run their work
+  // nearly cancels, and what is neither absorbed nor still moving is strain energy left in the strip or
+  // energy the contacts dissipated by friction (docs/wave_strip.md).
+  double gravity_work = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    gravity_work += b.mass[i] * (world.settings().gravity_x_m_s2 * (b.x[i] - x_start[i]) +
+                                 world.settings().gravity_y_m_s2 * (b.y[i] - y_start[i]));
+  const double applied_work = forces.applied_work_j() - work_before_input;
+  result.specimen_info["applied_force_work_J"] = applied_work;
+  result.specimen_info["gravity_work_J"] = gravity_work;
+  result.specimen_info["energy_unaccounted_J"] = result.macro["energy_input_J"] + applied_work + gravity_work -
+                                                 result.macro["energy_absorbed_J"] - result.macro["kinetic_energy_end_J"];
+  return result;
+}
+
+namespace {
+
+class WaveStripTest : public LabTest {
+ public:
+  std::string name() const override { return "wave_strip"; }
+  std::string description() const override {
+    return "wave strip: a pulse enters a bonded strip through an input boundary; recovery times, reflection, wave speeds";
+  }
+  std::vector<BoundaryRole> boundary_roles() const override {
+    return {{"disk-wall", kPlatenGroup, "the strip's disks against the vessel's walls, until the boundaries replace them"}};
+  }
+  bool exact_scaling() const override { return false; }  // a dynamic test: inertia and gravity set its numbers
+  std::vector<SceneSection> extra_sections() const override {
+    return {{"boundaries", "each side's type (fixed, free, viscous, input) and dashpot coefficients xi, eta", false},
+            {"medium", "the equivalent continuum behind the dashpots: E_d, nu_d, or the wave speeds", false},
+            {"pulse", "the cosine pulse's amplitudes (P, S) and period", false},
+            {"monitors", "monitoring points T1, T2, ... and the reflection point", false},
+            {"run", "duration, gravity, recording, recovery threshold, quiet period", false}};
+  }
+  void check_scene(const Scene& scene) const override { WaveStripSpec::from_scene(scene, scene.resolve({})); }
+  std::vector<OutputSpec> outputs(const Scene& scene) const override {
+    std::vector<OutputSpec> out;
+    std::size_t points = 0;
+    try {
+      points = WaveStripSpec::from_scene(scene, scene.resolve({})).points.size();
+    } catch (const Error&) {
+    }
+    for (std::size_t k = 1; k <= points; ++k) {
+      const std::string label = "T" + std::to_string(k);
+      out.push_back({"recovery_time_s_" + label, "s",
+                     "time after which the speed at " + label + " stays below run.recovery_fraction of the amplitude "
+                     "(run.duration_s if it never does)"});
+      out.push_back({"recovered_" + label, "1", "1 when " + label + " fell quiet within run.duration_s, else 0"});
+    }
+    out.push_back({"total_recovery_time_s", "s", "sum of the points' recovery times (Ma et al. 2022's fitness)"});
+    out.push_back({"reflection_coefficient", "1",
+                   "reflected over incident particle velocity (signed peaks) at monitors.reflection_point"});
+    out.push_back({"wave_speed_p_m_s", "m/s", "P wave speed from the pulse's arrivals at T1, T2, ..."});
+    out.push_back({"wave_speed_s_m_s", "m/s", "S wave speed from the arrivals (an S pulse only)", false});
+    out.push_back({"energy_input_J", "J", "work of the input boundary's wave on the model"});
+    out.push_back({"energy_absorbed_J", "J", "work the dashpots took out of the model"});
+    out.push_back({"kinetic_energy_end_J", "J", "kinetic energy at the end of the run"});
+    out.push_back({"quiet_drift_m", "m", "largest move of a disk over the quiet period after the walls were replaced"});
+    out.push_back({"quiet_force_ratio", "1", "mean unbalanced-force ratio at the end of the quiet period"});
+    return out;
+  }
+  TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                 const RunOptions& options) const override {
+    return run_wave_strip(scene, parameters, options);
+  }
+};
+
+}  // namespace
+
+void register_wave_strip_test(LabTestRegistry& registry) { registry.add(std::make_unique<WaveStripTest>()); }
+
+}  // namespace demcal::dem
