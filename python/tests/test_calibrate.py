@@ -419,3 +419,15 @@ def test_the_offset_is_a_trimmed_mean_that_one_far_seed_does_not_move():
     # Five seeds lose the lowest and the highest; two or three seeds keep them all.
     np.testing.assert_allclose(calibrate.trimmed_mean([[1.0], [2.0], [3.0], [4.0], [100.0]], 0.2), [3.0])
     np.testing.assert_allclose(calibrate.trimmed_mean([[1.0], [2.0], [9.0]], 0.2), [4.0])
+
+
+def test_the_secant_update_takes_the_measured_change_along_the_step_and_keeps_the_rest():
+    jac = np.array([[1.0, 0.0], [0.0, 2.0]])
+    c1, c2 = np.array([0.0, 0.0]), np.array([0.5, 0.0])
+    r1, r2 = np.array([0.1, 0.2]), np.array([0.1 + 0.8, 0.2 + 0.05])  # along the step: 1.6 and 0.1 per unit
+    new = calibrate.secant_update(jac, (c1, r1), (c2, r2))
+    np.testing.assert_allclose(new @ (c2 - c1), r2 - r1)
+    np.testing.assert_allclose(new[:, 1], jac[:, 1])  # across the step: unchanged
+    # No step, or residual vectors of another length (the bounded scale term came on): as it was.
+    np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c1, r2)), jac)
+    np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c2, np.append(r2, 0.0))), jac)
