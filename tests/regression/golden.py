@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Bit-identical check: the default UCS, the concrete scene, a Brazilian disc and a small study give
+"""Bit-identical check: the default UCS, the concrete scene, a Brazilian disc, a short wave strip and a small study give
 exactly the numbers stored in tests/regression/golden/ (every float compared by its bits; timings left out).
 
     golden.py BIN_DIR SRC_DIR [CASE ...]            compare (exit 1 naming each difference)
@@ -90,6 +90,7 @@ CASES = {
     "ucs_rock_pb": lambda b, s, w: dem_run(b, s, w, "data/scenes/ucs_rock_pb.json", 1),
     "ucs_concrete": lambda b, s, w: dem_run(b, s, w, "data/scenes/ucs_concrete.json", 1),
     "brazilian_rock_cb": lambda b, s, w: dem_run(b, s, w, "tests/data/brazilian_small.json", 2),
+    "wave_strip": lambda b, s, w: dem_run(b, s, w, "tests/data/wave_strip_small.json", 1),
     "study_golden": lambda b, s, w: study(b, s, w, "tests/regression/study_golden.json"),
 }
 
