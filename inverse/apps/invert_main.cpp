@@ -89,7 +89,9 @@ int run(const Arguments& a, const CLI::App& app) {
   if (a.budget < 1) throw Error("--budget must be at least 1 evaluation");
   settings.budget.max_evaluations = a.budget;
   // Wang & Cao stop the annealing below 10 % error; the others run to convergence.
-  double stop = a.stop_below >= 0 ? a.stop_below : (a.algorithm == "sa" || a.algorithm == "sa-vfsr" ? 0.10 : -1.0);
+  // A minimisation has no error to stop below: it runs its budget unless told otherwise.
+  const bool annealing = a.algorithm == "sa" || a.algorithm == "sa-vfsr";
+  double stop = a.stop_below >= 0 ? a.stop_below : (annealing && a.objective != "minimise" ? 0.10 : -1.0);
   if (stop >= 0) settings.budget.target_value = stop;
   settings.search.samples = a.samples;
   settings.search.tolerance = a.tolerance;
@@ -148,7 +150,7 @@ int main(int argc, char** argv) {
       "demcal-invert: micro-parameters whose predicted macro values match targets.\n"
       "  demcal-invert --model M1.json [--model M2.json ...] --target NAME=VALUE [--target ...] [--space S.json]\n"
       "  demcal-invert --dem-scene SCENE.json --space S.json --target NAME=VALUE ... [--dem-seeds K] [--jobs J]\n"
-      "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel] [--polish]\n"
+      "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel|minimise] [--polish]\n"
       "                [--restarts R] [--seed S] --out SOLUTION.json\n"
       "Exit codes: 0 solved, 2 bad input, 3 a target outside what the domain can reach, 4 targets attainable but not met.",
       "demcal-invert"};
@@ -164,7 +166,9 @@ int main(int argc, char** argv) {
   app.add_flag("--list-algorithms", list_algorithms, "print the algorithms and objectives (JSON) and exit");
   app.add_option("--space", a.space, "parameter space JSON: bounds, fixed and tied values (default: the models' domains)");
   app.add_option("--algo", a.algorithm, "ga, sa, sa-vfsr, wca, lhs-wca or search")->capture_default_str();
-  app.add_option("--objective", a.objective, "sum-rel, max-rel or sse-rel")->capture_default_str();
+  app.add_option("--objective", a.objective,
+                 "sum-rel, max-rel or sse-rel (relative errors to the targets), or minimise (the outputs over the "
+                 "--target values as references, e.g. a fitness to drive down)")->capture_default_str();
   app.add_flag("--polish", a.polish, "polish the best point by bounded least squares (Ceres)");
   app.add_option("--restarts", a.restarts, "independent runs with seeds S, S+1, ...")->capture_default_str();
   app.add_option("--seed", a.seed, "seed of the first run")->capture_default_str();

@@ -93,8 +93,12 @@ InversionResult invert(const InversionProblem& problem, const InversionSettings&
   // A run meets the targets when every relative error is within the reach
   // tolerance, or when it stopped at the objective threshold the user set (the
   // annealing's 10 %), or (search) when it lies within the search tolerance.
+  // A minimisation has no target to miss: its best point is its answer.
+  const bool minimise = problem.objective_kind() == ObjectiveKind::Minimise;
+  if (minimise && search)
+    throw Error("--objective minimise has no targets to search within a tolerance of; use an optimiser");
   auto meets = [&](double objective, double max_error) {
-    return max_error <= settings.reach_tolerance || objective <= settings.budget.target_value ||
+    return minimise || max_error <= settings.reach_tolerance || objective <= settings.budget.target_value ||
            (search && max_error <= settings.search.tolerance);
   };
   const auto start = std::chrono::steady_clock::now();

@@ -6,13 +6,14 @@
 
 namespace demcal::inverse {
 
-std::vector<std::string> objective_names() { return {"sum-rel", "max-rel", "sse-rel"}; }
+std::vector<std::string> objective_names() { return {"sum-rel", "max-rel", "sse-rel", "minimise"}; }
 
 ObjectiveKind parse_objective(const std::string& name) {
   if (name == "sum-rel") return ObjectiveKind::SumRel;
   if (name == "max-rel") return ObjectiveKind::MaxRel;
   if (name == "sse-rel") return ObjectiveKind::SseRel;
-  throw Error("--objective \"" + name + "\" (expected sum-rel, max-rel or sse-rel)");
+  if (name == "minimise") return ObjectiveKind::Minimise;
+  throw Error("--objective \"" + name + "\" (expected sum-rel, max-rel, sse-rel or minimise)");
 }
 
 std::string to_string(ObjectiveKind kind) {
@@ -20,6 +21,7 @@ std::string to_string(ObjectiveKind kind) {
     case ObjectiveKind::SumRel: return "sum-rel";
     case ObjectiveKind::MaxRel: return "max-rel";
     case ObjectiveKind::SseRel: return "sse-rel";
+    case ObjectiveKind::Minimise: return "minimise";
   }
   return "";
 }
@@ -30,7 +32,8 @@ double relative_objective(ObjectiveKind kind, const std::vector<double>& predict
     // No prediction (a failed DEM run) is infinitely far; std::max would drop a NaN.
     if (!std::isfinite(predicted[i])) return std::numeric_limits<double>::infinity();
     double e = (predicted[i] - targets[i]) / std::fabs(targets[i]);
-    if (kind == ObjectiveKind::SumRel) total += std::fabs(e);
+    if (kind == ObjectiveKind::Minimise) total += predicted[i] / std::fabs(targets[i]);
+    else if (kind == ObjectiveKind::SumRel) total += std::fabs(e);
     else if (kind == ObjectiveKind::MaxRel) total = std::max(total, std::fabs(e));
     else total += e * e;
   }

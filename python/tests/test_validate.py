@@ -113,6 +113,7 @@ CROSS_CASES = [
      'screening: design.kind must be "oa"'),
     (loop, lambda d: d.update(surfaces=[]), '"surfaces" does not apply to strategy dem_in_the_loop'),
     (loop, lambda d: d["inversion"].update(polish=True), "polish needs a smooth surrogate"),
+    (loop, lambda d: d["inversion"].update(objective="minimise"), "inversion.objective minimise is not supported in studies"),
     (demo, lambda d: [d.pop(k) for k in ("surfaces", "surrogate", "inversion", "verification", "refinement",
                                           "seeds_per_point", "stability")]
      and d.update(screening={"design": {"kind": "oa", "runs": 18}, "outputs": ["nu"]}),

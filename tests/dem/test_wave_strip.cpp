@@ -143,6 +143,17 @@ TEST(WaveStrip, TheBoundariesHoldTheStripWhereTheWallsDid) {
   EXPECT_EQ(r.series.size(), 2u + 2u * 4u);  // time, kinetic energy, vx and vy of T1-T3 and R
 }
 
+TEST(WaveStrip, RecoveryIsMeasuredAgainstThePulseTheStripCarriedNotTheAmplitudeAsked) {
+  // An elastic strip (no friction) rings the same way at any amplitude, so its recovery times must not move
+  // when A halves; neither may they when a weaker input side lets less of A in (xi_input 0.5).
+  const TestResult full = run_patched(json::object(), {{"mu", 0.0}});
+  const TestResult half = run_patched({{"pulse", {{"p_amplitude_m_s", 0.5}}}}, {{"mu", 0.0}});
+  ASSERT_TRUE(full.ok && half.ok) << full.reason << half.reason;
+  EXPECT_NEAR(half.specimen_info.at("carried_peak_speed_m_s") / full.specimen_info.at("carried_peak_speed_m_s"), 0.5, 0.01);
+  for (const char* point : {"recovery_time_s_T1", "recovery_time_s_T2", "recovery_time_s_T3"})
+    EXPECT_NEAR(half.macro.at(point), full.macro.at(point), 0.02 * full.macro.at(point)) << point;
+}
+
 TEST(WaveStrip, WithoutContactFrictionTheEnergyBalanceCloses) {
   // Input + the static loads' work = absorbed + kinetic and strain energy left + what the contacts
   // dissipate by slipping. With no friction nothing slips, and what is unaccounted is the strain energy

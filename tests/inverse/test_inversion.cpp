@@ -40,6 +40,26 @@ TEST(Objectives, HandComputed) {
     EXPECT_EQ(relative_objective(kind, {std::nan(""), 18}, {10, 20}), std::numeric_limits<double>::infinity());
   EXPECT_EQ(parse_objective("max-rel"), ObjectiveKind::MaxRel);
   EXPECT_THROW(parse_objective("rms"), Error);
+  // minimise: each output over its reference, summed (no target to meet).
+  EXPECT_NEAR(relative_objective(ObjectiveKind::Minimise, {3.0, 1.0}, {6.0, -4.0}), 0.75, 1e-15);
+  EXPECT_EQ(parse_objective("minimise"), ObjectiveKind::Minimise);
+}
+
+TEST(Inversion, MinimiseDrivesAnOutputDownAndIsNeverNotMet) {
+  // strength = 2 a + b is least at a = b = 0 (the box's corner); over a reference of 10 the objective is 0 there.
+  Toy toy;
+  InversionProblem problem({&toy}, nullptr, {{"strength", 10.0}}, ObjectiveKind::Minimise);
+  InversionSettings settings;
+  settings.algorithm = "ga";
+  settings.seed = 4;
+  settings.budget.max_evaluations = 4000;
+  settings.attainable_samples = 0;
+  const InversionResult r = invert(problem, settings);
+  EXPECT_EQ(r.status, "ok");
+  EXPECT_LT(r.objective, 0.02);
+  EXPECT_NEAR(r.predicted[0], 10.0 * r.objective, 1e-9);
+  settings.algorithm = "search";
+  EXPECT_THROW(invert(problem, settings), Error);
 }
 
 TEST(Inversion, ReachesATargetAndSaysWhatItCannotIdentify) {

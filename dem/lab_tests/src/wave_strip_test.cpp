@@ -384,12 +384,25 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     for (std::size_t k = 0; k < v.size(); ++k) v[k] = p_wave ? m.vx[k] * nx + m.vy[k] * ny : m.vx[k] * tx + m.vy[k] * ty;
     return v;
   };
-  double total = 0;
+  // Quiet means below a share of the pulse the strip actually carried (the peak speed at the point nearest the
+  // input), not of A: an input side's dashpots set how much of A enters (2 xi / (1 + xi) of it for a matched
+  // strip), and a threshold on A would reward a weak input side with early quiet.
+  std::vector<std::vector<double>> speeds;
   for (std::size_t k = 0; k < s.points.size(); ++k) {
     const Monitor& m = monitors[k];
     std::vector<double> speed(m.vx.size());
     for (std::size_t q = 0; q < speed.size(); ++q) speed[q] = std::hypot(m.vx[q], m.vy[q]);
-    const Recovery r = recovery_time(times, speed, s.recovery_fraction * amplitude);
+    speeds.push_back(std::move(speed));
+  }
+  std::size_t nearest_input = 0;
+  for (std::size_t k = 1; k < s.points.size(); ++k)
+    if (monitors[k].distance_m < monitors[nearest_input].distance_m) nearest_input = k;
+  const double carried = *std::max_element(speeds[nearest_input].begin(), speeds[nearest_input].end());
+  result.specimen_info["carried_peak_speed_m_s"] = carried;
+  double total = 0;
+  for (std::size_t k = 0; k < s.points.size(); ++k) {
+    const Monitor& m = monitors[k];
+    const Recovery r = recovery_time(times, speeds[k], s.recovery_fraction * carried);
     result.macro["recovery_time_s_" + m.label] = r.time_s;
     result.macro["recovered_" + m.label] = r.recovered ? 1.0 : 0.0;
     total += r.time_s;
@@ -495,8 +508,8 @@ class WaveStripTest : public LabTest {
     for (std::size_t k = 1; k <= points; ++k) {
       const std::string label = "T" + std::to_string(k);
       out.push_back({"recovery_time_s_" + label, "s",
-                     "time after which the speed at " + label + " stays below run.recovery_fraction of the amplitude "
-                     "(run.duration_s if it never does)"});
+                     "time after which the speed at " + label + " stays below run.recovery_fraction of the peak "
+                     "speed the pulse had at the point nearest the input (run.duration_s if it never does)"});
       out.push_back({"recovered_" + label, "1", "1 when " + label + " fell quiet within run.duration_s, else 0"});
     }
     out.push_back({"total_recovery_time_s", "s", "sum of the points' recovery times (Ma et al. 2022's fitness)"});

@@ -5,7 +5,8 @@
 // then a cosine pulse v = 0.5 A (1 - cos(2 pi t / T)), t <= T, enters through
 // the input side and travels along the strip. Monitoring points record the
 // particle velocity; the outputs are each point's recovery time (after which
-// |v| stays below a share of A), their sum, the reflection coefficient at a
+// |v| stays below a share of the peak the pulse had at the point nearest the
+// input), their sum, the reflection coefficient at a
 // point near the far side, the P (and S) wave speeds measured from the
 // arrivals, and the work the boundaries did. docs/wave_strip.md.
 //
