@@ -154,6 +154,19 @@ TEST(WaveStrip, RecoveryIsMeasuredAgainstThePulseTheStripCarriedNotTheAmplitudeA
     EXPECT_NEAR(half.macro.at(point), full.macro.at(point), 0.02 * full.macro.at(point)) << point;
 }
 
+TEST(WaveStrip, AnSPulseGivesTheSSpeedAndItsOwnReflection) {
+  const TestResult p = run_patched(json::object());
+  const TestResult s = run_patched({{"pulse", {{"p_amplitude_m_s", 0.0}, {"s_amplitude_m_s", 1.0}}}});
+  ASSERT_TRUE(p.ok && s.ok) << p.reason << s.reason;
+  EXPECT_EQ(s.macro.count("wave_speed_p_m_s"), 0u);
+  EXPECT_EQ(p.macro.count("wave_speed_s_m_s"), 0u);
+  // Slower than the P wave (C_S / C_P = 0.60 by the formulas at nu_d 0.221), and a reflection of its own.
+  const double ratio = s.macro.at("wave_speed_s_m_s") / p.macro.at("wave_speed_p_m_s");
+  EXPECT_GT(ratio, 0.3);
+  EXPECT_LT(ratio, 0.8);
+  EXPECT_LT(std::abs(s.macro.at("reflection_coefficient")), 1.0);
+}
+
 TEST(WaveStrip, WithoutContactFrictionTheEnergyBalanceCloses) {
   // Input + the static loads' work = absorbed + kinetic and strain energy left + what the contacts
   // dissipate by slipping. With no friction nothing slips, and what is unaccounted is the strain energy
