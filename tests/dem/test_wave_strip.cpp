@@ -245,6 +245,16 @@ TEST(WaveStrip, BadInputFailsInOneLineNamingTheField) {
   EXPECT_THROW(
       {
         try {
+          run_patched(json::object(), {{"xi_reflecting", 9.0}});
+        } catch (const demcal::Error& e) {
+          EXPECT_NE(std::string(e.what()).find("boundaries.right: xi 9"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      demcal::Error);
+  EXPECT_THROW(
+      {
+        try {
           run_patched({{"boundaries", {{"top", {{"type", "fixed"}}}}}});
         } catch (const demcal::Error& e) {
           EXPECT_NE(std::string(e.what()).find("boundaries.top: no disk touches"), std::string::npos) << e.what();

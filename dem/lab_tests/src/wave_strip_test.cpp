@@ -253,6 +253,14 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
       d.normal_dashpot_n_s_m = 2 * b.radius[i] * t * spec.xi * rho * c_p;
       d.shear_dashpot_n_s_m = 2 * b.radius[i] * t * spec.eta * rho * c_s;
       d.input = spec.type == BoundaryType::input;
+      // The dashpot is explicit (it acts on the last half step's velocity): c dt / m must stay well below 2, the
+      // update's own limit, or the boundary disk's velocity flips sign each step and grows.
+      const double stiffest = std::max(d.normal_dashpot_n_s_m, d.shear_dashpot_n_s_m) * world.dt_s() / b.mass[i];
+      if (stiffest > 1.0)
+        throw Error(origin + ": boundaries." + WaveStripSpec::kSideNames[side] + ": xi " + format_double(spec.xi) +
+                    " / eta " + format_double(spec.eta) + " make a dashpot of c dt / m = " + format_double(stiffest) +
+                    " on a boundary disk, above 1: the explicit update would be unstable (smaller coefficients, or a "
+                    "smaller time step)");
       boundary->add_disk(d);
     }
     const std::string name = WaveStripSpec::kSideNames[side];
