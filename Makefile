@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark yade-study
+.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark yade-study boundary-calibration
 
 all: build
 
@@ -50,6 +50,10 @@ calibrate: build
 # the old global-surface strategy where marked, KRIGING=1 the kriging strategy there). Summary: $(BUILD)/calibration_benchmark/summary.md.
 calibration-benchmark: build
 	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global) $(if $(KRIGING),--kriging)
+
+# The wave strip's viscous boundary calibrated in the loop by LHS-WCA, WCA, GA and SA (docs/wave_strip.md); about 30 min.
+boundary-calibration: build
+	scripts/boundary_calibration_comparison.py --build $(BUILD) --jobs $(JOBS) $(if $(FIGURE),--figure $(FIGURE))
 
 # Our DEM at published PFC2D parameter sets (docs/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
 fidelity-benchmark: build

@@ -1,0 +1,33 @@
+"""scripts/boundary_calibration_comparison.py: the runs an optimiser took to come within 5 % of its own best, and bad
+arguments as one-line errors (the DEM runs themselves are `make boundary-calibration`'s)."""
+import importlib.util
+import os
+import subprocess
+import sys
+
+from conftest import REPO
+
+SCRIPT = os.path.join(REPO, "scripts", "boundary_calibration_comparison.py")
+
+
+def module():
+    spec = importlib.util.spec_from_file_location("boundary_calibration_comparison", SCRIPT)
+    m = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(m)
+    return m
+
+
+def test_runs_to_within_a_share_of_the_final_best():
+    m = module()
+    points = [(1, 1.0), (20, 0.6), (40, 0.52), (120, 0.5)]
+    assert m.runs_to_within(points, 0.05) == 40  # 0.52 is within 5 % of 0.5
+    assert m.runs_to_within(points, 0.01) == 120
+    assert m.runs_to_within([(7, 0.3)], 0.05) == 7
+
+
+def test_bad_arguments_are_one_line_errors(tmp_path):
+    done = subprocess.run([sys.executable, SCRIPT, "--budget", "5", "--out", str(tmp_path)], capture_output=True,
+                          text=True)
+    assert done.returncode == 2
+    assert "--budget must be at least 10" in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1
