@@ -106,8 +106,11 @@ TEST(PowderParticles, PlacementFillsTheRegionWithoutOverlapAndIsSeeded) {
   }
   for (std::size_t i = 0; i < dx.size(); ++i) {
     EXPECT_GE(std::min({dx[i], dy[i], 0.05 - dx[i], 0.05 - dy[i]}), dr[i] * (1 - 1e-12));
-    for (std::size_t j = i + 1; j < dx.size(); ++j)
-      if (owner[i] != owner[j]) EXPECT_GE(std::hypot(dx[i] - dx[j], dy[i] - dy[j]), dr[i] + dr[j]);
+    for (std::size_t j = i + 1; j < dx.size(); ++j) {
+      if (owner[i] != owner[j]) {
+        EXPECT_GE(std::hypot(dx[i] - dx[j], dy[i] - dy[j]), dr[i] + dr[j]);
+      }
+    }
   }
   spec.solids_fraction = 0.6;
   spec.max_attempts_per_particle = 50;

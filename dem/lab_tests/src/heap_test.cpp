@@ -94,14 +94,8 @@ double HeapSpec::top_width_m() const {
 HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, double>& parameters) {
   const std::string& origin = scene.origin();
   HeapSpec s;
-  auto number = [&](const char* section, const nlohmann::json& object, const char* key, double& target, bool required) {
-    if (!object.contains(key)) {
-      if (required) throw Error(origin + ": " + section + "." + key + ": missing");
-      return;
-    }
-    target = scene.evaluate(object.at(key), parameters, origin + ": " + section + "." + key);
-    if (!std::isfinite(target)) throw Error(origin + ": " + section + "." + key + ": not a finite number");
-  };
+  auto number = [&](const std::string& section, const nlohmann::json& object, const char* key, double& target,
+                    bool required) { read_section_number(scene, parameters, section, object, key, target, required); };
   const nlohmann::json& p = scene.section("particles");
   require_known_fields(p, {"radius_min_m", "radius_max_m", "density_kg_m3", "thickness_m", "clump_aspect_ratio",
                            "clump_fraction", "note"},

@@ -523,4 +523,16 @@ bool Scene::shapes_specimen(const std::string& parameter) const {
   return false;
 }
 
+void read_section_number(const Scene& scene, const std::map<std::string, double>& parameters,
+                         const std::string& section, const nlohmann::json& object, const char* key, double& target,
+                         bool required) {
+  const std::string where = scene.origin() + ": " + section + "." + key;
+  if (!object.contains(key)) {
+    if (required) throw Error(where + ": missing");
+    return;
+  }
+  target = scene.evaluate(object.at(key), parameters, where);
+  if (!std::isfinite(target)) throw Error(where + ": not a finite number");
+}
+
 }  // namespace demcal::dem

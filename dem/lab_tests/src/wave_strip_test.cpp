@@ -72,15 +72,8 @@ double WaveStripSpec::s_speed_m_s(double rho) const {
 WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::string, double>& parameters) {
   const std::string& origin = scene.origin();
   WaveStripSpec s;
-  auto number = [&](const std::string& where, const nlohmann::json& object, const char* key, double& target,
-                    bool required) {
-    if (!object.contains(key)) {
-      if (required) throw Error(origin + ": " + where + "." + key + ": missing");
-      return;
-    }
-    target = scene.evaluate(object.at(key), parameters, origin + ": " + where + "." + key);
-    if (!std::isfinite(target)) throw Error(origin + ": " + where + "." + key + ": not a finite number");
-  };
+  auto number = [&](const std::string& section, const nlohmann::json& object, const char* key, double& target,
+                    bool required) { read_section_number(scene, parameters, section, object, key, target, required); };
 
   const nlohmann::json& b = scene.section("boundaries");
   require_known_fields(b, {"bottom", "top", "left", "right", "note"}, origin + ": boundaries");
@@ -420,10 +413,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   // Wave speeds from the arrivals (the first rise through half the pulse's
   // peak at the point nearest the input), over the points T1, T2, ...
   auto speed_of = [&](bool p_wave) {
-    std::size_t nearest = 0;
-    for (std::size_t k = 1; k < s.points.size(); ++k)
-      if (monitors[k].distance_m < monitors[nearest].distance_m) nearest = k;
-    const std::vector<double> first = along(monitors[nearest], p_wave);
+    const std::vector<double> first = along(monitors[nearest_input], p_wave);
     const double level = 0.5 * *std::max_element(first.begin(), first.end());
     std::vector<double> distance, arrival;
     for (std::size_t k = 0; k < s.points.size(); ++k) {

@@ -169,6 +169,13 @@ class Scene {
 void check_space_against(const std::map<std::string, SceneParameter>& parameters, const std::string& origin,
                          const ParameterSpace& space, const std::string& space_path);
 
+// A number of one of a test's own scene sections (a value or an expression
+// of the parameters) into `target` when present; an Error naming the file,
+// "section.key" and what is wrong when it is missing but required, or not finite.
+void read_section_number(const Scene& scene, const std::map<std::string, double>& parameters,
+                         const std::string& section, const nlohmann::json& object, const char* key, double& target,
+                         bool required);
+
 // Creates a model for each of the scene's contact roles (in the order of
 // contact_roles(), bound to `parameters`) and assigns it to the role's groups.
 void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters);
