@@ -17,6 +17,7 @@
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/world.hpp"
+#include "bonded_bodies.hpp"
 
 using namespace demcal::dem;
 
@@ -95,11 +96,7 @@ TEST(BiaxialTest, BondedHexagonalLatticeUnderConfinementGivesTheLatticeModuli) {
     WorldSettings settings;
     settings.damping = 0.7;
     World world(settings);
-    world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                          "parallel_bond",
-                          {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"bond_modulus_pa", bond_modulus},
-                           {"bond_kn_ks", ratio}, {"tensile_strength_pa", 1e12}, {"shear_strength_pa", 1e12}},
-                          "test")));
+    world.assign(0, 0, world.add_model(demcal::dem::testing::unbreakable_parallel_bond(1e9, 2.0, bond_modulus, ratio)));
     // Walls 25 x stiffer than the bonds, so their contacts add little compliance.
     world.assign(0, kPlatenGroup, world.add_model(ContactModelRegistry::instance().create(
                                       "linear", {{"modulus_pa", 50e9}, {"kn_ks", 1.0}, {"friction", 0.0}}, "test")));

@@ -9,6 +9,7 @@
 #include "demcal/core/rng.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
+#include "bonded_bodies.hpp"
 
 using namespace demcal::dem;
 
@@ -16,21 +17,7 @@ namespace {
 
 constexpr double kRadius = 1e-3, kGap = 1e-7, kDensity = 2650, kBondModulus = 5e9;
 
-// Disks along x, a hair apart (more than the vibration amplitudes below) so
-// only the bonds act, never the linear contact.
-World chain(int n) {
-  WorldSettings settings;
-  settings.damping = 0.0;
-  World world(settings);
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "parallel_bond",
-                        {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"bond_modulus_pa", kBondModulus},
-                         {"bond_kn_ks", 2.0}, {"tensile_strength_pa", 1e12}, {"shear_strength_pa", 1e12}},
-                        "test")));
-  for (int i = 0; i < n; ++i) world.bodies.add_disk(i * (2 * kRadius + kGap), 0, kRadius, kDensity, 1, 0);
-  EXPECT_EQ(world.install_bonds(2 * kGap, 1), static_cast<std::size_t>(n - 1));
-  return world;
-}
+World chain(int n) { return demcal::dem::testing::bonded_chain(n, kRadius, kGap, kDensity, kBondModulus); }
 
 // Time of the largest value of `history`, refined by a parabola through the peak.
 double peak_time(const std::vector<double>& history, double dt) {

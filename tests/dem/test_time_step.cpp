@@ -16,6 +16,7 @@
 
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
+#include "bonded_bodies.hpp"
 
 using namespace demcal::dem;
 
@@ -75,11 +76,7 @@ double largest_omega(const Cluster& cluster, double kn_ks, double bond_kn_ks) {
 
 double engine_step(const Cluster& cluster, double kn_ks, double bond_kn_ks) {
   World world;
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "parallel_bond",
-                        {{"modulus_pa", kModulus}, {"kn_ks", kn_ks}, {"friction", 0.5}, {"bond_modulus_pa", kModulus},
-                         {"bond_kn_ks", bond_kn_ks}, {"tensile_strength_pa", 1e12}, {"shear_strength_pa", 1e12}},
-                        "test")));
+  world.assign(0, 0, world.add_model(demcal::dem::testing::unbreakable_parallel_bond(kModulus, kn_ks, kModulus, bond_kn_ks)));
   for (const auto& [x, y] : cluster.centres) world.bodies.add_disk(x, y, kR, kRho, kT, 0);
   EXPECT_EQ(world.install_bonds(1e-9, 1), cluster.pairs.size());
   return world.dt_s();

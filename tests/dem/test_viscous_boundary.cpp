@@ -15,6 +15,7 @@
 #include "demcal/dem/boundary_forces.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/world.hpp"
+#include "bonded_bodies.hpp"
 
 using namespace demcal::dem;
 
@@ -29,20 +30,7 @@ const double kImpedance = std::sqrt(kStiffness * kMass);   // N s/m
 const double kSpeed = kSpacing * std::sqrt(kStiffness / kMass);
 constexpr double kAmplitude = 1e-3;  // m/s
 
-// Disks along x, a hair apart so only the bonds act (as test_bonded_chain.cpp).
-World chain() {
-  WorldSettings settings;
-  settings.damping = 0.0;
-  World world(settings);
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "parallel_bond",
-                        {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"bond_modulus_pa", kBondModulus},
-                         {"bond_kn_ks", 2.0}, {"tensile_strength_pa", 1e12}, {"shear_strength_pa", 1e12}},
-                        "test")));
-  for (int i = 0; i < kDisks; ++i) world.bodies.add_disk(i * kSpacing, 0, kRadius, kDensity, 1, 0);
-  EXPECT_EQ(world.install_bonds(2 * kGap, 1), static_cast<std::size_t>(kDisks - 1));
-  return world;
-}
+World chain() { return demcal::dem::testing::bonded_chain(kDisks, kRadius, kGap, kDensity, kBondModulus); }
 
 enum class End { free, fixed, viscous };
 

@@ -17,6 +17,7 @@
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/wave_signals.hpp"
 #include "demcal/dem/world.hpp"
+#include "bonded_bodies.hpp"
 
 using namespace demcal::dem;
 using json = nlohmann::json;
@@ -71,11 +72,7 @@ TEST(WaveStrip, ABondedLatticeStripCarriesAPulseAtTheBarSpeed) {
   WorldSettings settings;
   settings.damping = 0.0;
   World world(settings);
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "parallel_bond",
-                        {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"bond_modulus_pa", bond_modulus},
-                         {"bond_kn_ks", ratio}, {"tensile_strength_pa", 1e12}, {"shear_strength_pa", 1e12}},
-                        "test")));
+  world.assign(0, 0, world.add_model(demcal::dem::testing::unbreakable_parallel_bond(1e9, 2.0, bond_modulus, ratio)));
   const double spacing = 2 * r + gap;
   auto boundary = std::make_unique<BoundaryForces>();
   for (int row = 0; row < rows; ++row)
