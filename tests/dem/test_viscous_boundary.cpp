@@ -3,8 +3,10 @@
 // of impedance Z = sqrt(k m) and wave speed L sqrt(k / m): a dashpot
 // c = xi Z at its end reflects a long pulse by R = (1 - xi) / (1 + xi)
 // (particle velocity), a free end by +1, a fixed end by -1; an input end with
-// c = Z sends the wave's own particle velocity into the chain; and the work
-// the boundaries do balances the energy left in the chain.
+// c = Z sends the wave's own particle velocity into the chain; a velocity
+// input (a fixed end moved with the wave) sends it too, with the energy flux
+// Z v^2, and reflects what comes back as a fixed end does; and the work the
+// boundaries do balances the energy left in the chain.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,6 +35,7 @@ constexpr double kAmplitude = 1e-3;  // m/s
 World chain() { return demcal::dem::testing::bonded_chain(kDisks, kRadius, kGap, kDensity, kBondModulus); }
 
 enum class End { free, fixed, viscous };
+enum class Input { dashpot, velocity };  // an input boundary with c = Z, or a velocity input
 
 struct PulseRun {
   std::vector<double> monitor_vx;  // per step
@@ -41,17 +44,24 @@ struct PulseRun {
 
 // A cosine pulse 0.5 A (1 - cos(2 pi t / T)) sent in at the left end (an
 // input boundary with c = Z), the right end as asked.
-PulseRun send_pulse(End right, double xi_right, double duration_spacings) {
+constexpr double kPeriodSpacings = 40;  // a pulse 40 spacings long: little dispersion
+
+PulseRun send_pulse(End right, double xi_right, double duration_spacings, Input input = Input::dashpot) {
   World world = chain();
   auto boundary = std::make_unique<BoundaryForces>();
   BoundaryDisk left;
   left.disk = 0;
   left.outward_nx = -1;
-  left.normal_dashpot_n_s_m = kImpedance;
-  left.shear_dashpot_n_s_m = kImpedance;  // keeps the chain's transverse motion from reflecting there
-  left.input = true;
+  if (input == Input::dashpot) {
+    left.normal_dashpot_n_s_m = kImpedance;
+    left.shear_dashpot_n_s_m = kImpedance;  // keeps the chain's transverse motion from reflecting there
+    left.input = true;
+  } else {
+    world.bodies.fixed[0] = 1;
+    left.prescribed = true;
+  }
   boundary->add_disk(left);
-  const double period = 40 * kSpacing / kSpeed;  // a pulse 40 spacings long: little dispersion
+  const double period = kPeriodSpacings * kSpacing / kSpeed;
   boundary->set_input(
       [period](double t) { return t <= period ? 0.5 * kAmplitude * (1 - std::cos(2 * M_PI * t / period)) : 0.0; },
       nullptr);
@@ -102,6 +112,25 @@ TEST(ViscousBoundary, AnInputEndWithTheChainsImpedanceSendsTheWavesOwnVelocity) 
   const PulseRun run = send_pulse(End::viscous, 1.0, kMonitor + 50);
   const double peak = *std::max_element(run.monitor_vx.begin(), run.monitor_vx.end());
   EXPECT_NEAR(peak / kAmplitude, 1.0, 0.02);
+}
+
+TEST(ViscousBoundary, AVelocityInputSendsTheWaveWithItsEnergyAndReflectsWhatComesBack) {
+  // Before the pulse returns from the fixed far end: the monitor sees A, and the input did the work of the
+  // energy flux Z v^2 over the pulse, Z A^2 (3/8) T for the cosine pulse.
+  const PulseRun sent = send_pulse(End::fixed, 0, kMonitor + 50, Input::velocity);
+  const double peak = *std::max_element(sent.monitor_vx.begin(), sent.monitor_vx.end());
+  EXPECT_NEAR(peak / kAmplitude, 1.0, 0.02);
+  const double period = kPeriodSpacings * kSpacing / kSpeed;
+  EXPECT_NEAR(sent.input_work / (kImpedance * kAmplitude * kAmplitude * 0.375 * period), 1.0, 0.03);
+  // Reflected by the fixed far end (-1) and again by the input end, which now stands still (-1): the monitor
+  // sees the pulse a third time, upright and whole, and nothing left the chain.
+  const PulseRun rung = send_pulse(End::fixed, 0, 2 * kDisks + kMonitor + 50, Input::velocity);
+  const double step_spacings = rung.dt * kSpeed / kSpacing;
+  const auto third = static_cast<std::size_t>((2 * kDisks + kMonitor - 5) / step_spacings);
+  const double again = *std::max_element(rung.monitor_vx.begin() + static_cast<std::ptrdiff_t>(third), rung.monitor_vx.end());
+  EXPECT_NEAR(again / kAmplitude, 1.0, 0.05);
+  EXPECT_EQ(rung.dashpot_work, 0.0);
+  EXPECT_NEAR(rung.input_work / sent.input_work, 1.0, 0.01);
 }
 
 TEST(ViscousBoundary, FreeAndFixedEndsReflectThePulseWithPlusAndMinusOne) {

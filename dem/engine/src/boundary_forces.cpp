@@ -31,4 +31,24 @@ void BoundaryForces::add(Bodies& bodies, double time_s, double dt_s) {
   }
 }
 
+void BoundaryForces::after_integration(Bodies& bodies, double time_s, double dt_s) {
+  // The integration's velocities belong to the half step: so do the prescribed ones.
+  const double mid = time_s + 0.5 * dt_s;
+  const double p = p_wave_ ? p_wave_(mid) : 0.0, s = s_wave_ ? s_wave_(mid) : 0.0;
+  for (const BoundaryDisk& d : disks_) {
+    if (!d.prescribed) continue;
+    const std::size_t i = d.disk;
+    const double nx = -d.outward_nx, ny = -d.outward_ny, tx = -ny, ty = nx;
+    const double vx = p * nx + s * tx, vy = p * ny + s * ty;
+    // The work the side does on the rest of the model: against the force the model puts on the disk (its
+    // contacts'; F_app is counted as the other disks' is).
+    input_work_j_ -= ((bodies.fx[i] - d.applied_fx_n) * vx + (bodies.fy[i] - d.applied_fy_n) * vy) * dt_s;
+    bodies.vx[i] = vx;
+    bodies.vy[i] = vy;
+    bodies.w[i] = 0;
+    bodies.x[i] += vx * dt_s;
+    bodies.y[i] += vy * dt_s;
+  }
+}
+
 }  // namespace demcal::dem

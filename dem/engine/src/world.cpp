@@ -436,6 +436,7 @@ void World::step() {
   compute_forces();
   for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
   integrate();
+  for (auto& forces : external_forces_) forces->after_integration(bodies, time_s_, dt_s_);
   move_walls();
   time_s_ += dt_s_;
   ++steps_;

@@ -1,5 +1,5 @@
 // Wave-strip test: the walls of a bonded strip at rest under gravity become
-// boundaries (fixed, free, viscous or input), a cosine pulse enters through
+// boundaries (fixed, free, viscous, input or velocity), a cosine pulse enters through
 // the input side, and monitoring points record how the strip rings and falls
 // quiet (wave_strip_test.hpp).
 #include "demcal/dem/wave_strip_test.hpp"
@@ -84,14 +84,15 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
     const nlohmann::json& o = b.at(kSideNames[side]);
     require_known_fields(o, {"type", "xi", "eta", "note"}, origin + ": " + where);
     if (!o.contains("type") || !o.at("type").is_string())
-      throw Error(origin + ": " + where + ".type: missing (\"fixed\", \"free\", \"viscous\" or \"input\")");
+      throw Error(origin + ": " + where + ".type: missing (\"fixed\", \"free\", \"viscous\", \"input\" or \"velocity\")");
     const std::string type = o.at("type").get<std::string>();
     SideSpec& side_spec = s.sides[side];
     if (type == "fixed") side_spec.type = BoundaryType::fixed;
     else if (type == "free") side_spec.type = BoundaryType::free;
     else if (type == "viscous") side_spec.type = BoundaryType::viscous;
     else if (type == "input") side_spec.type = BoundaryType::input;
-    else throw Error(origin + ": " + where + ".type: \"" + type + "\" (allowed: fixed, free, viscous, input)");
+    else if (type == "velocity") side_spec.type = BoundaryType::velocity;
+    else throw Error(origin + ": " + where + ".type: \"" + type + "\" (allowed: fixed, free, viscous, input, velocity)");
     const bool dashpots = side_spec.type == BoundaryType::viscous || side_spec.type == BoundaryType::input;
     if (dashpots) {
       number(where, o, "xi", side_spec.xi, true);
@@ -101,13 +102,13 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
     } else if (o.contains("xi") || o.contains("eta")) {
       throw Error(origin + ": " + where + ": xi and eta belong to a viscous or input side, not a " + type + " one");
     }
-    if (side_spec.type == BoundaryType::input) {
+    if (side_spec.type == BoundaryType::input || side_spec.type == BoundaryType::velocity) {
       s.input_side = side;
       ++inputs;
     }
   }
   if (inputs != 1)
-    throw Error(origin + ": boundaries: exactly one side must be of type \"input\" (the pulse's way in), found " +
+    throw Error(origin + ": boundaries: exactly one side must be of type \"input\" or \"velocity\" (the pulse's way in), found " +
                 std::to_string(inputs));
 
   const nlohmann::json& m = scene.section("medium");
@@ -230,7 +231,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
       if (!touching[i]) continue;
       ++count;
       covered_m += 2 * b.radius[i];
-      if (spec.type == BoundaryType::fixed) {
+      if (spec.type == BoundaryType::fixed || spec.type == BoundaryType::velocity) {
         b.fixed[i] = 1;
         b.vx[i] = b.vy[i] = b.w[i] = 0;
       }
@@ -246,6 +247,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
       d.normal_dashpot_n_s_m = 2 * b.radius[i] * t * spec.xi * rho * c_p;
       d.shear_dashpot_n_s_m = 2 * b.radius[i] * t * spec.eta * rho * c_s;
       d.input = spec.type == BoundaryType::input;
+      d.prescribed = spec.type == BoundaryType::velocity;
       // The dashpot is explicit (it acts on the last half step's velocity): c dt / m must stay well below 2, the
       // update's own limit, or the boundary disk's velocity flips sign each step and grows.
       const double stiffest = std::max(d.normal_dashpot_n_s_m, d.shear_dashpot_n_s_m) * world.dt_s() / b.mass[i];
@@ -493,7 +495,7 @@ class WaveStripTest : public LabTest {
   }
   bool exact_scaling() const override { return false; }  // a dynamic test: inertia and gravity set its numbers
   std::vector<SceneSection> extra_sections() const override {
-    return {{"boundaries", "each side's type (fixed, free, viscous, input) and dashpot coefficients xi, eta", false},
+    return {{"boundaries", "each side's type (fixed, free, viscous, input, velocity) and dashpot coefficients xi, eta", false},
             {"medium", "the equivalent continuum behind the dashpots: E_d, nu_d, or the wave speeds", false},
             {"pulse", "the cosine pulse's amplitudes (P, S) and period", false},
             {"monitors", "monitoring points T1, T2, ... and the reflection point", false},

@@ -9,7 +9,10 @@
 // v - 2 v_wave (half of the applied traction feeds the dashpot; the other
 // half makes the wave), P along the inward normal, S along the tangent.
 // A free boundary is one with no dashpots (it keeps F_app only); a fixed
-// one is made by fixing its disks, not here.
+// one is made by fixing its disks, not here. A velocity input is a fixed
+// side whose disks move with the incoming wave's particle velocity and stand
+// still once it has passed (Ma et al.'s fixed boundary with the pulse imposed):
+// it reflects whatever comes back to it, as a fixed side does.
 //
 // It counts the work it does on the model, so a test can close its energy
 // balance: the input's, the dashpots' (<= 0: what they absorb) and the
@@ -29,6 +32,7 @@ struct BoundaryDisk {
   double normal_dashpot_n_s_m = 0;  // c_n; 0: none
   double shear_dashpot_n_s_m = 0;   // c_s; 0: none
   bool input = false;               // carries the incoming wave
+  bool prescribed = false;          // a fixed disk moved with the wave's velocity (a velocity input)
 };
 
 class BoundaryForces : public ExternalForces {
@@ -43,6 +47,7 @@ class BoundaryForces : public ExternalForces {
   const std::vector<BoundaryDisk>& disks() const { return disks_; }
 
   void add(Bodies& bodies, double time_s, double dt_s) override;
+  void after_integration(Bodies& bodies, double time_s, double dt_s) override;
 
   double input_work_j() const { return input_work_j_; }
   double dashpot_work_j() const { return dashpot_work_j_; }  // <= 0

@@ -31,7 +31,10 @@
 
 namespace demcal::dem {
 
-enum class BoundaryType { fixed, free, viscous, input };
+// velocity: a fixed side whose disks move with the pulse's particle velocity
+// and stand still once it has passed (Ma et al.'s fixed boundary, the pulse
+// imposed on it): an input that reflects everything that comes back.
+enum class BoundaryType { fixed, free, viscous, input, velocity };
 
 struct SideSpec {
   BoundaryType type = BoundaryType::free;
