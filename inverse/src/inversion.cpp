@@ -97,6 +97,8 @@ InversionResult invert(const InversionProblem& problem, const InversionSettings&
   const bool minimise = problem.objective_kind() == ObjectiveKind::Minimise;
   if (minimise && search)
     throw Error("--objective minimise has no targets to search within a tolerance of; use an optimiser");
+  if (minimise && settings.polish)
+    throw Error("--polish fits the outputs to their targets by least squares; --objective minimise has none to fit");
   auto meets = [&](double objective, double max_error) {
     return minimise || max_error <= settings.reach_tolerance || objective <= settings.budget.target_value ||
            (search && max_error <= settings.search.tolerance);

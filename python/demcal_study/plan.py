@@ -215,10 +215,12 @@ def inversion_config(study):
     """config/inversion.json: the optimiser and its settings, with the strategy's defaults."""
     inv = study.get("inversion", {})
     loop = strategy.in_the_loop(study)
+    objective = inv.get("objective", "max-rel" if loop else "sum-rel")
     inversion = {"targets": study["targets"], "algorithm": inv.get("algorithm", "sa" if loop else "ga"),
-                 "objective": inv.get("objective", "max-rel" if loop else "sum-rel"),
-                 "restarts": int(inv.get("restarts", 1 if loop else 5)),
-                 "polish": bool(inv.get("polish", not loop)), "seed": int(inv.get("seed", 1))}
+                 "objective": objective, "restarts": int(inv.get("restarts", 1 if loop else 5)),
+                 # Polishing fits outputs to targets by least squares: a minimisation has none to fit.
+                 "polish": bool(inv.get("polish", not loop and objective != "minimise")),
+                 "seed": int(inv.get("seed", 1))}
     extra = []
     if "population" in inv:
         extra += ["--set", f"population={int(inv['population'])}"]

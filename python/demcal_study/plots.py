@@ -95,34 +95,51 @@ def convergence_png(history_csv, out_png, objective_kind):
 
 
 def comparison_png(rows, out_png):
-    """Largest verified error against DEM runs and against wall time, one point per study (cost.study_cost)."""
+    """Largest verified error (or, when the first study minimised an output, that output's verified mean with its
+    95 % interval) against DEM runs and against wall time, one point per study (cost.study_cost)."""
     try:
         plt = pyplot()
     except ImportError as e:
         return f"(no chart: {e})"
+    minimised = rows[0]["minimised"]
+    if minimised:
+        output = minimised["output"]
+        rows = [r for r in rows if r["minimised"] and r["minimised"]["output"] == output]
+        value = {id(r): r["minimised"]["mean"] for r in rows}
+        ylabel = f"verified {output} (mean, 95 % interval)"
+    else:
+        rows = [r for r in rows if r["max_error_pct"] is not None]
+        value = {id(r): r["max_error_pct"] for r in rows}
+        ylabel = "largest verified relative error (%)"
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for r in rows:
-        if r["max_error_pct"] is None:
-            continue
-        axes[0].scatter(r["dem_runs"], r["max_error_pct"], s=40)
-        axes[0].annotate(r["strategy"], (r["dem_runs"], r["max_error_pct"]), fontsize=8, xytext=(4, 4),
-                         textcoords="offset points")
-        if r["wall_s"] is not None:
-            axes[1].scatter(r["wall_s"] / 60, r["max_error_pct"], s=40)
-            axes[1].annotate(r["strategy"], (r["wall_s"] / 60, r["max_error_pct"]), fontsize=8, xytext=(4, 4),
-                             textcoords="offset points")
-    tol = rows[0]["tolerance_pct"]
+        y = value[id(r)]
+        bar = None
+        if minimised:
+            low, high = r["minimised"]["ci95"]
+            if low is not None and high is not None:
+                bar = [[y - low], [high - y]]
+        for ax, x in ((axes[0], r["dem_runs"]), (axes[1], None if r["wall_s"] is None else r["wall_s"] / 60)):
+            if x is None:
+                continue
+            ax.errorbar(x, y, yerr=bar, fmt="o", capsize=3)
+            ax.annotate(r["strategy"], (x, y), fontsize=8, xytext=(4, 4), textcoords="offset points")
     largest = [max([r["dem_runs"] for r in rows] + [1]),
                max([r["wall_s"] / 60 for r in rows if r["wall_s"] is not None] + [1])]
-    top = max([r["max_error_pct"] for r in rows if r["max_error_pct"] is not None] + [tol])
+    if minimised:
+        top = max(r["minimised"]["ci95"][1] or value[id(r)] for r in rows)
+    else:
+        tol = rows[0]["tolerance_pct"] if rows else 0
+        top = max([value[id(r)] for r in rows] + [tol])
     for ax, xlabel, right in zip(axes, ("DEM runs", "wall time of make study (min)"), largest):
-        ax.axhline(tol, color="grey", linestyle="--", linewidth=1, label=f"tolerance {tol:g} %")
+        if not minimised:
+            ax.axhline(tol, color="grey", linestyle="--", linewidth=1, label=f"tolerance {tol:g} %")
+            ax.legend(fontsize=8)
         ax.set_xlabel(xlabel)
-        ax.set_ylabel("largest verified relative error (%)")
+        ax.set_ylabel(ylabel)
         ax.set_xlim(0, 1.45 * right)  # room for the labels
         ax.set_ylim(0, 1.15 * top)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
     fig.suptitle("Speed versus accuracy of the calibration strategies")
     fig.tight_layout()
     fig.savefig(out_png, dpi=150)

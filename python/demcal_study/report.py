@@ -54,9 +54,13 @@ def calibration_report(study, out):
     final = refined["final"]
     first = load_json(os.path.join(out, "verification.json"), "verification")
     solution = load_json(final["solution"], "solution")
+    # A minimisation has references (each output is divided by its own), not targets to meet.
+    minimise = solution.get("objective_kind") == "minimise"
+    goal = "reference (minimised over)" if minimise else "target"
     lines = [f"# Calibration report: {study['name']}", "", study.get("description", ""), "",
-             f"Scene `{study['scene']}`, space `{study['space']}`.", "", "## Targets and parameter space", "",
-             "| output | target |", "|---|---|"]
+             f"Scene `{study['scene']}`, space `{study['space']}`.", "",
+             "## " + ("Output minimised" if minimise else "Targets") + " and parameter space", "",
+             f"| output | {goal} |", "|---|---|"]
     lines += [f"| {k} | {v} |" for k, v in study["targets"].items()]
     lines += [""] + space_lines(load_json(os.path.join(out, "config", "space_inversion.json"), "space"))
     lines += screening_section(study, out)
@@ -72,7 +76,7 @@ def calibration_report(study, out):
         ident = ("yes" if s["identified"] else "no") if s else ""
         lines.append(f"| {name} | {value:.4g} | {spread} | {ident} |")
     source = "DEM run at the solution" if loop else "surrogate at the solution"
-    lines += ["", f"| output | target | {source} | attainable range |", "|---|---|---|---|"]
+    lines += ["", f"| output | {goal} | {source} | attainable range |", "|---|---|---|---|"]
     for o, t in solution["targets"].items():
         a = solution["attainable"].get(o)
         attainable = f"{a['min']:.4g} - {a['max']:.4g}" if a else "not assessed"

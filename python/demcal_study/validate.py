@@ -210,8 +210,13 @@ def check_inversion(study, where):
         fail(f"{where}: inversion.algorithm must be one of {', '.join(known['algorithms'])}")
     objective = inv.get("objective", "max-rel" if loop else "sum-rel")
     if objective == "minimise":
-        # A study verifies its answer against targets; an output driven down has none yet (docs/wave_strip.md).
-        fail(f"{where}: inversion.objective minimise is not supported in studies yet (their verification judges "
-             "targets); run demcal-invert --objective minimise")
+        # The targets are then references (the output over its reference is driven down), and the verification
+        # judges what the optimiser saw at its answer (docs/studies.md).
+        if len(study.get("targets", {})) != 1:
+            fail(f"{where}: inversion.objective minimise drives one output down: give exactly one target, the "
+                 "reference it is divided by (e.g. its value with a fixed boundary)")
+        if inv.get("polish"):
+            fail(f"{where}: inversion.polish fits outputs to targets by least squares; it does not apply to "
+                 "objective minimise")
     if objective not in known["objectives"]:
         fail(f"{where}: inversion.objective must be one of {', '.join(known['objectives'])}")

@@ -113,7 +113,9 @@ CROSS_CASES = [
      'screening: design.kind must be "oa"'),
     (loop, lambda d: d.update(surfaces=[]), '"surfaces" does not apply to strategy dem_in_the_loop'),
     (loop, lambda d: d["inversion"].update(polish=True), "polish needs a smooth surrogate"),
-    (loop, lambda d: d["inversion"].update(objective="minimise"), "inversion.objective minimise is not supported in studies"),
+    (loop, lambda d: d["inversion"].update(objective="minimise"), "minimise drives one output down: give exactly one target"),
+    (demo, lambda d: d.update(targets={"E_GPa": 30}) or d["inversion"].update(objective="minimise", polish=True),
+     "polish fits outputs to targets by least squares; it does not apply to objective minimise"),
     (demo, lambda d: [d.pop(k) for k in ("surfaces", "surrogate", "inversion", "verification", "refinement",
                                           "seeds_per_point", "stability")]
      and d.update(screening={"design": {"kind": "oa", "runs": 18}, "outputs": ["nu"]}),

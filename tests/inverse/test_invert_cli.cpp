@@ -96,6 +96,8 @@ TEST_F(DemcalInvert, Errors) {
                         "demcal-invert", "setting \"populaton\" does not apply to ga");
   expect_one_line_error(run_program("demcal-invert", models_ + all + " --algo pso --out /tmp/x.json"),
                         "demcal-invert", "unknown algorithm \"pso\"");
+  expect_one_line_error(run_program("demcal-invert", models_ + all + " --objective minimise --polish --out /tmp/x.json"),
+                        "demcal-invert", "--objective minimise has none to fit");
   expect_one_line_error(run_program("demcal-invert", " --model /nonexistent.json --target E_GPa=30 --out /tmp/x.json"),
                         "demcal-invert", "/nonexistent.json: cannot open model");
 }
@@ -145,6 +147,38 @@ TEST(DemcalVerify, RunsTheSolutionOverSeedsAndWritesTheTable) {
   expect_one_line_error(run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 5 " +
                                                          "--max-seeds 3 --out " + out),
                         "demcal-verify", "--max-seeds (3) must be at least --seeds (5)");
+}
+
+TEST(DemcalVerify, AMinimisationIsJudgedAgainstWhatItsOptimiserSawAndReportedAgainstItsReference) {
+  // "targets" of a minimisation are references (the outputs were divided by them), "predicted" what the
+  // optimiser saw at its answer: the verification judges the second and reports the mean over the first.
+  const std::string solution = temp_path("verify_minimise.json"), out = temp_path("verify_minimise_out.json"),
+                    md = temp_path("verify_minimise.md");
+  {
+    std::ofstream(solution) << R"({"status": "ok", "objective_kind": "minimise", "x": {"pb_sigma_c_MPa": 12, "pb_tau_c_MPa": 30},
+                                   "targets": {"E_GPa": 400}, "predicted": {"E_GPa": 1000}})";
+  }
+  const std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json";
+  auto r = run_program("demcal-verify", "--solution " + solution + " --scene " + scene + " --seeds 2 --max-seeds 2 --jobs 2 --out " +
+                                            out + " --md " + md + " --cache " + temp_path("verify_cache") + " --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json v = read_json(out);
+  const double mean = v["outputs"]["E_GPa"]["mean"].get<double>();
+  ASSERT_GT(mean, 1.0);
+  EXPECT_EQ(v["outputs"]["E_GPa"]["target"], 1000.0);  // the optimiser's value, not the reference
+  EXPECT_NEAR(v["outputs"]["E_GPa"]["relative_error_pct"].get<double>(), 100 * (mean - 1000) / 1000, 1e-9);
+  EXPECT_FALSE(v["passed"].get<bool>());
+  EXPECT_EQ(v["objective_kind"], "minimise");
+  EXPECT_EQ(v["references"]["E_GPa"], 400.0);
+  EXPECT_NEAR(v["mean_over_reference"]["E_GPa"].get<double>(), mean / 400, 1e-12);
+  EXPECT_NE(demcal::test::slurp(md).find("| E_GPa | 400 |"), std::string::npos);
+
+  const std::string unseen = temp_path("verify_minimise_unseen.json");
+  {
+    std::ofstream(unseen) << R"({"objective_kind": "minimise", "x": {"pb_sigma_c_MPa": 12}, "targets": {"E_GPa": 400}})";
+  }
+  expect_one_line_error(run_program("demcal-verify", "--solution " + unseen + " --scene " + scene + " --out " + out),
+                        "demcal-verify", "predicted.E_GPa is missing");
 }
 
 TEST(DemcalVerify, ScaleResolutionVerifiesOnFinerSpecimensAndReportsTheShift) {
