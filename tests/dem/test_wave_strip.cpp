@@ -140,6 +140,22 @@ TEST(WaveStrip, TheBoundariesHoldTheStripWhereTheWallsDid) {
   EXPECT_EQ(r.series.size(), 2u + 2u * 4u);  // time, kinetic energy, vx and vy of T1-T3 and R
 }
 
+TEST(WaveStrip, TributaryDashpotWidthsCoverTheSideWhateverThePacking) {
+  // Ma's 2R leaves the dashpots covering only as much of the side as the boundary disks' diameters do; tributary
+  // lengths (half the way to each neighbour, out to the corners) always cover all of it.
+  const TestResult ma = run_patched(json::object());
+  ASSERT_TRUE(ma.ok) << ma.reason;
+  EXPECT_DOUBLE_EQ(ma.specimen_info.at("dashpot_coverage_right"), ma.specimen_info.at("boundary_coverage_right"));
+  EXPECT_LT(ma.specimen_info.at("dashpot_coverage_right"), 0.95);
+  const TestResult tributary = run_patched(
+      {{"boundaries", {{"left", {{"dashpot_width", "tributary"}}}, {"right", {{"dashpot_width", "tributary"}}}}}});
+  ASSERT_TRUE(tributary.ok) << tributary.reason;
+  EXPECT_NEAR(tributary.specimen_info.at("dashpot_coverage_right"), 1.0, 1e-12);
+  EXPECT_NEAR(tributary.specimen_info.at("dashpot_coverage_left"), 1.0, 1e-12);
+  // Same coefficients, more dashpot: the far side's reflection moves towards the overdamped (negative) side.
+  EXPECT_LT(tributary.macro.at("reflection_coefficient"), ma.macro.at("reflection_coefficient"));
+}
+
 TEST(WaveStrip, RecoveryIsMeasuredAgainstThePulseTheStripCarriedNotTheAmplitudeAsked) {
   // An elastic strip (no friction) rings the same way at any amplitude, so its recovery times must not move
   // when A halves; neither may they when a weaker input side lets less of A in (xi_input 0.5).
@@ -228,6 +244,12 @@ TEST(WaveStrip, BadInputFailsInOneLineNamingTheField) {
             std::string::npos);
   EXPECT_NE(load_error({{"boundaries", {{"top", {{"type", "sticky"}}}}}}).find("boundaries.top.type"), std::string::npos);
   EXPECT_NE(load_error({{"pulse", {{"period_s", -1}}}}).find("pulse.period_s must be positive"), std::string::npos);
+  EXPECT_NE(load_error({{"boundaries", {{"right", {{"dashpot_width", "radius"}}}}}})
+                .find("boundaries.right.dashpot_width: \"radius\" (allowed: \"diameter\", \"tributary\")"),
+            std::string::npos);
+  EXPECT_NE(load_error({{"boundaries", {{"top", {{"type", "free"}, {"dashpot_width", "tributary"}}}}}})
+                .find("boundaries.top: xi, eta and dashpot_width belong to a viscous or input side"),
+            std::string::npos);
   // Found at run time: a pulse shorter than 10 steps, an unstable dashpot, a side with no disks.
   auto run_error = [](const json& patch, const std::map<std::string, double>& set = {}) {
     try {

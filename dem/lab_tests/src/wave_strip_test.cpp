@@ -28,6 +28,29 @@ namespace {
 // Inward unit normal of each side (bottom, top, left, right).
 constexpr std::array<std::array<double, 2>, 4> kInward = {{{0, 1}, {0, -1}, {1, 0}, {-1, 0}}};
 
+// Per disk, the length of side its dashpots stand for (0 off the side): 2R, or
+// the tributary length along the side (DashpotWidth), from the disk centres'
+// coordinate along it; the side runs from 0 to side_length_m.
+std::vector<double> dashpot_widths(const Bodies& b, const std::vector<char>& on_side, std::size_t side,
+                                   double side_length_m, DashpotWidth width) {
+  std::vector<double> out(b.size(), 0.0);
+  std::vector<std::size_t> disks;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (on_side[i]) disks.push_back(i);
+  if (width == DashpotWidth::diameter) {
+    for (std::size_t i : disks) out[i] = 2 * b.radius[i];
+    return out;
+  }
+  auto along = [&](std::size_t i) { return side < 2 ? b.x[i] : b.y[i]; };
+  std::sort(disks.begin(), disks.end(), [&](std::size_t p, std::size_t q) { return along(p) < along(q); });
+  for (std::size_t k = 0; k < disks.size(); ++k) {
+    const double from = k == 0 ? 0.0 : 0.5 * (along(disks[k - 1]) + along(disks[k]));
+    const double to = k + 1 == disks.size() ? side_length_m : 0.5 * (along(disks[k]) + along(disks[k + 1]));
+    out[disks[k]] = to - from;
+  }
+  return out;
+}
+
 // A monitoring point: the disks within its radius, whose mean velocity it records.
 struct Monitor {
   std::string label;
@@ -82,7 +105,7 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
     const std::string where = std::string("boundaries.") + kSideNames[side];
     if (!b.contains(kSideNames[side])) continue;
     const nlohmann::json& o = b.at(kSideNames[side]);
-    require_known_fields(o, {"type", "xi", "eta", "note"}, origin + ": " + where);
+    require_known_fields(o, {"type", "xi", "eta", "dashpot_width", "note"}, origin + ": " + where);
     if (!o.contains("type") || !o.at("type").is_string())
       throw Error(origin + ": " + where + ".type: missing (\"fixed\", \"free\", \"viscous\", \"input\" or \"velocity\")");
     const std::string type = o.at("type").get<std::string>();
@@ -99,8 +122,15 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
       number(where, o, "eta", side_spec.eta, true);
       if (side_spec.xi < 0) throw Error(origin + ": " + where + ".xi must be >= 0 (got " + format_double(side_spec.xi) + ")");
       if (side_spec.eta < 0) throw Error(origin + ": " + where + ".eta must be >= 0 (got " + format_double(side_spec.eta) + ")");
-    } else if (o.contains("xi") || o.contains("eta")) {
-      throw Error(origin + ": " + where + ": xi and eta belong to a viscous or input side, not a " + type + " one");
+      if (o.contains("dashpot_width")) {
+        const nlohmann::json& w = o.at("dashpot_width");
+        if (w == "diameter") side_spec.width = DashpotWidth::diameter;
+        else if (w == "tributary") side_spec.width = DashpotWidth::tributary;
+        else throw Error(origin + ": " + where + ".dashpot_width: " + w.dump() + " (allowed: \"diameter\", \"tributary\")");
+      }
+    } else if (o.contains("xi") || o.contains("eta") || o.contains("dashpot_width")) {
+      throw Error(origin + ": " + where + ": xi, eta and dashpot_width belong to a viscous or input side, not a " + type +
+                  " one");
     }
     if (side_spec.type == BoundaryType::input || side_spec.type == BoundaryType::velocity) {
       s.input_side = side;
@@ -225,6 +255,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     const ContactSet& wp = world.wall_pairs();
     for (std::size_t k = 0; k < wp.size(); ++k)
       if (static_cast<std::size_t>(wp.j[k]) == side && (wp.flags[k] & kTouching)) touching[static_cast<std::size_t>(wp.i[k])] = 1;
+    const std::vector<double> width_m = dashpot_widths(b, touching, side, side < 2 ? W : H, spec.width);
     std::size_t count = 0;
     double covered_m = 0;
     for (std::size_t i = 0; i < b.size(); ++i) {
@@ -244,8 +275,8 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
       d.applied_fx_n = fx[i];
       d.applied_fy_n = fy[i];
       d.applied_moment_nm = moment[i];
-      d.normal_dashpot_n_s_m = 2 * b.radius[i] * t * spec.xi * rho * c_p;
-      d.shear_dashpot_n_s_m = 2 * b.radius[i] * t * spec.eta * rho * c_s;
+      d.normal_dashpot_n_s_m = width_m[i] * t * spec.xi * rho * c_p;
+      d.shear_dashpot_n_s_m = width_m[i] * t * spec.eta * rho * c_s;
       d.input = spec.type == BoundaryType::input;
       d.prescribed = spec.type == BoundaryType::velocity;
       // The dashpot is explicit (it acts on the last half step's velocity): c dt / m must stay well below 2, the
@@ -265,6 +296,12 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     result.specimen_info["boundary_disks_" + name] = static_cast<double>(count);
     // Sum of the tributary lengths 2R over the side's length (Ma's 2R assumes it is about 1).
     result.specimen_info["boundary_coverage_" + name] = covered_m / (side < 2 ? W : H);
+    if (spec.type == BoundaryType::viscous || spec.type == BoundaryType::input) {
+      // What the dashpots stand for: the coverage with 2R, exactly 1 with tributary lengths.
+      double dashpot_m = 0;
+      for (double w : width_m) dashpot_m += w;
+      result.specimen_info["dashpot_coverage_" + name] = dashpot_m / (side < 2 ? W : H);
+    }
     world.walls[side].active = false;
   }
   BoundaryForces& forces = world.add_external_forces(std::move(boundary));

@@ -36,9 +36,17 @@ namespace demcal::dem {
 // imposed on it): an input that reflects everything that comes back.
 enum class BoundaryType { fixed, free, viscous, input, velocity };
 
+// The length along the side each boundary disk's dashpot stands for: its
+// diameter 2R (Ma et al.'s formula, which assumes the disks tile the side), or
+// its tributary length (half the way to each neighbour along the side, the
+// end disks out to the corners), which sums to the side's length whatever the
+// packing, so the boundary's impedance does not change from specimen to specimen.
+enum class DashpotWidth { diameter, tributary };
+
 struct SideSpec {
   BoundaryType type = BoundaryType::free;
   double xi = 0, eta = 0;  // dashpot coefficients (viscous and input sides)
+  DashpotWidth width = DashpotWidth::diameter;
 };
 
 struct WaveStripSpec {
