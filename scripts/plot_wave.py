@@ -6,10 +6,10 @@ Reads each run's result JSON and its curve (time_s, vx_T1_m_s, vy_T1_m_s, ...: a
 `demcal-dem run` writes it with --curve) and draws the velocity along the pulse's path (x, for an input side on the
 left or right) against time:
 
-    demcal-dem run --scene data/scenes/wave_strip_fixed.json --out fixed.json --curve fixed.csv
+    demcal-dem run --scene data/scenes/wave_strip_velocity_fixed.json --out fixed.json --curve fixed.csv
     demcal-dem run --scene data/scenes/wave_strip.json --out viscous.json --curve viscous.csv
     /usr/bin/python3 scripts/plot_wave.py fixed.json viscous.json --curves fixed.csv viscous.csv \
-        --labels "fixed right side" "viscous right side" --out wave.png
+        --labels "fixed" "viscous" --out wave.png
 """
 import argparse
 import json

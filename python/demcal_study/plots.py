@@ -106,14 +106,17 @@ def comparison_png(rows, out_png):
         output = minimised["output"]
         rows = [r for r in rows if r["minimised"] and r["minimised"]["output"] == output]
         value = {id(r): r["minimised"]["mean"] for r in rows}
-        ylabel = f"verified {output} (mean, 95 % interval)"
+        ylabel = f"verified {output}\n(mean and its 95 % interval)"
     else:
         rows = [r for r in rows if r["max_error_pct"] is not None]
         value = {id(r): r["max_error_pct"] for r in rows}
         ylabel = "largest verified relative error (%)"
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    strategies = [r["strategy"] for r in rows]
     for r in rows:
         y = value[id(r)]
+        # Two studies of one strategy (other scenes, say) are told apart by their names.
+        label = r["strategy"] if strategies.count(r["strategy"]) == 1 else f"{r['name']}\n({r['strategy']})"
         bar = None
         if minimised:
             low, high = r["minimised"]["ci95"]
@@ -123,7 +126,7 @@ def comparison_png(rows, out_png):
             if x is None:
                 continue
             ax.errorbar(x, y, yerr=bar, fmt="o", capsize=3)
-            ax.annotate(r["strategy"], (x, y), fontsize=8, xytext=(4, 4), textcoords="offset points")
+            ax.annotate(label, (x, y), fontsize=8, xytext=(4, 4), textcoords="offset points")
     largest = [max([r["dem_runs"] for r in rows] + [1]),
                max([r["wall_s"] / 60 for r in rows if r["wall_s"] is not None] + [1])]
     if minimised:
