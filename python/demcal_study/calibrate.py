@@ -53,6 +53,9 @@ OFFSET_TRIM = 0.2  # share of the verified specimens cut from each end of the of
 # Verifications of at least this many seeds measure the population's response well enough (a mean's SE of a few %
 # at a CV of 12 %) for the step between two of them to correct the model's slope along it (secant_update).
 SECANT_MIN_SEEDS = 10
+# Sharpness (log units) of the soft scale bounds whose slope the bounded search follows: bounds within about 5 %
+# of the tightest share its slope (Problem.scale_interval).
+SCALE_BOUND_SHARPNESS = 20.0
 
 
 def parse_assignments(items, what):
@@ -164,11 +167,12 @@ class Calibration:
             r.append(self.bounded_scale_residual(z, u))
         return np.asarray(r)
 
-    def bounded_scale_residual(self, z, u):
+    def bounded_scale_residual(self, z, u, sharpness=None):
         """The scale target's relative error (log) once the scale factor it wants is clipped to what the bounds
-        allow at u: zero inside the bounds, and a residual like the others outside them."""
+        allow at u: zero inside the bounds, and a residual like the others outside them (with soft bounds for
+        its slope: Problem.scale_interval)."""
         wanted = self.problem.scale_for(z)
-        low, high = self.problem.scale_interval(u)
+        low, high = self.problem.scale_interval(u, sharpness)
         return math.log(min(max(wanted, low), high) / wanted)
 
     def jacobian(self, model, u, offset):
@@ -180,11 +184,15 @@ class Calibration:
             col = self.residuals_at(model, e, offset) - r0  # exact for the model, which is linear in u
             if self.bounded_scale:
                 # The clipped scale term is not linear in u (the bounds move with the ratios): its slope where it
-                # stands, one-sided like the clip itself.
+                # stands, over soft bounds. With the hard min, two parameters at their bounds together (the
+                # strengths' two standard deviations of ldb_granite) each show no slope, since lowering one alone
+                # leaves the other holding the scale, and the search never frees it.
                 h = 1e-4
                 e = np.array(u, float)
                 e[i] += h
-                col[-1] = (self.residuals_at(model, e, offset)[-1] - r0[-1]) / h
+                soft = [self.bounded_scale_residual(self.z_of(model, v, offset), v, SCALE_BOUND_SHARPNESS)
+                        for v in (u, e)]
+                col[-1] = (soft[1] - soft[0]) / h
             cols.append(col)
         return r0, np.array(cols).T if cols else np.zeros((len(r0), 0))
 

@@ -232,16 +232,25 @@ class Problem:
                 values[t["name"]] = t.get("factor", 1.0) * values[t["source"]] + t.get("offset", 0.0)
         return values
 
-    def scale_interval(self, u):
-        """The scale factors for which every varied stress-like value stays inside its absolute bounds."""
+    def scale_interval(self, u, sharpness=None):
+        """The scale factors for which every varied stress-like value stays inside its absolute bounds. With a
+        `sharpness` (in log units), the max and min over the parameters are softened (log-sum-exp), so that bounds
+        within a few 1/sharpness of the tightest one share its slope: a search then sees that two parameters
+        pinning the scale together must both move to free it."""
         if self.scale_parameter is None:
             return 1.0, 1.0
-        low, high = 0.0, math.inf
+        lows, highs = [], []
         base = self.absolute(u, 1.0)
         for name, (lo, hi) in self.absolute_bounds.items():
             if self.stress_like[name] and base[name] > 0:
-                low, high = max(low, lo / base[name]), min(high, hi / base[name])
-        return low, high
+                lows.append(lo / base[name])
+                highs.append(hi / base[name])
+        if sharpness is None:
+            return max(lows + [0.0]), min(highs + [math.inf])
+        logs_low = [math.log(x) for x in lows if x > 0]
+        logs_high = [math.log(x) for x in highs if math.isfinite(x)]
+        return (math.exp(soft_max(logs_low, sharpness)) if logs_low else 0.0,
+                math.exp(-soft_max([-h for h in logs_high], sharpness)) if logs_high else math.inf)
 
     def describe(self):
         return {"targets": self.targets, "dimensionless_targets": self.dimensionless_targets(),
@@ -249,3 +258,9 @@ class Problem:
                 "scale_target": self.scale_target, "coordinates": [c.describe() for c in self.coordinates],
                 "fixed": self.fixed, "tied": self.tied, "held_stress_like": self.held_stress,
                 "exact_scaling": self.exact_scaling}
+
+
+def soft_max(values, sharpness):
+    """log-sum-exp over `sharpness`: the largest value, smoothed; never below it, at most log(n) / sharpness above."""
+    top = max(values)
+    return top + math.log(sum(math.exp(sharpness * (v - top)) for v in values)) / sharpness

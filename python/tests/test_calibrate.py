@@ -322,6 +322,53 @@ def test_a_scale_beyond_the_bounds_at_the_first_solution_is_searched_on_with_the
     assert any(r.get("bounded_scale") for r in solution["rounds"])
 
 
+def test_two_parameters_that_hold_the_scale_together_are_both_moved_to_free_it(fake, tmp_path, bin_dir, monkeypatch):
+    # As above, but two more stress-like parameters (a strength's two standard deviations, say) that no output
+    # depends on stand at nearly the same ratio to Ec, and their bound (1e8 Pa) caps the scale near 2.5, Ec at
+    # 50 GPa: E = 70 GPa needs both lowered together. With a hard min the one below shows no slope, and lowering
+    # the one that binds frees the scale by 0.5 % before the other holds it: the search stalled on the bounds of
+    # those two and called ldb_granite unreachable (docs/calibration_benchmark.md).
+    described = json.loads(json.dumps(DESCRIPTION))
+    for name, value in (("sd1_Pa", 39.8e6), ("sd2_Pa", 40e6)):
+        described["parameters"][name] = {"unit": "Pa", "quantity": "stress", "stress_like": True, "si_factor": 1.0,
+                                         "value": value, "low": 1e5, "high": 1e8, "shapes_specimen": False}
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: described)
+    plain = fake_dem
+
+    def stiffer_with_friction(p, seed):
+        out = plain(p, seed)
+        out["E_GPa"] *= 0.5 + p["mu"]
+        return out
+
+    monkeypatch.setattr(sys.modules[__name__], "fake_dem", stiffer_with_friction)
+    code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 70.0, "nu": 0.2}, budget=80)
+    assert code == calibrate.EXIT_MET, solution["why"]
+    assert solution["bounded_scale"] is True
+    assert solution["x"]["sd1_Pa"] / solution["x"]["Ec_Pa"] < 1.5e-3 and solution["x"]["sd2_Pa"] / solution["x"]["Ec_Pa"] < 1.5e-3
+    assert solution["x"]["Ec_Pa"] > 60e9
+
+
+def test_soft_scale_bounds_share_the_slope_of_bounds_that_bind_together():
+    described = json.loads(json.dumps(DESCRIPTION))
+    for name in ("sd1_Pa", "sd2_Pa"):
+        described["parameters"][name] = {"unit": "Pa", "quantity": "stress", "stress_like": True, "si_factor": 1.0,
+                                         "value": 40e6, "low": 1e5, "high": 1e8, "shapes_specimen": False}
+    p = Problem(described, {"E_GPa": 70.0, "nu": 0.2})
+    u = p.reference_point()
+    low, high = p.scale_interval(u)
+    assert high == pytest.approx(2.5)  # 1e8 / 40e6: both standard deviations bind at once
+    soft_low, soft_high = p.scale_interval(u, 20.0)
+    # Two equal bounds: the soft min lies log(2) / 20 below them; the soft max of the lows at least their max.
+    assert math.log(high / soft_high) == pytest.approx(math.log(2) / 20)
+    assert soft_low >= low
+    # One of the two lowered: the hard bound does not move, the soft one rises by about half as much.
+    i = [c.name for c in p.coordinates].index("sd1_Pa")
+    v = np.array(u, float)
+    v[i] -= 0.1
+    assert p.scale_interval(v)[1] == pytest.approx(high)
+    assert p.scale_interval(v, 20.0)[1] > soft_high
+
+
 def test_check_resolution_runs_once_met_and_is_listed_apart(fake, tmp_path, bin_dir):
     code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2},
                                         check_resolution=2.0)
