@@ -177,6 +177,11 @@ class Calibration:
 
     def jacobian(self, model, u, offset):
         r0 = self.residuals_at(model, u, offset)
+
+        def soft_scale_term(v):
+            return self.bounded_scale_residual(self.z_of(model, v, offset), v, SCALE_BOUND_SHARPNESS)
+
+        soft0 = soft_scale_term(u) if self.bounded_scale else None
         cols = []
         for i in range(len(u)):
             e = np.array(u, float)
@@ -190,9 +195,7 @@ class Calibration:
                 h = 1e-4
                 e = np.array(u, float)
                 e[i] += h
-                soft = [self.bounded_scale_residual(self.z_of(model, v, offset), v, SCALE_BOUND_SHARPNESS)
-                        for v in (u, e)]
-                col[-1] = (soft[1] - soft[0]) / h
+                col[-1] = (soft_scale_term(e) - soft0) / h
             cols.append(col)
         return r0, np.array(cols).T if cols else np.zeros((len(r0), 0))
 

@@ -104,17 +104,14 @@ def comparison_png(rows, out_png):
     minimised = rows[0]["minimised"]
     if minimised:
         output = minimised["output"]
-        rows = [r for r in rows if r["minimised"] and r["minimised"]["output"] == output]
-        value = {id(r): r["minimised"]["mean"] for r in rows}
+        points = [(r, r["minimised"]["mean"]) for r in rows if r["minimised"] and r["minimised"]["output"] == output]
         ylabel = f"verified {output}\n(mean and its 95 % interval)"
     else:
-        rows = [r for r in rows if r["max_error_pct"] is not None]
-        value = {id(r): r["max_error_pct"] for r in rows}
+        points = [(r, r["max_error_pct"]) for r in rows if r["max_error_pct"] is not None]
         ylabel = "largest verified relative error (%)"
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    strategies = [r["strategy"] for r in rows]
-    for r in rows:
-        y = value[id(r)]
+    strategies = [r["strategy"] for r, _ in points]
+    for r, y in points:
         # Two studies of one strategy (other scenes, say) are told apart by their names.
         label = r["strategy"] if strategies.count(r["strategy"]) == 1 else f"{r['name']}\n({r['strategy']})"
         bar = None
@@ -127,13 +124,13 @@ def comparison_png(rows, out_png):
                 continue
             ax.errorbar(x, y, yerr=bar, fmt="o", capsize=3)
             ax.annotate(label, (x, y), fontsize=8, xytext=(4, 4), textcoords="offset points")
-    largest = [max([r["dem_runs"] for r in rows] + [1]),
-               max([r["wall_s"] / 60 for r in rows if r["wall_s"] is not None] + [1])]
+    largest = [max([r["dem_runs"] for r, _ in points] + [1]),
+               max([r["wall_s"] / 60 for r, _ in points if r["wall_s"] is not None] + [1])]
     if minimised:
-        top = max(r["minimised"]["ci95"][1] or value[id(r)] for r in rows)
+        top = max(r["minimised"]["ci95"][1] or y for r, y in points)
     else:
-        tol = rows[0]["tolerance_pct"] if rows else 0
-        top = max([value[id(r)] for r in rows] + [tol])
+        tol = rows[0]["tolerance_pct"]
+        top = max([y for _, y in points] + [tol])
     for ax, xlabel, right in zip(axes, ("DEM runs", "wall time of make study (min)"), largest):
         if not minimised:
             ax.axhline(tol, color="grey", linestyle="--", linewidth=1, label=f"tolerance {tol:g} %")

@@ -294,7 +294,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
       throw Error(origin + ": boundaries." + name + ": no disk touches the " + name +
                   " wall at rest, so the side has no boundary particles");
     result.specimen_info["boundary_disks_" + name] = static_cast<double>(count);
-    // Sum of the tributary lengths 2R over the side's length (Ma's 2R assumes it is about 1).
+    // Sum of the boundary disks' diameters 2R over the side's length (Ma's 2R assumes it is about 1).
     result.specimen_info["boundary_coverage_" + name] = covered_m / (side < 2 ? W : H);
     if (spec.type == BoundaryType::viscous || spec.type == BoundaryType::input) {
       // What the dashpots stand for: the coverage with 2R, exactly 1 with tributary lengths.
