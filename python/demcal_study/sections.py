@@ -115,25 +115,34 @@ def comparison_section(study, out):
             rows.append(study_cost(d))
         else:
             missing.append(other)
-    if rows[0]["minimised"]:
-        return minimised_comparison(rows, missing, out)
+    minimised = rows[0]["minimised"]
+    lines = minimised_table(rows) if minimised else accuracy_table(rows)
+    against = f"the verified {minimised['output']}" if minimised else "the verified error"
+    if len(rows) > 1 and comparison_png(rows, os.path.join(out, "speed_accuracy.png")) is None:
+        lines += ["", f"![DEM runs and wall time against {against}](speed_accuracy.png)"]
+    if missing:
+        lines += ["", "Not run yet (run `make study STUDY=...` on them for the comparison): " + ", ".join(missing) + "."]
+    return lines + [""]
+
+
+def wall_minutes(row):
+    return f"{row['wall_s'] / 60:.1f}" if row["wall_s"] is not None else "not recorded"
+
+
+def accuracy_table(rows):
+    """Each study's cost and the largest relative error of its final verification."""
     lines = ["## Cost and accuracy", "",
              "DEM runs of the calibration (screening, designs, DEM in the loop, verification and refinement; not the "
              "stability checks), wall time of `make study` summed over its runs, and the largest relative error of the "
              "final verification:", "",
              "| study | strategy | DEM runs | wall time (min) | largest verified error (%) | passed |", "|---|---|---|---|---|---|"]
     for r in rows:
-        wall = f"{r['wall_s'] / 60:.1f}" if r["wall_s"] is not None else "not recorded"
-        lines.append(f"| {r['name']} | {r['strategy']} | {r['dem_runs']} | {wall} | {number(r['max_error_pct'], 2)} | "
-                     f"{'yes' if r['passed'] else 'no'} |")
-    if len(rows) > 1 and comparison_png(rows, os.path.join(out, "speed_accuracy.png")) is None:
-        lines += ["", "![DEM runs and wall time against the verified error](speed_accuracy.png)"]
-    if missing:
-        lines += ["", "Not run yet (run `make study STUDY=...` on them for the comparison): " + ", ".join(missing) + "."]
-    return lines + [""]
+        lines.append(f"| {r['name']} | {r['strategy']} | {r['dem_runs']} | {wall_minutes(r)} | "
+                     f"{number(r['max_error_pct'], 2)} | {'yes' if r['passed'] else 'no'} |")
+    return lines
 
 
-def minimised_comparison(rows, missing, out):
+def minimised_table(rows):
     """A minimisation's cost and what it reached: the verified mean of the output it drove down (each study on its
     own verification specimens: in the loop, those after the ones its optimiser saw)."""
     output = rows[0]["minimised"]["output"]
@@ -147,12 +156,7 @@ def minimised_comparison(rows, missing, out):
         m = r["minimised"]
         if m is None or m["output"] != output:
             continue  # a study of another kind has no place in this table
-        wall = f"{r['wall_s'] / 60:.1f}" if r["wall_s"] is not None else "not recorded"
-        lines.append(f"| {r['name']} | {r['strategy']} | {r['dem_runs']} | {wall} | {m['mean']:.4g} | "
+        lines.append(f"| {r['name']} | {r['strategy']} | {r['dem_runs']} | {wall_minutes(r)} | {m['mean']:.4g} | "
                      f"{number(m['ci95'][0], 4)} - {number(m['ci95'][1], 4)} | {m['reference'] / m['mean']:.2f} | "
                      f"{'yes' if r['passed'] else 'no'} |")
-    if len(rows) > 1 and comparison_png(rows, os.path.join(out, "speed_accuracy.png")) is None:
-        lines += ["", f"![DEM runs and wall time against the verified {output}](speed_accuracy.png)"]
-    if missing:
-        lines += ["", "Not run yet (run `make study STUDY=...` on them for the comparison): " + ", ".join(missing) + "."]
-    return lines + [""]
+    return lines

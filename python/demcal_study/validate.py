@@ -211,7 +211,7 @@ def check_inversion(study, where):
     objective = inv.get("objective", "max-rel" if loop else "sum-rel")
     if objective == "minimise":
         # The targets are then references (the output over its reference is driven down), and the verification
-        # judges what the optimiser saw at its answer (docs/studies.md).
+        # judges what the optimiser saw at its answer (README, study files).
         if len(study.get("targets", {})) != 1:
             fail(f"{where}: inversion.objective minimise drives one output down: give exactly one target, the "
                  "reference it is divided by (e.g. its value with a fixed boundary)")
