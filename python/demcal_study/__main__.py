@@ -16,6 +16,17 @@ def parser():
     design = sub.add_parser("design", help="a design in natural units, fixed values added")
     design.add_argument("config", metavar="CONFIG.json")
     design.add_argument("out_csv", metavar="OUT.csv")
+    split = sub.add_parser("split", help="a surface's DEM responses into the points it trains on and those held out")
+    split.add_argument("config", metavar="HOLDOUT.json")
+    split.add_argument("responses", metavar="RESPONSES.csv")
+    split.add_argument("out", metavar="SPLIT.json", help="written with train.csv and holdout.csv beside it")
+    score = sub.add_parser("score", help="a fitted model's R^2 and RMSE on the held-out points")
+    score.add_argument("model", metavar="MODEL.json")
+    score.add_argument("holdout", metavar="HOLDOUT.csv")
+    score.add_argument("output", metavar="OUTPUT")
+    score.add_argument("out", metavar="SCORE.json")
+    cands = sub.add_parser("candidates", help="a search's candidates verified in DEM, the best one chosen")
+    cands.add_argument("out", metavar="OUT_DIR")
     for name, what in (("screen", "range analysis and ANOVA of the screening, main-effects and Pareto plots"),
                        ("stability", "other optimiser seeds, a target near the edge, too-small designs"),
                        ("refine", "while verification fails: add its DEM runs, refit, re-invert, re-verify"),
@@ -56,6 +67,15 @@ def run(args):
     elif args.command == "design":
         from .design import design
         design(args.config, args.out_csv)
+    elif args.command == "split":
+        from .holdout import split
+        split(args.config, args.responses, args.out)
+    elif args.command == "score":
+        from .holdout import score
+        score(args.model, args.holdout, args.output, args.out)
+    elif args.command == "candidates":
+        from .candidates import verify_candidates
+        verify_candidates(args.out)
     elif args.command == "screen":
         from .screening import screen
         screen(args.out)

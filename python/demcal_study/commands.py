@@ -67,6 +67,16 @@ def fit(tools, kind, data, factors, output, space, out, report=None, residuals=N
     return args + ["--quiet"]
 
 
+def predict(tools, model, data, out):
+    """demcal-predict: a fitted model at every row of `data`."""
+    return [tools.program("demcal-predict"), "--model", model, "--data", data, "--out", out, "--quiet"]
+
+
+def sobol(tools, model, out):
+    """demcal-analyze sobol: first-order and total Sobol indices of a fitted model over its domain (JSON)."""
+    return [tools.program("demcal-analyze"), "sobol", "--model", model, "--format", "json", "--out", out]
+
+
 def invert(tools, inversion, targets, space, out, models=(), dem=None, seed=None, history=None, quiet=False):
     """demcal-invert with the study's inversion settings (config/inversion.json): on the surrogate `models`, or,
     with dem = {"scene", "seeds"}, on the DEM itself; `seed` replaces the settings' seed (stability)."""

@@ -36,7 +36,12 @@ def study_cost(out):
         runs += count_rows(os.path.join(out, f"g{k}", "responses.csv"))
     first_solution = load_json(os.path.join(out, "solution.json"), "solution")
     runs += first_solution.get("dem", {}).get("runs", 0)
-    runs += len(load_json(os.path.join(out, "verification.json"), "verification")["seeds"])
+    candidates = os.path.join(out, "candidates.json")
+    if os.path.exists(candidates):  # a search's candidates, each verified (candidates.py)
+        for c in load_json(candidates, "candidates")["candidates"]:
+            runs += len(load_json(os.path.join(c["folder"], "verification.json"), "verification")["seeds"])
+    else:
+        runs += len(load_json(os.path.join(out, "verification.json"), "verification")["seeds"])
     scatter = os.path.join(out, "scatter", "verification.json")
     if os.path.exists(scatter):  # seeds_per_point "auto" measured the scatter first
         runs += len(load_json(scatter, "scatter verification")["seeds"])

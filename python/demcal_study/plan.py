@@ -15,6 +15,8 @@ PACKAGE = os.path.dirname(os.path.abspath(__file__))
 
 # The code each generated file is made by: a change to it remakes the file.
 DESIGN_CODE = ("design.py", "commands.py")
+HOLDOUT_CODE = ("holdout.py",)
+CANDIDATES_CODE = ("candidates.py",)
 REPORT_CODE = ("report.py", "sections.py", "cost.py", "plots.py", "to_html.py")
 TRUST_REGION_CODE = ("calibrate.py", "calibrate_report.py", "trust_region.py", "calibration_problem.py", "mohr.py",
                      "plots.py")
@@ -82,6 +84,8 @@ class Code:
     def __init__(self, package):
         self.design = " ".join(os.path.join(package, name) for name in DESIGN_CODE)
         self.report = " ".join(os.path.join(package, name) for name in REPORT_CODE)
+        self.holdout = " ".join(os.path.join(package, name) for name in HOLDOUT_CODE)
+        self.candidates = " ".join(os.path.join(package, name) for name in CANDIDATES_CODE)
 
 
 def with_test_list(study, study_path, cfg):
@@ -195,20 +199,48 @@ def surface_rules(study, scene, space, cfg, code, g, surface):
     write_if_changed(os.path.join(cfg, f"batch_{g}.json"), json.dumps({"scene": study["scene"], "seeds": seeds}) + "\n")
     rules = design_and_batch_rules(f"$(D)/{g}", f"$(D)/config/design_{g}.json", f"$(D)/config/space_{g}.json",
                                    f"$(D)/config/batch_{g}.json", study["scene"], seeds, code) + [""]
+    data, data_rule = f"$(D)/{g}/responses.csv", f"$(D)/{g}/responses.csv"
+    if "holdout" in surface:
+        # Points kept out of every choice of the fit, for an R^2 nothing was tuned on (holdout.py).
+        write_if_changed(os.path.join(cfg, f"holdout_{g}.json"),
+                         json.dumps({"points": surface["holdout"], "seed": 1}) + "\n")
+        data, data_rule = f"$(D)/{g}/train.csv", f"$(D)/{g}/split.json"
+        rules += [f"$(D)/{g}/split.json: $(D)/{g}/responses.csv $(D)/config/holdout_{g}.json {code.holdout}",
+                  "\t" + for_make(commands.stage(IN_MAKE, "split", f"$(D)/config/holdout_{g}.json", "$<", "$@")), ""]
     for output in surface["outputs"]:
         fit = {"kind": surrogate, "x": surface["factors"], "y": output}
         name = stem(output)  # a ratio A/B as a file name
         write_if_changed(os.path.join(cfg, f"fit_{name}.json"), json.dumps(fit) + "\n")
         rules += [
-            f"$(D)/models/{name}.json: $(D)/{g}/responses.csv $(D)/config/fit_{name}.json",
+            f"$(D)/models/{name}.json: {data_rule} $(D)/config/fit_{name}.json",
             "\t@mkdir -p $(D)/models",
-            "\t" + for_make(commands.fit(IN_MAKE, surrogate, "$<", surface["factors"], output,
+            "\t" + for_make(commands.fit(IN_MAKE, surrogate, data, surface["factors"], output,
                                          f"$(D)/config/space_{g}.json", "$@", report=f"$(D)/models/{name}.md",
                                          residuals=f"$(D)/models/{name}_residuals.csv")),
             "\t" + for_make(commands.plot(IN_MAKE, "fit", f"$(D)/models/{name}_residuals.csv",
                                           f"$(D)/models/{name}_fit.png")) + " > /dev/null",
             ""]
+        if "holdout" in surface:
+            rules += [f"$(D)/models/{name}_holdout.json: $(D)/models/{name}.json $(D)/{g}/split.json {code.holdout}",
+                      "\t" + for_make(commands.stage(IN_MAKE, "score", "$<", f"$(D)/{g}/holdout.csv", output, "$@")),
+                      ""]
+        if surrogate == "gabp":
+            # Which parameters drive the output (He et al.'s sensitivity), from the network over its domain.
+            rules += [f"$(D)/models/{name}_sobol.json: $(D)/models/{name}.json",
+                      "\t" + for_make(commands.sobol(IN_MAKE, "$<", "$@")), ""]
     return rules
+
+
+def model_products(study):
+    """The files beside each model the report reads: held-out scores and a network's Sobol indices."""
+    files = []
+    for surface in study.get("surfaces", []):
+        for output in surface["outputs"]:
+            if "holdout" in surface:
+                files.append(f"$(D)/models/{stem(output)}_holdout.json")
+            if study.get("surrogate", "quadratic") == "gabp":
+                files.append(f"$(D)/models/{stem(output)}_sobol.json")
+    return files
 
 
 def inversion_config(study):
@@ -219,13 +251,17 @@ def inversion_config(study):
     inversion = {"targets": study["targets"], "algorithm": inv.get("algorithm", "sa" if loop else "ga"),
                  "objective": objective, "restarts": int(inv.get("restarts", 1 if loop else 5)),
                  # Polishing fits outputs to targets by least squares: a minimisation has none to fit.
-                 "polish": bool(inv.get("polish", not loop and objective != "minimise")),
+                 "polish": bool(inv.get("polish", not loop and objective != "minimise" and inv.get("algorithm") != "search")),
                  "seed": int(inv.get("seed", 1))}
     extra = []
     if "population" in inv:
         extra += ["--set", f"population={int(inv['population'])}"]
     for name, value in inv.get("settings", {}).items():
         extra += ["--set", f"{name}={value}"]
+    if "samples" in inv:
+        extra += ["--samples", str(int(inv["samples"]))]
+    if "search_tolerance" in inv:
+        extra += ["--tolerance", repr(float(inv["search_tolerance"]))]
     if "budget" in inv:
         extra += ["--budget", str(int(inv["budget"]))]
     if "stop_below" in inv:
@@ -282,13 +318,21 @@ def calibration_rules(study, scene, space, cfg, out, code, models):
     verification = {"seeds": int(ver.get("seeds", 5)), "tolerance": float(ver.get("tolerance", 0.05)),
                     "scene": study["scene"], "first_seed": seeds + 1 if loop else 1}
     verification["max_seeds"] = int(ver.get("max_seeds", max(20, verification["seeds"])))
+    if "candidates" in ver:
+        verification["candidates"] = int(ver["candidates"])
     write_if_changed(os.path.join(cfg, "verification.json"), json.dumps(verification) + "\n")
-    rules += [f"$(D)/verification.json: $(D)/solution.json $(D)/config/verification.json {scene_files(study['scene'])}",
-              "\t" + for_make(commands.verify(IN_MAKE, "$<", study["scene"], "$(D)/config/space_inversion.json",
-                                              verification, "$(D)/verification", "$@", md="$(D)/verification.md",
-                                              csv="$(D)/verification.csv")), ""]
+    if "candidates" in ver:
+        # A search's candidates, each verified in DEM; the best verified one is the study's answer.
+        rules += [f"$(D)/verification.json: $(D)/solution.json $(D)/config/verification.json "
+                  f"{scene_files(study['scene'])} {code.candidates}",
+                  "\t" + for_make(commands.stage(IN_MAKE, "candidates", "$(D)")), ""]
+    else:
+        rules += [f"$(D)/verification.json: $(D)/solution.json $(D)/config/verification.json {scene_files(study['scene'])}",
+                  "\t" + for_make(commands.verify(IN_MAKE, "$<", study["scene"], "$(D)/config/space_inversion.json",
+                                                  verification, "$(D)/verification", "$@", md="$(D)/verification.md",
+                                                  csv="$(D)/verification.csv")), ""]
     write_if_changed(os.path.join(cfg, "refinement.json"), json.dumps(study.get("refinement", {"rounds": 0})) + "\n")
-    report_inputs = f"$(D)/refined.json $(D)/config/study.json {code.report}"
+    report_inputs = " ".join([f"$(D)/refined.json $(D)/config/study.json {code.report}"] + model_products(study))
     if "screening" in study:
         report_inputs += " $(D)/screening/anova.json"
     if "stability" in study:

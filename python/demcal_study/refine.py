@@ -9,7 +9,7 @@ from . import commands
 from .outputs import stem
 from .errors import fail, load_json
 from .files import write_target
-from .surfaces import factors_of, merged_rows
+from .surfaces import design_data, factors_of, merged_rows
 
 
 def refine(out):
@@ -20,8 +20,11 @@ def refine(out):
     tools = commands.from_environment()
     surrogate = study.get("surrogate", "quadratic")
     space = os.path.join(out, "config", "space_inversion.json")
-    current = {"solution": os.path.join(out, "solution.json"), "verification": os.path.join(out, "verification.json"),
-               "runs": os.path.join(out, "verification", "runs.csv")}
+    # The verified solution: the inversion's, or the search candidate that verified best (candidates.py).
+    first = load_json(os.path.join(out, "verification.json"), "verification").get("solution",
+                                                                                os.path.join(out, "solution.json"))
+    current = {"solution": first, "verification": os.path.join(out, "verification.json"),
+               "runs": os.path.join(os.path.dirname(first), "verification", "runs.csv")}
     record = {"rounds": [], "final": current}
     added = []
     for k in range(1, rounds + 1):
@@ -32,7 +35,7 @@ def refine(out):
         os.makedirs(os.path.join(rd, "models"), exist_ok=True)
         models = []
         for g, surface in enumerate(study["surfaces"], start=1):
-            rows = merged_rows([(os.path.join(out, f"g{g}", "responses.csv"), 0)] + added)
+            rows = merged_rows([(design_data(out, g), 0)] + added)
             factors = factors_of(out, g, surface)
             columns = ["run"] + factors + surface["outputs"]
             data = os.path.join(rd, f"data_g{g}.csv")

@@ -8,7 +8,8 @@ from .outputs import stem, tests_per_point
 from .errors import load_json
 from .files import write_if_changed
 from .plots import convergence_png, curves_png
-from .sections import comparison_section, number, screening_section, significance_section, stability_section
+from .sections import (candidates_lines, comparison_section, design_range_lines, holdout_lines, number,
+                       screening_section, significance_section, sobol_lines, stability_section)
 from .to_html import to_html
 
 
@@ -65,6 +66,8 @@ def calibration_report(study, out):
     lines += [""] + space_lines(load_json(os.path.join(out, "config", "space_inversion.json"), "space"))
     lines += screening_section(study, out)
     loop = strategy.in_the_loop(study)
+    if not loop:
+        lines += design_range_lines(study, out)
     lines += loop_lines(study, solution, out) if loop else surrogate_lines(study, solution, out)
     if refined["rounds"]:
         lines.insert(len(lines) - 3, f"(The solution of the last refinement round, {len(refined['rounds'])}; its surrogates "
@@ -85,7 +88,7 @@ def calibration_report(study, out):
     if solution.get("unidentified"):
         lines += ["", "Not identified by these targets (restarts that meet them spread over more than half the range): "
                   + ", ".join(solution["unidentified"]) + "."]
-    lines += verification_lines(refined, first, out)
+    lines += verification_lines(refined, first, out) + candidates_lines(out)
     lines += [""] + stability_section(out) + comparison_section(study, out)
     return lines
 
@@ -134,15 +137,17 @@ def surrogate_lines(study, solution, out):
         for o in surface["outputs"]:
             m = load_json(os.path.join(out, "models", f"{stem(o)}.json"), "model")
             if m["kind"] == "gabp":
-                # Training R^2 and the hold-out R^2 of the rows it never trained on.
+                # Training R^2 and the R^2 of the early-stopping split (rows it never trained on, though they
+                # chose when to stop and the hidden size; the held-out points below chose nothing).
                 t, v = m.get("training", {}), m.get("validation", {})
                 lines.append(f"| {o} | gabp | {t.get('rows', 0) + v.get('rows', 0)} | {number(t.get('r2', {}).get(o))} | "
-                             f"- | {number(v.get('r2', {}).get(o))} (hold-out, {v.get('rows', 0)} rows) |")
+                             f"- | {number(v.get('r2', {}).get(o))} (early-stopping split, {v.get('rows', 0)} rows) |")
                 continue
             r = m["responses"][0] if "responses" in m else {}
             lines.append(f"| {o} | {m['kind']} | {r.get('runs', '')} | {number(m.get('r2'))} | "
                          f"{number(m.get('r2_adj'))} | {number(m.get('r2_pred'))} |")
             figures.append(f"![fit of {o}](models/{stem(o)}_fit.png)")
+    lines += holdout_lines(study, out) + sobol_lines(study, out)
     return lines + [""] + figures + ["", "## Inversion", "",
                     f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
                     f"{solution['evaluations']} evaluations, status **{solution['status']}**"
@@ -165,7 +170,7 @@ def verification_lines(refined, first, out):
         lines += ["", "The final round:", ""]
     with open(final["verification"].replace(".json", ".md")) as f:
         lines += f.read().rstrip().split("\n")
-    runs = os.path.join(os.path.dirname(final["verification"]), "verification", "runs.h5")
+    runs = os.path.join(os.path.dirname(final["runs"]), "runs.h5")
     if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png")) is None:
         lines += ["", "![stress-strain curves](verification_curves.png)"]
     return lines

@@ -160,3 +160,91 @@ def minimised_table(rows):
                      f"{number(m['ci95'][0], 4)} - {number(m['ci95'][1], 4)} | {m['reference'] / m['mean']:.2f} | "
                      f"{'yes' if r['passed'] else 'no'} |")
     return lines
+
+
+def design_range_lines(study, out):
+    """What the DEM gave over each surface's design (status ok): the attainable range as measured, before any
+    target is judged against a surrogate's range."""
+    lines = []
+    for g, surface in enumerate(study.get("surfaces", []), start=1):
+        path = os.path.join(out, f"g{g}", "responses.csv")
+        if not os.path.exists(path):
+            continue
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        ok = [r for r in rows if r.get("status") == "ok"]
+        for o in surface["outputs"]:
+            values = [float(r[o]) for r in ok if r.get(o) not in (None, "")]
+            if values:
+                lines.append(f"| {o} | {len(values)} of {len(rows)} | {min(values):.4g} - {max(values):.4g} | "
+                             f"{study['targets'].get(o, '-')} |")
+    if not lines:
+        return []
+    return ["## What the DEM reaches over the design", "",
+            "| output | design runs that ran | range in DEM | target |", "|---|---|---|---|"] + lines + [""]
+
+
+def holdout_lines(study, out):
+    """Each model's R^2 on the design points held out of every choice of its fit (holdout.py)."""
+    lines = []
+    for g, surface in enumerate(study.get("surfaces", []), start=1):
+        if "holdout" not in surface:
+            continue
+        split = load_json(os.path.join(out, f"g{g}", "split.json"), "held-out split")
+        for o in surface["outputs"]:
+            s = load_json(os.path.join(out, "models", f"{stem(o)}_holdout.json"), "held-out score")
+            lines.append(f"| {o} | {split['train_points']} ({split['train_rows_ok']} ran) | "
+                         f"{split['held_out']} ({s['rows']} ran) | {number(s['r2'])} | {s['rmse']:.4g} |")
+    if not lines:
+        return []
+    return ["", "Held out: design points chosen at random (seed 1) before any fit and used by none of its choices "
+            "(training, early stopping, hidden size); the model's R^2 on them:", "",
+            "| output | points fitted on | points held out | R^2 held out | RMSE held out |", "|---|---|---|---|---|"] + lines
+
+
+def sobol_lines(study, out):
+    """A network's Sobol indices over its domain: which parameters drive each output."""
+    lines = []
+    for surface in study.get("surfaces", []):
+        for o in surface["outputs"]:
+            path = os.path.join(out, "models", f"{stem(o)}_sobol.json")
+            if not os.path.exists(path):
+                continue
+            inputs = load_json(path, "Sobol indices").get(o, {}).get("inputs", {})
+            for name, i in sorted(inputs.items(), key=lambda item: -(item[1].get("ST") or 0)):
+                lines.append(f"| {o} | {name} | {number(i.get('S1'), 3)} ± {number(i.get('S1_conf'), 3)} | "
+                             f"{number(i.get('ST'), 3)} ± {number(i.get('ST_conf'), 3)} |")
+    if not lines:
+        return []
+    return ["", "## Sensitivity", "", "Sobol indices of the network over its domain (`demcal-analyze sobol`; first "
+            "order: the share of the output's variance the parameter explains alone; total: with its interactions; ± the "
+            "bootstrap 95 % half-width):",
+            "", "| output | parameter | first order | total |", "|---|---|---|---|"] + lines
+
+
+def candidates_lines(out):
+    """A search's candidates with what the DEM gave at each (candidates.py), the chosen one marked."""
+    path = os.path.join(out, "candidates.json")
+    if not os.path.exists(path):
+        return []
+    rows = load_json(path, "candidates")["candidates"]
+    names = list(rows[0]["x"])
+    outputs = list(rows[0]["outputs"])
+    head = (["candidate", "cluster size"] + names + [f"{o} predicted" for o in outputs]
+            + [f"{o} verified (95 % interval)" for o in outputs] + ["verdict", "chosen"])
+    lines = ["", "## Candidates verified in DEM", "",
+             "The search's mean-shift cluster centres, largest cluster first, each run in DEM over the verification's "
+             "seeds; the chosen one (an interval inside the band first, then the smallest error) is the answer above.",
+             "", "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for r in rows:
+        cells = [str(r["rank"]), str(r["cluster_size"])] + [f"{r['x'][n]:.4g}" for n in names]
+        cells += [f"{r['predicted'][o]:.4g}" for o in outputs]
+        cells += [f"{r['outputs'][o]['mean']:.4g} ({r['outputs'][o]['ci95_low']:.4g} - {r['outputs'][o]['ci95_high']:.4g})"
+                  for o in outputs]
+        cells += [r["verdict"], "yes" if r["chosen"] else ""]
+        lines.append("| " + " | ".join(cells) + " |")
+    chosen = next(r for r in rows if r["chosen"])
+    if chosen["other_outputs"]:
+        lines += ["", "Other outputs at the chosen candidate (mean and SD over its seeds): " + ", ".join(
+            f"{n} {v['mean']:.4g} (SD {v['sd']:.2g})" for n, v in chosen["other_outputs"].items()) + "."]
+    return lines

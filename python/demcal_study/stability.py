@@ -9,7 +9,7 @@ from . import commands
 from .outputs import stem
 from .errors import load_json
 from .files import write_target
-from .surfaces import factors_of
+from .surfaces import design_data, factors_of
 
 
 def run_quiet(cmd):
@@ -86,7 +86,7 @@ def small_designs(out, study, stab, models_dir, where):
     surrogate = study.get("surrogate", "quadratic")
     surface = study["surfaces"][0]
     factors = factors_of(out, 1, surface)
-    with open(os.path.join(out, "g1", "responses.csv")) as f:
+    with open(design_data(out, 1)) as f:
         rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
     k = len(factors)
     terms = (k + 1) * (k + 2) // 2 if surrogate == "quadratic" else None

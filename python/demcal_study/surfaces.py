@@ -13,6 +13,12 @@ def factors_of(out, g, surface):
     return load_json(os.path.join(out, "config", "factors.json"), "chosen factors")[f"g{g}"]["factors"]
 
 
+def design_data(out, g):
+    """The DEM rows surface g is fitted on: its whole design, or the points not held out (holdout.py)."""
+    train = os.path.join(out, f"g{g}", "train.csv")
+    return train if os.path.exists(train) else os.path.join(out, f"g{g}", "responses.csv")
+
+
 def merged_rows(paths):
     """Rows of several DEM response CSVs (different column orders), status ok only; `paths` are
     (csv, run offset) so runs of different batches keep distinct numbers."""

@@ -220,3 +220,14 @@ def check_inversion(study, where):
                  "objective minimise")
     if objective not in known["objectives"]:
         fail(f"{where}: inversion.objective must be one of {', '.join(known['objectives'])}")
+    for key in ("samples", "search_tolerance"):
+        if key in inv and algorithm != "search":
+            fail(f"{where}: inversion.{key} is a setting of the search; inversion.algorithm is {algorithm}")
+    if "candidates" in study.get("verification", {}) and algorithm != "search":
+        fail(f"{where}: verification.candidates verifies a search's mean-shift candidates; inversion.algorithm is "
+             f"{algorithm}, whose answer is verified as it stands")
+    for surface in study.get("surfaces", []):
+        if "holdout" in surface and surface["design"].get("runs") is not None \
+                and surface["holdout"] >= surface["design"]["runs"]:
+            fail(f"{where}: a surface holds out {surface['holdout']} of its {surface['design']['runs']} design points; "
+                 "some must be left to fit on")
