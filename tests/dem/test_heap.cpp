@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
+#include "demcal/dem/cohesion_number.hpp"
 #include "demcal/dem/describe.hpp"
 #include "demcal/dem/heap_test.hpp"
 #include "demcal/dem/lab_test.hpp"
@@ -131,6 +133,50 @@ TEST(HeapScene, ASmallHeapSettlesWithBothFlanksFittedAndTheSameSeedGivesTheSameB
   ASSERT_TRUE(b.ok);
   EXPECT_EQ(a.macro.at("aor_deg"), b.macro.at("aor_deg"));
   EXPECT_EQ(a.macro.at("flow_time_s"), b.macro.at("flow_time_s"));
+}
+
+TEST(CohesionNumber, StaysFixedWhenTheWorkOfAdhesionFollowsTheSofteningTheSizeAndTheDensity) {
+  // G/(1 - nu) is E / (2 (1 - nu^2)) with E = 2 G (1 + nu).
+  EXPECT_NEAR(effective_modulus_pa(3.5e7, 0.4), 2 * 3.5e7 * 1.4 / (2 * (1 - 0.16)), 1e-6);
+  const double coh = cohesion_number(5.0, 5.8e7, 6.25e-4, 60, 9.81);
+  EXPECT_NEAR(coh, std::pow(std::pow(5.0, 5) / (5.8e7 * 5.8e7 * std::pow(6.25e-4, 8)), 1.0 / 3) / (60 * 9.81),
+              1e-12 * coh);
+  // The rule of the header: 100x softer, 0.75x the size, 2x the density.
+  const double w = 5.0 * std::pow(0.01, 0.4) * std::pow(0.75, 1.6) * std::pow(2.0, 0.6);
+  EXPECT_NEAR(cohesion_number(w, 5.8e5, 0.75 * 6.25e-4, 120, 9.81), coh, 1e-12 * coh);
+}
+
+TEST(CohesionNumber, TheShippedHeapKeepsHeEtAlsCohesionWhileItsContactsAreSofter) {
+  // data/scenes/heap_powder.json: w = gamma * adhesion_scale at 100x softer
+  // contacts than He et al.'s 3.5e7 Pa; their particles' size and density.
+  std::ifstream file(std::string(DEMCAL_SOURCE_DIR) + "/data/scenes/heap_powder.json");
+  ASSERT_TRUE(file) << "data/scenes/heap_powder.json";
+  const json scene = json::parse(file);
+  const json& p = scene.at("parameters");
+  const double gamma = p.at("gamma_J_m2").at("value").get<double>();
+  const double r_star = 0.25 * (scene.at("particles").at("radius_min_m").get<double>() +
+                                scene.at("particles").at("radius_max_m").get<double>());
+  const double rho = scene.at("particles").at("density_kg_m3").get<double>();
+  const double model = cohesion_number(gamma * p.at("adhesion_scale").at("value").get<double>(),
+                                       effective_modulus_pa(p.at("shear_modulus_Pa").at("value").get<double>(), 0.4),
+                                       r_star, rho, 9.81);
+  const double seed = cohesion_number(gamma, effective_modulus_pa(3.5e7, 0.4), r_star, rho, 9.81);
+  EXPECT_NEAR(model / seed, 1.0, 0.01);  // the scale is printed to three digits
+}
+
+TEST(HeapScene, ACohesiveHeapReportsItsWorkOfAdhesionAndCohesionNumber) {
+  json scene = small_heap(0.5, 1.3);
+  scene["parameters"]["w"] = {{"value", 0.05}, {"low", 0}, {"high", 1}, {"unit", "N/m"}};
+  scene["contacts"]["particle-particle"] = {{"model", "jkr"}, {"parameters", {{"shear_modulus_pa", 1e6},
+      {"poisson", 0.3}, {"restitution", "e"}, {"friction", "mu"}, {"work_of_adhesion_j_m2", "w"}}}};
+  const TestResult r = run(scene);
+  ASSERT_TRUE(r.ok) << r.reason;
+  EXPECT_EQ(r.specimen_info.at("work_of_adhesion_j_m2"), 0.05);
+  // R* = half the mean radius (1 mm), E* = G / (1 - nu).
+  const double expected = std::pow(std::pow(0.05, 5) / (std::pow(1e6 / 0.7, 2) * std::pow(5e-4, 8)), 1.0 / 3) /
+                          (1000 * 9.81);
+  EXPECT_NEAR(r.specimen_info.at("cohesion_number"), expected, 1e-9 * expected);
+  EXPECT_EQ(run(small_heap(0.5, 1.3)).specimen_info.count("cohesion_number"), 0u);  // not cohesive: not reported
 }
 
 TEST(HeapScene, SmoothDisksSpreadFlatterThanRoughClumps) {

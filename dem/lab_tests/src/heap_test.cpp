@@ -14,6 +14,7 @@
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/angle_of_repose.hpp"
+#include "demcal/dem/cohesion_number.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/world.hpp"
@@ -171,6 +172,21 @@ HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, do
   return s;
 }
 
+// The particle-particle work of adhesion the contacts use (the scaled surface
+// energy) and the cohesion number it gives these particles, so a result says
+// which cohesion it ran at; nothing when the particles are not cohesive (JKR).
+void report_cohesion(const Scene& scene, const std::map<std::string, double>& parameters, const HeapSpec& s,
+                     TestResult& result) {
+  auto it = scene.contacts().find("particle-particle");
+  if (it == scene.contacts().end() || it->second.model != "jkr") return;
+  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
+  const double w = bound.at("work_of_adhesion_j_m2").get<double>();
+  const double e_star = effective_modulus_pa(bound.at("shear_modulus_pa").get<double>(), bound.at("poisson").get<double>());
+  const double r_star = 0.25 * (s.powder.radius_min_m + s.powder.radius_max_m);  // two particles of the mean radius
+  result.specimen_info["work_of_adhesion_j_m2"] = w;
+  result.specimen_info["cohesion_number"] = cohesion_number(w, e_star, r_star, s.powder.density_kg_m3, kGravity_m_s2);
+}
+
 TestResult run_heap(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const HeapSpec s = HeapSpec::from_scene(scene, parameters);
@@ -207,6 +223,7 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
   result.specimen_info["particles"] = static_cast<double>(particles.size());
   result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
   result.specimen_info["catch_depth_m"] = depth;
+  report_cohesion(scene, parameters, s, result);
   const auto loading_start = std::chrono::steady_clock::now();
   std::unique_ptr<Progress> progress;
   if (options.progress) progress = std::make_unique<Progress>("heap (% of run.max_time_s)", 100);
