@@ -152,7 +152,8 @@ def surrogate_lines(study, solution, out):
                     f"{solution['algorithm']}, objective {solution['objective_kind']}, {len(solution['restarts'])} restarts, "
                     f"{solution['evaluations']} evaluations, status **{solution['status']}**"
                     + (f": {solution.get('reason', '')}" if solution['status'] != 'ok' else "") + ".", "",
-                    "| parameter | value | spread over restarts (min - max) | identified |", "|---|---|---|---|"]
+                    f"| parameter | value | spread over the {solution.get('spread_basis', 'restarts')} (min - max) | "
+                    "identified |", "|---|---|---|---|"]
 
 
 def verification_lines(refined, first, out):
