@@ -2,8 +2,9 @@
 over the verification's seeds, as He et al. 2019 verify theirs; the best verified one becomes the study's answer
 (OUT_DIR/verification.json names its solution file, which refinement and the report then read).
 
-Best: an interval inside the band before a mean inside it before neither, then the smallest largest relative
-error. Each candidate keeps its own folder (candidates/cK), so an interrupted stage resumes where it stopped."""
+Best: an interval inside the band before a mean inside it before neither, then the fewest failed seeds (a
+candidate judged on fewer specimens is judged on less, and a failed seed is itself a finding against it: a heap that
+never settles, a run that bursts), then the smallest largest relative error. Each candidate keeps its own folder (candidates/cK), so an interrupted stage resumes where it stopped."""
 import csv
 import json
 import os
@@ -49,12 +50,14 @@ def verify_candidates(out):
                 fail(f"demcal-verify failed for candidate {k} ({path})")
         v = load_json(result, "verification")
         worst = max(abs(o["relative_error_pct"]) for o in v["outputs"].values())
+        failed = sum(1 for seed in v["seeds"] if seed.get("status", "ok") != "ok")
         rows.append({"rank": k, "cluster_size": c.get("size", 1), "x": c["x"], "predicted": c["predicted"],
                      "verdict": v["verdict"], "passed": v["passed"], "max_abs_relative_error_pct": worst,
+                     "seeds_run": len(v["seeds"]), "seeds_failed": failed,
                      "outputs": v["outputs"], "other_outputs": other_outputs(os.path.join(folder, "verification", "runs.csv"),
                                                                             v["outputs"]),
                      "folder": folder})
-    best = min(rows, key=lambda r: (VERDICT_RANK.get(r["verdict"], 3), r["max_abs_relative_error_pct"]))
+    best = choose(rows)
     for r in rows:
         r["chosen"] = r is best
     for ext in ("json", "md", "csv"):
@@ -63,8 +66,14 @@ def verify_candidates(out):
         os.replace(os.path.join(out, f"verification.{ext}.tmp"), os.path.join(out, f"verification.{ext}"))
     write_target(os.path.join(out, "candidates.json"), json.dumps({"candidates": rows}, indent=1) + "\n")
     os.replace(os.path.join(out, "verification.json.tmp"), os.path.join(out, "verification.json"))
-    print(f"candidates: {len(rows)} verified; chosen: candidate {best['rank']} ({best['verdict']}, largest error "
+    print(f"candidates: {len(rows)} verified; chosen: candidate {best['rank']} ({best['verdict']}, "
+          f"{best['seeds_failed']} of {best['seeds_run']} seeds failed, largest error "
           f"{best['max_abs_relative_error_pct']:.2f} %)", flush=True)
+
+
+def choose(rows):
+    """The best verified candidate (the module's docstring says in what order)."""
+    return min(rows, key=lambda r: (VERDICT_RANK.get(r["verdict"], 3), r["seeds_failed"], r["max_abs_relative_error_pct"]))
 
 
 def other_outputs(runs_csv, judged):

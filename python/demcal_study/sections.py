@@ -231,17 +231,18 @@ def candidates_lines(out):
     names = list(rows[0]["x"])
     outputs = list(rows[0]["outputs"])
     head = (["candidate", "cluster size"] + names + [f"{o} predicted" for o in outputs]
-            + [f"{o} verified (95 % interval)" for o in outputs] + ["verdict", "chosen"])
+            + [f"{o} verified (95 % interval)" for o in outputs] + ["seeds that ran", "verdict", "chosen"])
     lines = ["", "## Candidates verified in DEM", "",
              "The search's mean-shift cluster centres, largest cluster first, each run in DEM over the verification's "
-             "seeds; the chosen one (an interval inside the band first, then the smallest error) is the answer above.",
+             "seeds; the chosen one (an interval inside the band first, then the fewest failed seeds, then the smallest "
+             "error) is the answer above.",
              "", "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         cells = [str(r["rank"]), str(r["cluster_size"])] + [f"{r['x'][n]:.4g}" for n in names]
         cells += [f"{r['predicted'][o]:.4g}" for o in outputs]
         cells += [f"{r['outputs'][o]['mean']:.4g} ({r['outputs'][o]['ci95_low']:.4g} - {r['outputs'][o]['ci95_high']:.4g})"
                   for o in outputs]
-        cells += [r["verdict"], "yes" if r["chosen"] else ""]
+        cells += [f"{r['seeds_run'] - r['seeds_failed']} of {r['seeds_run']}", r["verdict"], "yes" if r["chosen"] else ""]
         lines.append("| " + " | ".join(cells) + " |")
     chosen = next(r for r in rows if r["chosen"])
     if chosen["other_outputs"]:

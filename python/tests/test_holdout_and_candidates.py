@@ -94,3 +94,14 @@ def test_a_holdout_must_leave_points_to_fit_on(tmp_path, bin_dir):
                                             "design": {"kind": "lhs", "runs": 10}, "holdout": 10}])
     done = run_study_layer(["plan", str(path), str(tmp_path / "out")], bin_dir)
     assert done.returncode != 0 and "holds out 10 of its 10 design points" in done.stderr
+
+
+def test_a_candidate_whose_seeds_failed_loses_to_one_judged_on_all_of_them():
+    from demcal_study.candidates import choose
+    row = lambda rank, verdict, failed, error: {"rank": rank, "verdict": verdict, "seeds_failed": failed,  # noqa: E731
+                                               "max_abs_relative_error_pct": error}
+    # Both outside: the one judged on 2 of 5 seeds loses despite its smaller error.
+    assert choose([row(1, "outside", 0, 15.7), row(2, "outside", 3, 4.9)])["rank"] == 1
+    # A verdict still comes first, then the error.
+    assert choose([row(1, "outside", 0, 1.0), row(2, "mean_inside_band", 1, 3.0)])["rank"] == 2
+    assert choose([row(1, "interval_inside_band", 0, 2.0), row(2, "interval_inside_band", 0, 1.0)])["rank"] == 2

@@ -129,6 +129,9 @@ TEST(HeapScene, ASmallHeapSettlesWithBothFlanksFittedAndTheSameSeedGivesTheSameB
   EXPECT_LT(a.macro.at("heap_height_m"), 0.03);
   EXPECT_GT(a.macro.at("flow_time_s"), 0.0);
   EXPECT_LT(a.specimen_info.at("kinetic_over_potential"), 1e-5);
+  // The fixed-base angle from the height over half the 40 mm plate; this heap's flanks reach its edges.
+  EXPECT_NEAR(std::tan(a.macro.at("aor_fixed_base_deg") * M_PI / 180.0), a.macro.at("heap_height_m") / 0.02, 1e-12);
+  EXPECT_EQ(a.specimen_info.at("heap_covers_plate"), 1.0);
   const TestResult b = run(small_heap(0.5, 1.3));
   ASSERT_TRUE(b.ok);
   EXPECT_EQ(a.macro.at("aor_deg"), b.macro.at("aor_deg"));

@@ -319,6 +319,14 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
     result.macro["aor_left_deg"] = fit.left_deg;
     result.macro["aor_right_deg"] = fit.right_deg;
     result.macro["heap_height_m"] = fit.height_m;
+    // The fixed-base method's angle (a cone on a plate of known width, as in
+    // ISO 4324): tan = height / half the plate. It takes the flanks to reach
+    // the plate's edges, which heap_covers_plate says. The height scatters far
+    // less from seed to seed than the flanks' fits of a cohesive heap do.
+    result.macro["aor_fixed_base_deg"] = std::atan(fit.height_m / half_base) * 180.0 / M_PI;
+    const bool covers = !fit.profile_x_m.empty() && fit.profile_x_m.front() <= -half_base + fit_options.bin_width_m &&
+                        fit.profile_x_m.back() >= half_base - fit_options.bin_width_m;
+    result.specimen_info["heap_covers_plate"] = covers ? 1.0 : 0.0;
     result.macro["flow_time_s"] = flow_time;
     result.specimen_info["heap_disks"] = static_cast<double>(x.size());
     result.specimen_info["aor_left_r2"] = fit.left_r2;
@@ -355,6 +363,8 @@ class HeapTest : public LabTest {
     return {{"particle-wall", kWallGroup, "particles against the funnel, the base and the catch floor"}};
   }
   bool exact_scaling() const override { return false; }  // gravity sets the stresses
+  // 1: aor_fixed_base_deg joined the outputs (stored heaps without it run again).
+  int results_version() const override { return 1; }
   std::vector<SceneSection> own_sections() const override {
     return {{"particles", "the powder: radii, density, thickness, clumps", true},
             {"funnel", "the funnel, the base and the domain", false},
@@ -370,6 +380,8 @@ class HeapTest : public LabTest {
             {"aor_left_deg", "deg", "the left flank's angle"},
             {"aor_right_deg", "deg", "the right flank's angle"},
             {"heap_height_m", "m", "the settled heap's height above the base"},
+            {"aor_fixed_base_deg", "deg", "the fixed-base method's angle, atan(heap_height_m / half of funnel.base_width_m); "
+                                          "the specimen's heap_covers_plate says whether the flanks reach the plate's edges"},
             {"flow_time_s", "s", "time from opening the outlet until run.discharged_fraction of the particles left the funnel"}};
   }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
