@@ -4,11 +4,13 @@ over the verification's seeds, as He et al. 2019 verify theirs; the best verifie
 
 Best: an interval inside the band before a mean inside it before neither, then the fewest failed seeds (a
 candidate judged on fewer specimens is judged on less, and a failed seed is itself a finding against it: a heap that
-never settles, a run that bursts), then the smallest largest relative error. Each candidate keeps its own folder (candidates/cK), so an interrupted stage resumes where it stopped."""
+never settles, a run that bursts), then the smallest largest relative error. Each candidate keeps its own folder
+(candidates/cK), so an interrupted stage resumes where it stopped."""
 import csv
 import json
 import os
 import shutil
+import statistics
 import subprocess
 
 from . import commands
@@ -89,18 +91,12 @@ def other_outputs(runs_csv, judged):
     values = {}
     for r in runs:
         for name in outputs:
-            text = r[name]
             if name in judged:
                 continue
             try:
-                values.setdefault(name, []).append(float(text))
+                values.setdefault(name, []).append(float(r[name]))
             except (TypeError, ValueError):
                 pass
-    summary = {}
-    for name, v in values.items():
-        if len(v) != len(runs):
-            continue
-        mean = sum(v) / len(v)
-        sd = (sum((x - mean) ** 2 for x in v) / (len(v) - 1)) ** 0.5 if len(v) > 1 else 0.0
-        summary[name] = {"mean": mean, "sd": sd, "runs": len(v)}
-    return summary
+    # Only outputs every seed that ran reported (a number missing from one run would skew its mean).
+    return {name: {"mean": statistics.mean(v), "sd": statistics.stdev(v) if len(v) > 1 else 0.0, "runs": len(v)}
+            for name, v in values.items() if len(v) == len(runs)}
