@@ -1,5 +1,6 @@
 #include "demcal/dem/contacts.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "demcal/core/error.hpp"
@@ -13,7 +14,7 @@ void ContactSet::set_layout(const std::vector<std::size_t>& columns_per_model) {
     if (columns_per_model[m] > kMaxStateColumns)
       throw Error("contact model " + std::to_string(m) + " declares " + std::to_string(columns_per_model[m]) +
                   " state columns (at most " + std::to_string(kMaxStateColumns) + ")");
-    blocks_[m].columns.resize(columns_per_model[m]);
+    blocks_[m].columns = columns_per_model[m];
   }
 }
 
@@ -24,7 +25,7 @@ void ContactSet::clear() {
   flags.clear();
   for (ModelBlock& b : blocks_) {
     b.begin = b.count = 0;
-    for (auto& column : b.columns) column.clear();
+    b.state.clear();
   }
 }
 
@@ -42,7 +43,7 @@ std::size_t ContactSet::add(std::int32_t a, std::int32_t b, std::uint8_t model_i
   ModelBlock& block = blocks_[model_index];
   if (block.count == 0) block.begin = i.size();
   ++block.count;
-  for (auto& column : block.columns) column.push_back(0.0);
+  block.state.resize(block.state.size() + block.columns, 0.0);
   i.push_back(a);
   j.push_back(b);
   model.push_back(model_index);
@@ -54,8 +55,8 @@ void ContactSet::copy_state(std::size_t to, const ContactSet& other, std::size_t
   flags[to] = other.flags[from];
   const ModelBlock& source = other.blocks_[other.model[from]];
   ModelBlock& target = blocks_[model[to]];
-  for (std::size_t c = 0; c < target.columns.size(); ++c)
-    target.columns[c][to - target.begin] = source.columns[c][from - source.begin];
+  const double* row = source.state.data() + (from - source.begin) * source.columns;
+  std::copy(row, row + target.columns, target.state.data() + (to - target.begin) * target.columns);
 }
 
 std::size_t ContactSet::begin(std::uint8_t m) const { return m < blocks_.size() ? blocks_[m].begin : 0; }
@@ -66,12 +67,12 @@ std::size_t ContactSet::end(std::uint8_t m) const {
 
 double ContactSet::state(std::size_t k, std::size_t c) const {
   const ModelBlock& b = blocks_[model[k]];
-  return b.columns[c][k - b.begin];
+  return b.state[(k - b.begin) * b.columns + c];
 }
 
 double& ContactSet::state(std::size_t k, std::size_t c) {
   ModelBlock& b = blocks_[model[k]];
-  return b.columns[c][k - b.begin];
+  return b.state[(k - b.begin) * b.columns + c];
 }
 
 namespace {
@@ -85,7 +86,8 @@ Block make_block(Set& set, Blocks& blocks, std::uint8_t m) {
   out.i = set.i.data() + b.begin;
   out.j = set.j.data() + b.begin;
   out.flags = set.flags.data() + b.begin;
-  for (std::size_t c = 0; c < b.columns.size(); ++c) out.column[c] = b.columns[c].data();
+  out.column.data = b.state.data();
+  out.column.stride = b.columns;
   return out;
 }
 

@@ -70,12 +70,12 @@ class ContactBondModel : public LinearBase {
 
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
     const double dt = step.dt_s;
-    double* kn = c.column[kNormalStiffness];
-    double* ks = c.column[kShearStiffness];
-    double* fs = c.column[kShearForce];
-    double* strength_n = c.column[kNormalStrength];
-    double* strength_s = c.column[kShearStrength];
-    double* installed_overlap = c.column[kReferenceOverlap];
+    const auto kn = c.column[kNormalStiffness];
+    const auto ks = c.column[kShearStiffness];
+    const auto fs = c.column[kShearForce];
+    const auto strength_n = c.column[kNormalStrength];
+    const auto strength_s = c.column[kShearStrength];
+    const auto installed_overlap = c.column[kReferenceOverlap];
     for_disk_pairs(
         c, b, step,
         [&](std::size_t k, const Geometry& g) {

@@ -78,38 +78,29 @@ class ParallelBondModel : public LinearBase {
 
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
     const double dt = step.dt_s;
-    double* bond_kn = c.column[kBondKn];
-    double* bond_ks = c.column[kBondKs];
-    double* bond_area = c.column[kBondArea];
-    double* bond_inertia = c.column[kBondInertia];
-    double* bond_radius = c.column[kBondRadius];
-    double* bond_fn = c.column[kBondFn];
-    double* bond_fs = c.column[kBondFs];
-    double* bond_m = c.column[kBondM];
-    double* strength_n = c.column[kTensileStrength];
-    double* strength_s = c.column[kShearStrength];
     for_disk_pairs(
         c, b, step,
         [&](std::size_t k, const Geometry& g) {
           PairForce f = linear_force(c, k, g, dt);
           if (!(c.flags[k] & kBonded)) return f;
-          const double area = bond_area[k], inertia = bond_inertia[k];
-          bond_fn[k] -= bond_kn[k] * area * g.vn * dt;
-          bond_fs[k] -= bond_ks[k] * area * g.vs * dt;
-          bond_m[k] -= bond_kn[k] * inertia * g.relative_w * dt;
+          double* const s = c.column.row(k);
+          const double area = s[kBondArea], inertia = s[kBondInertia];
+          s[kBondFn] -= s[kBondKn] * area * g.vn * dt;
+          s[kBondFs] -= s[kBondKs] * area * g.vs * dt;
+          s[kBondM] -= s[kBondKn] * inertia * g.relative_w * dt;
           // sigma = -F_n / A + |M| R_b / I and tau = |F_s| / A against the
           // strengths, both sides multiplied by A I (> 0): no division in the loop.
-          const double sigma_ai = -bond_fn[k] * inertia + std::abs(bond_m[k]) * bond_radius[k] * area;
-          const double tau_a = std::abs(bond_fs[k]);
-          const bool tension = sigma_ai >= strength_n[k] * area * inertia;
-          if (tension || tau_a >= strength_s[k] * area) {
+          const double sigma_ai = -s[kBondFn] * inertia + std::abs(s[kBondM]) * s[kBondRadius] * area;
+          const double tau_a = std::abs(s[kBondFs]);
+          const bool tension = sigma_ai >= s[kTensileStrength] * area * inertia;
+          if (tension || tau_a >= s[kShearStrength] * area) {
             break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
-            bond_fn[k] = bond_fs[k] = bond_m[k] = 0.0;
+            s[kBondFn] = s[kBondFs] = s[kBondM] = 0.0;
             return f;
           }
-          f.fn += bond_fn[k];
-          f.fs += bond_fs[k];
-          f.moment = bond_m[k];
+          f.fn += s[kBondFn];
+          f.fs += s[kBondFs];
+          f.moment = s[kBondM];
           return f;
         },
         [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });

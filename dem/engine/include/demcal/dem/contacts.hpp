@@ -41,6 +41,27 @@ struct BreakEvent {
 // Most state columns one model may declare.
 constexpr std::size_t kMaxStateColumns = 48;
 
+// State column c of a block's pairs: pair k's value is base[k * stride].
+template <typename T>
+struct StateColumn {
+  T* base = nullptr;
+  std::size_t stride = 0;
+  T& operator[](std::size_t k) const { return base[k * stride]; }
+};
+
+// A model's state, one row per pair with its columns side by side (row k
+// holds stride values), so the force loop walks one array whatever the
+// number of columns: one pointer and one prefetch stream instead of one per
+// column, which is what kept the loop's pointers out of registers.
+template <typename T>
+struct StateRows {
+  T* data = nullptr;
+  std::size_t stride = 0;
+  StateColumn<T> operator[](std::size_t c) const { return {data + c, stride}; }
+  // Pair k's columns: row(k)[c] is column c.
+  T* row(std::size_t k) const { return data + k * stride; }
+};
+
 // One model's pairs seen with local indices 0..size-1: what a model's force
 // loop works on. column[c][k] is state column c of the block's pair k.
 template <typename T>
@@ -50,7 +71,7 @@ struct BasicPairBlock {
   const std::int32_t* i = nullptr;
   const std::int32_t* j = nullptr;
   Flag* flags = nullptr;
-  std::array<T*, kMaxStateColumns> column{};
+  StateRows<T> column;
 
   // Pairs [from, to) of this block as a block of their own (local index 0 is
   // pair `from`): how threads share one model's pairs.
@@ -60,8 +81,7 @@ struct BasicPairBlock {
     part.i = i + from;
     part.j = j + from;
     part.flags = flags + from;
-    for (auto& c : part.column)
-      if (c) c += from;
+    if (part.column.data) part.column.data += from * column.stride;
     return part;
   }
 };
@@ -99,7 +119,8 @@ class ContactSet {
  private:
   struct ModelBlock {
     std::size_t begin = 0, count = 0;
-    std::vector<std::vector<double>> columns;
+    std::size_t columns = 0;
+    std::vector<double> state;  // count rows of `columns` values
   };
   std::vector<ModelBlock> blocks_;
 };
