@@ -6,11 +6,11 @@
 
 namespace demcal {
 
-Rng::Rng(std::uint64_t seed, std::uint64_t stream) {
-  std::seed_seq sequence{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
-                         static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(stream >> 32),
+void Rng::seed_engine() {
+  std::seed_seq sequence{static_cast<std::uint32_t>(seed_), static_cast<std::uint32_t>(seed_ >> 32),
+                         static_cast<std::uint32_t>(stream_), static_cast<std::uint32_t>(stream_ >> 32),
                          0x64656d63u /* "demc" */};
-  engine_.seed(sequence);
+  engine_.emplace(sequence);
 }
 
 namespace {
@@ -28,7 +28,7 @@ std::uint64_t keyed_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   return splitmix64(splitmix64(splitmix64(seed) ^ a) ^ b);
 }
 
-double Rng::uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+double Rng::uniform() { return static_cast<double>(engine()() >> 11) * 0x1.0p-53; }
 
 double Rng::uniform(double low, double high) { return low + (high - low) * uniform(); }
 
@@ -37,7 +37,7 @@ std::uint64_t Rng::below(std::uint64_t n) {
   // Rejection sampling (Lemire's bound) keeps every value equally likely.
   std::uint64_t threshold = (0 - n) % n;
   for (;;) {
-    std::uint64_t x = engine_();
+    std::uint64_t x = engine()();
     if (x >= threshold) return x % n;
   }
 }

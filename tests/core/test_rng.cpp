@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <random>
 
 #include "demcal/core/rng.hpp"
 
@@ -19,6 +20,27 @@ TEST(Rng, SameSeedSameNumbersOtherSeedOrStreamOthers) {
   }
   EXPECT_EQ(same_c, 0);
   EXPECT_EQ(same_d, 0);
+}
+
+// The engine is seeded at the first draw (a bond with no strength scatter
+// never draws): the numbers are still those of the seed sequence the class
+// documents, whether the Rng was copied before its first draw or after.
+TEST(Rng, SeedingAtTheFirstDrawKeepsTheDocumentedSequence) {
+  const std::uint64_t seed = 0x0123456789abcdefull, stream = 0x626f6e64;
+  std::seed_seq sequence{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
+                         static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(stream >> 32), 0x64656d63u};
+  std::mt19937_64 reference(sequence);
+  Rng fresh(seed, stream);
+  Rng copied_unseeded = fresh;
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(fresh(), reference());
+  Rng copied_seeded = fresh;
+  for (int i = 0; i < 5; ++i) {
+    const auto expected = reference();
+    EXPECT_EQ(fresh(), expected);
+    EXPECT_EQ(copied_seeded(), expected);
+  }
+  std::mt19937_64 again(sequence);
+  EXPECT_EQ(copied_unseeded(), again());
 }
 
 TEST(Rng, UniformMeanAndRange) {

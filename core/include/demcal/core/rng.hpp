@@ -4,6 +4,7 @@
 // doubles, integers and shuffles are computed here rather than by the standard
 // library's distributions, whose algorithms differ between implementations.
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <utility>
 #include <vector>
@@ -15,12 +16,14 @@ class Rng {
   using result_type = std::uint64_t;
 
   // `stream` separates independent streams of one seed (e.g. one per design
-  // point or per restart) without them overlapping in practice.
-  explicit Rng(std::uint64_t seed, std::uint64_t stream = 0);
+  // point or per restart) without them overlapping in practice. The engine
+  // is seeded at the first draw: seeding costs far more than a draw, and a
+  // bond whose strengths have no scatter takes an Rng it never uses.
+  explicit Rng(std::uint64_t seed, std::uint64_t stream = 0) : seed_(seed), stream_(stream) {}
 
   static constexpr result_type min() { return std::mt19937_64::min(); }
   static constexpr result_type max() { return std::mt19937_64::max(); }
-  result_type operator()() { return engine_(); }
+  result_type operator()() { return engine()(); }
 
   double uniform();                        // [0, 1) with 53 random bits
   double uniform(double low, double high);  // [low, high)
@@ -34,7 +37,14 @@ class Rng {
   }
 
  private:
-  std::mt19937_64 engine_;
+  std::mt19937_64& engine() {
+    if (!engine_) seed_engine();
+    return *engine_;
+  }
+  void seed_engine();
+
+  std::uint64_t seed_, stream_;
+  std::optional<std::mt19937_64> engine_;  // empty until the first draw
   bool has_spare_normal_ = false;
   double spare_normal_ = 0.0;
 };
