@@ -3,6 +3,7 @@ to verification, refinement, stability and cost; or, for a screening alone, the 
 import os
 
 from . import strategy
+from .candidates import other_outputs
 from .cost import count_rows, make_wall_s
 from .outputs import stem, tests_per_point
 from .errors import load_json
@@ -171,6 +172,11 @@ def verification_lines(refined, first, out):
         lines += ["", "The final round:", ""]
     with open(final["verification"].replace(".json", ".md")) as f:
         lines += f.read().rstrip().split("\n")
+    judged = set(load_json(final["verification"], "verification")["outputs"])
+    others = other_outputs(final["runs"], judged)
+    if others:
+        lines += ["", "Other outputs at the answer (mean and SD over the final verification's seeds that ran): " + ", ".join(
+            f"{n} {v['mean']:.4g} (SD {v['sd']:.2g})" for n, v in others.items()) + "."]
     runs = os.path.join(os.path.dirname(final["runs"]), "runs.h5")
     if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png")) is None:
         lines += ["", "![stress-strain curves](verification_curves.png)"]

@@ -244,8 +244,6 @@ def candidates_lines(out):
                   for o in outputs]
         cells += [f"{r['seeds_run'] - r['seeds_failed']} of {r['seeds_run']}", r["verdict"], "yes" if r["chosen"] else ""]
         lines.append("| " + " | ".join(cells) + " |")
-    chosen = next(r for r in rows if r["chosen"])
-    if chosen["other_outputs"]:
-        lines += ["", "Other outputs at the chosen candidate (mean and SD over its seeds): " + ", ".join(
-            f"{n} {v['mean']:.4g} (SD {v['sd']:.2g})" for n, v in chosen["other_outputs"].items()) + "."]
+    # The other outputs (the heap's flow time, say) are given once, at the final answer (report.py's
+    # verification section), which after a refinement round is no longer the chosen candidate.
     return lines

@@ -2,7 +2,7 @@
 chain, data/studies/powder_gabp.json), run end to end on the test suite's stand-in simulator (y = 2 a + 3 b + 0.01
 (seed mod 5)): the held-out points take no part in the fit and get their own R^2; every candidate is verified and
 the best verified one becomes the answer; the report shows the held-out R^2, the Sobol indices, the DEM's range
-over the design and the candidate table."""
+over the design, the candidate table and the outputs nobody judged at the answer."""
 import csv
 import json
 import os
@@ -75,6 +75,9 @@ def test_held_out_points_score_the_fit_and_every_candidate_is_verified(tmp_path,
     for heading in ("## What the DEM reaches over the design", "R^2 held out", "## Sensitivity",
                     "## Candidates verified in DEM"):
         assert heading in report
+    # The outputs nobody judged are reported at the answer (its final verification): the stand-in's z = a b.
+    z = final["parameters"]["a_MPa"] * final["parameters"]["b_MPa"]
+    assert f"Other outputs at the answer (mean and SD over the final verification's seeds that ran): z {z:.4g} (SD 0)." in report
     # The cost counts the design and every candidate's verification runs.
     from demcal_study.cost import study_cost
     assert study_cost(str(out))["dem_runs"] == 30 + 2 * len(candidates)
