@@ -50,7 +50,8 @@ inline bool skip_apart(const PairBlock& c, std::size_t k, double gap) {
 // Whether a bonded pair is short of its reference, and whether a contact with
 // little normal force slides, change from step to step with the specimen's
 // vibration: branches on them were mispredicted on a third of the pairs, so
-// the law selects with max and min instead (the same values).
+// the law selects with max and min instead (the same values; a zero shear
+// force is now always +0, where a capped one could be -0).
 inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt) {
   double* const s = c.column.row(k);
   const double overlap = g.overlap - s[kReferenceOverlap];
