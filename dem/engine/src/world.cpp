@@ -375,7 +375,14 @@ void World::integrate() {
 void World::integrate_clumps(double& max_move2) {
   const double dt = dt_s_, alpha = settings_.damping;
   auto sign = [](double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); };
-  for (Clump& c : clumps_) {
+  // Clumps own disjoint sets of disks, so threads may share them out; the
+  // max is exact in any order, so the result is the serial one.
+  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(clumps_.size());
+  double largest_move2 = max_move2;
+#pragma omp parallel for num_threads(threads_in_use_) schedule(static) reduction(max : largest_move2) \
+    if (threads_in_use_ > 1 && count > 1)
+  for (std::ptrdiff_t index = 0; index < count; ++index) {
+    Clump& c = clumps_[static_cast<std::size_t>(index)];
     // Resultant force and moment about the centre of mass.
     double fx = c.mass * settings_.gravity_x_m_s2, fy = c.mass * settings_.gravity_y_m_s2, mz = 0;
     for (std::size_t k = 0; k < c.members.size(); ++k) {
@@ -403,9 +410,10 @@ void World::integrate_clumps(double& max_move2) {
       bodies.vy[i] = c.vy + c.w * ox;
       bodies.w[i] = c.w;
       const double ddx = bodies.x[i] - x_built_[i], ddy = bodies.y[i] - y_built_[i];
-      max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
+      largest_move2 = std::max(largest_move2, ddx * ddx + ddy * ddy);
     }
   }
+  max_move2 = largest_move2;
 }
 
 void World::move_walls() {
