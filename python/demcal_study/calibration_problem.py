@@ -227,6 +227,15 @@ class Problem:
             values[c.name] = v * self.scale_reference * scale if c.ratio else v
         if self.scale_parameter is not None:
             values[self.scale_parameter] = self.scale_reference * scale
+        # A scale factor taken from a bound (scale_interval: the bound over the value at factor 1) puts that value
+        # back on its bound only up to rounding, and the DEM refuses a value one ulp outside (ldb_granite's
+        # corrected point had cb_tau_c_std_Pa = 1.0000000000000001e8 against a bound of 1e8): snap those.
+        for name, (lo, hi) in self.absolute_bounds.items():
+            v = values.get(name)
+            if v is not None and not lo <= v <= hi:
+                edge = hi if v > hi else lo
+                if abs(v - edge) <= 1e-12 * max(abs(v), abs(edge)):
+                    values[name] = edge
         for t in self.tied:
             if t["source"] in values:
                 values[t["name"]] = t.get("factor", 1.0) * values[t["source"]] + t.get("offset", 0.0)
