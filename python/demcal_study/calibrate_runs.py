@@ -122,8 +122,11 @@ def verify(tools, scene, folder, parameters, targets, predicted, first_seed, see
     os.makedirs(folder, exist_ok=True)
     solution = os.path.join(folder, "solution.json")
     stored_x = load_json(solution, "verified solution").get("x") if os.path.exists(solution) else None
-    if isinstance(stored_x, dict) and same_values(stored_x, parameters):
-        parameters = stored_x  # the point verified before (see SAME_POINT_RTOL)
+    # The point verified before (see SAME_POINT_RTOL), when some of its runs are stored; a point demcal-verify
+    # refused before running anything has nothing to keep, and the new one (a bound snapped, say) takes its place.
+    started = os.path.isdir(os.path.join(folder, "runs"))
+    if isinstance(stored_x, dict) and started and same_values(stored_x, parameters):
+        parameters = stored_x
     content = {"status": "ok", "x": parameters, "targets": targets, "predicted": predicted}
     if intervals:
         content["prediction_interval_95"] = intervals

@@ -388,6 +388,33 @@ def test_a_value_put_on_its_bound_by_the_scale_factor_stays_inside_it():
     assert rounded_out > 0  # the case the snap is for occurs among these
 
 
+def test_a_resumed_verification_keeps_its_stored_point_only_when_it_ran(tmp_path, monkeypatch):
+    # Within SAME_POINT_RTOL the stored point is the one verified before, so its stored runs stand. A point that
+    # demcal-verify refused (one ulp outside a bound) ran nothing: the new point must replace it, or every resume
+    # hands the refused one over again.
+    class Tools:
+        jobs, cache = "1", str(tmp_path / "cache")
+
+        def program(self, name):
+            return name
+
+    def fake_run(cmd, stdout=None):
+        with open(cmd[cmd.index("--out") + 1], "w") as f:
+            f.write("{}")
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(calibrate_runs.subprocess, "run", fake_run)
+    stored, new = {"a_Pa": 1.0000000000000002e8}, {"a_Pa": 1e8}
+    for ran, expected in ((False, new), (True, stored)):
+        folder = tmp_path / f"v_{ran}"
+        folder.mkdir()
+        (folder / "solution.json").write_text(json.dumps({"status": "ok", "x": stored}))
+        if ran:
+            (folder / "runs").mkdir()
+        calibrate_runs.verify(Tools(), "scene.json", str(folder), dict(new), {"y": 1.0}, {"y": 1.0}, 2, 5, 20, 0.05, True)
+        assert json.loads((folder / "solution.json").read_text())["x"] == expected
+
+
 def test_check_resolution_runs_once_met_and_is_listed_apart(fake, tmp_path, bin_dir):
     code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2},
                                         check_resolution=2.0)
