@@ -70,27 +70,22 @@ class ContactBondModel : public LinearBase {
 
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
     const double dt = step.dt_s;
-    const auto kn = c.column[kNormalStiffness];
-    const auto ks = c.column[kShearStiffness];
-    const auto fs = c.column[kShearForce];
-    const auto strength_n = c.column[kNormalStrength];
-    const auto strength_s = c.column[kShearStrength];
-    const auto installed_overlap = c.column[kReferenceOverlap];
     for_disk_pairs(
         c, b, step,
         [&](std::size_t k, const Geometry& g) {
           if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
+          double* const s = c.column.row(k);
           PairForce f;
-          f.fn = kn[k] * (g.overlap - installed_overlap[k]);  // negative in tension
-          fs[k] -= ks[k] * g.vs * dt;
-          f.fs = fs[k];
-          const bool tension = -f.fn >= strength_n[k];
+          f.fn = s[kNormalStiffness] * (g.overlap - s[kReferenceOverlap]);  // negative in tension
+          s[kShearForce] -= s[kShearStiffness] * g.vs * dt;
+          f.fs = s[kShearForce];
+          const bool tension = -f.fn >= s[kNormalStrength];
           if (tension) {
             break_bond(c, k, g, b, step, BreakMode::Tension);
             release(c, k);
             return PairForce{};
           }
-          if (std::abs(f.fs) >= strength_s[k]) {
+          if (std::abs(f.fs) >= s[kShearStrength]) {
             break_bond(c, k, g, b, step, BreakMode::Shear);
             if (f.fn <= 0) {  // a bond that held the pair in tension: nothing is left to press it
               release(c, k);

@@ -12,7 +12,6 @@
 // Disk-disk pairs: j is a disk index. Disk-wall pairs live in a second set
 // where j is a wall index. A pair in the list is not necessarily touching:
 // its model decides from the overlap each step.
-#include <array>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
