@@ -291,12 +291,12 @@ TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) 
   EXPECT_EQ(result.reason.rfind("unstable: the kinetic energy (", 0), 0u) << result.reason;
 }
 
-TEST(UcsScene, ABrittleSpecimenThatBurstsAfterItsPeakIsAResultNotAFailure) {
+TEST(UcsScene, ABrittleSpecimenThatBurstsIsAResultNotAFailure) {
   // When the bonds fail, the stored strain energy throws disks off at tens of
   // m/s, as in a laboratory burst. At a platen speed of 0.01 m/s that passes
   // the 1000 x platen speed check (10 m/s) on this specimen (seed 2); the
-  // kinetic energy stays below the work the platens did, so past the peak it
-  // ends the test with the peak values.
+  // kinetic energy stays below the work the platens did, so the test goes on
+  // and ends the ordinary way, with the peak values.
   std::ifstream file(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_rock_cb_small.json");
   nlohmann::json json = nlohmann::json::parse(file);
   json["loading"]["platen_velocity_m_s"] = 0.01;
@@ -305,16 +305,40 @@ TEST(UcsScene, ABrittleSpecimenThatBurstsAfterItsPeakIsAResultNotAFailure) {
   options.seed = 2;
   TestResult r = run_ucs(scene, scene.resolve({}), options);
   ASSERT_TRUE(r.ok) << r.reason;
-  EXPECT_EQ(r.ended_by.rfind("burst after the peak (a disk moves faster than 1000 x the platen speed", 0), 0u) << r.ended_by;
+  EXPECT_EQ(r.ended_by, "stress below stop_fraction_of_peak");
   double peak = 0;
   for (const CurvePoint& p : r.curve) peak = std::max(peak, p.stress_pa);
   EXPECT_DOUBLE_EQ(r.macro.at("sigma_u_MPa"), peak / 1e6);
-  EXPECT_LT(r.curve.back().stress_pa, peak);
   EXPECT_GT(r.macro.at("E_GPa"), 1.0);
 
-  // At the scene's own 0.05 m/s (a 50 m/s check) the same specimen ends the ordinary way.
+  // At the scene's own 0.05 m/s (a 50 m/s check) the same specimen ends the same way.
   Scene fast = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_rock_cb_small.json");
   TestResult normal = run_ucs(fast, fast.resolve({}), options);
   ASSERT_TRUE(normal.ok) << normal.reason;
   EXPECT_EQ(normal.ended_by, "stress below stop_fraction_of_peak");
+}
+
+TEST(UcsScene, OneBondBreakingBeforeThePeakDoesNotEndTheTest) {
+  // At slow platens the 1000 x platen speed check is a few m/s, and one
+  // contact bond breaking in tension throws an edge disk faster than that
+  // (F / sqrt(k m), about 15 m/s on this sandstone). Seed 10 at 0.01 m/s does
+  // so at an axial strain of 0.0069, 10 % below its peak: the old monitor
+  // took it for the specimen's burst and reported 100.3 MPa. The specimen's
+  // peak comes later: 111.4 MPa at 0.01 m/s, 111.6 at 0.05 m/s, where the
+  // check is 50 m/s and never fires before the peak.
+  std::ifstream file(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_rock_cb_small.json");
+  nlohmann::json json = nlohmann::json::parse(file);
+  json["loading"]["platen_velocity_m_s"] = 0.01;
+  Scene slow = Scene::from_json(json, "ucs_rock_cb_small.json");
+  Scene fast = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_rock_cb_small.json");
+  RunOptions options;
+  options.seed = 10;
+  const TestResult s = run_ucs(slow, slow.resolve({}), options);
+  const TestResult f = run_ucs(fast, fast.resolve({}), options);
+  ASSERT_TRUE(s.ok) << s.reason;
+  ASSERT_TRUE(f.ok) << f.reason;
+  EXPECT_EQ(s.ended_by, "stress below stop_fraction_of_peak");
+  // Within the loading rate's effect (a few per cent), not 10 % short of it.
+  EXPECT_NEAR(s.macro.at("sigma_u_MPa") / f.macro.at("sigma_u_MPa"), 1.0, 0.03);
+  EXPECT_NEAR(s.macro.at("peak_strain") / f.macro.at("peak_strain"), 1.0, 0.05);
 }

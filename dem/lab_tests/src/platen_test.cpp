@@ -214,12 +214,17 @@ bool LoadingMonitor::record(const World& world, const CurvePoint& point, TestRes
   }
   const std::string unstable = instability(world, loading_.platen_velocity_m_s);
   if (!unstable.empty()) {
-    // A strong brittle specimen bursts when it fails: its stored strain energy
-    // throws disks off faster than 1000 x the platen speed (tens of m/s, as in
-    // the laboratory, and sqrt(k) times faster when every stiffness and
-    // strength is k times larger). That ends the test, not the run: the macro
-    // values come from the curve up to here. Energy the platens never put in
-    // is a numerical instability, and anything else stays a failure too.
+    // Bonds breaking throw disks off faster than 1000 x the platen speed: a
+    // brittle specimen's burst at failure (tens of m/s, as in the laboratory,
+    // and sqrt(k) times faster when every stiffness and strength is k times
+    // larger), but at slow platens also one bond's break before the peak (a
+    // contact bond's spring energy F^2 / 2k can throw an edge disk at
+    // F / sqrt(k m), about 15 m/s on the sandstone: docs/fidelity.md). Neither
+    // ends the test: it goes on to its own end (the stress falling past the
+    // peak, the strain limit), so the peak is the specimen's. Energy the
+    // platens never put in is a numerical instability, and fast disks with no
+    // bond breaking, like everything else here, stay a failure.
+    bool burst = false;
     if (unstable.find("faster than") != std::string::npos) {
       const double kinetic_j = world.kinetic_energy();
       if (kinetic_j > work_j_) {
@@ -229,16 +234,12 @@ bool LoadingMonitor::record(const World& world, const CurvePoint& point, TestRes
       }
       // Bonds breaking now: within the last three recorded points.
       const std::size_t n = result.curve.size();
-      const bool breaking = n >= 10 && point.cracks > result.curve[n - 4].cracks;
-      if (breaking) {
-        result.ok = true;
-        result.ended_by = std::string(result.curve.size() > peak_index_ + 2 ? "burst after the peak" : "burst at the peak") +
-                          " (" + unstable.substr(unstable.find(": ") + 2) + " at " + where + ")";
-        return false;
-      }
+      burst = n >= 10 && point.cracks > result.curve[n - 4].cracks;
     }
-    result.reason = unstable + " at " + where;
-    return false;
+    if (!burst) {
+      result.reason = unstable + " at " + where;
+      return false;
+    }
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (elapsed > loading_.max_wall_s) {

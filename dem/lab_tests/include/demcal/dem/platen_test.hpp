@@ -69,12 +69,13 @@ void snapshot(const World& world, const RunOptions& options, std::size_t points,
 // of the peak a few points later, so an elastic dip does not count), at the
 // strain limit, on instability or on timeout. Draws the progress line.
 //
-// A disk faster than 1000 x the platen speed is either a brittle burst (the
-// stored strain energy turning into motion as bonds break, at or after the
+// A disk faster than 1000 x the platen speed is either bonds breaking (a
+// brittle burst at failure, or at slow platens one bond's break before the
 // peak) or a numerical instability (energy out of nothing). The energy budget
 // tells them apart: the kinetic energy can never exceed the work the platens
-// have done, so it is a burst when bonds are breaking (within the last three
-// recorded points) and it does not, and the peak so far is the result. `work_m3` turns the curve into that work: the
+// have done, so with bonds breaking (within the last three recorded points)
+// and less energy than that the test goes on to its own end; otherwise the run
+// fails. `work_m3` turns the curve into that work: the
 // platen force times its approach is stress x strain x work_m3. (A
 // specimen.locked_in_stress_pa adds energy the platens did not put in; a
 // large one may make a burst look like an instability.)

@@ -22,7 +22,7 @@ struct CurvePoint {
 struct TestResult {
   bool ok = false;
   std::string reason;          // why it failed
-  std::string ended_by;        // why a successful test stopped (post-peak fraction, strain limit, burst)
+  std::string ended_by;        // why a successful test stopped (post-peak fraction, strain limit)
   std::map<std::string, double> macro;  // sigma_u_MPa, E_GPa, E50_GPa, nu, peak_strain, cracks_*
   std::map<std::string, double> extra_outputs;  // an external command's numbers beyond its declared outputs
   std::vector<CurvePoint> curve;
