@@ -291,6 +291,46 @@ TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) 
   EXPECT_EQ(result.reason.rfind("unstable: the kinetic energy (", 0), 0u) << result.reason;
 }
 
+TEST(LoadingMonitor, AFastDiskWithBondsBreakingGoesOnButOneThatLeftTheDomainFails) {
+  // The platens did work (a loaded curve), bonds are breaking and one disk
+  // moves at 30 m/s (1000 x the platen speed is 20 m/s) with less energy than
+  // that work: the test goes on. The same disk beyond the platens' ends has
+  // left the domain, which fails the run whatever its speed.
+  World world;
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                        "linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}}, "test")));
+  world.assign(0, 1, 0);
+  for (int i = 0; i < 4; ++i) world.bodies.add_disk(0.003 * i, 0.01, 1e-3, 2000, 1, 0);
+  Wall bottom, top;
+  bottom.x0 = top.x0 = -1;
+  bottom.x1 = top.x1 = 1;
+  top.y0 = top.y1 = 0.02;
+  bottom.group = top.group = 1;
+  world.walls = {bottom, top};
+  LoadingSpec loading;
+  RunOptions options;
+  LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
+  TestResult result;
+  for (int k = 0; k < 10; ++k) {
+    CurvePoint point;
+    point.axial_strain = 1e-3 * k;
+    point.stress_pa = 1e7 * k;
+    ASSERT_TRUE(monitor.record(world, point, result, "test"));
+  }
+  world.bodies.vx[1] = 30;  // 0.5 x 6.3e-3 kg x 900 = 2.8 J, against 500 J of platen work
+  CurvePoint point;
+  point.axial_strain = 1e-2;
+  point.stress_pa = 1e8;
+  point.cracks = 1;
+  EXPECT_TRUE(monitor.record(world, point, result, "strain 1e-2")) << result.reason;
+  world.bodies.x[1] = 1.5;
+  point.axial_strain = 1.1e-2;
+  point.cracks = 2;
+  EXPECT_FALSE(monitor.record(world, point, result, "strain 1.1e-2"));
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.reason.rfind("unstable: a disk left the domain sideways", 0), 0u) << result.reason;
+}
+
 TEST(UcsScene, ABrittleSpecimenThatBurstsIsAResultNotAFailure) {
   // When the bonds fail, the stored strain energy throws disks off at tens of
   // m/s, as in a laboratory burst. At a platen speed of 0.01 m/s that passes
