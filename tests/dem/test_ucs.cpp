@@ -258,11 +258,8 @@ TEST(BrazilianScene, SmallDiscSplitsAtAPlausibleTensileStrength) {
   EXPECT_GT(strong.macro.at("sigma_t_MPa"), 1.3 * r.macro.at("sigma_t_MPa"));
 }
 
-TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) {
-  // Disks between two platens, still and unloaded for ten points, then one
-  // thrown at 100 m/s (1000 x the platen speed is 20 m/s): no work was done,
-  // so its energy came from nowhere, and the run fails as unstable.
-  World world;
+// Four disks in a row between two platens 20 mm apart that span x in [-1, 1] m.
+static void four_disks_between_platens(World& world) {
   world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
                         "linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}}, "test")));
   world.assign(0, 1, 0);
@@ -273,6 +270,14 @@ TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) 
   top.y0 = top.y1 = 0.02;
   bottom.group = top.group = 1;
   world.walls = {bottom, top};
+}
+
+TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) {
+  // Disks between two platens, still and unloaded for ten points, then one
+  // thrown at 100 m/s (1000 x the platen speed is 20 m/s): no work was done,
+  // so its energy came from nowhere, and the run fails as unstable.
+  World world;
+  four_disks_between_platens(world);
   LoadingSpec loading;
   RunOptions options;
   LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
@@ -297,16 +302,7 @@ TEST(LoadingMonitor, AFastDiskWithBondsBreakingGoesOnButOneThatLeftTheDomainFail
   // that work: the test goes on. The same disk beyond the platens' ends has
   // left the domain, which fails the run whatever its speed.
   World world;
-  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
-                        "linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}}, "test")));
-  world.assign(0, 1, 0);
-  for (int i = 0; i < 4; ++i) world.bodies.add_disk(0.003 * i, 0.01, 1e-3, 2000, 1, 0);
-  Wall bottom, top;
-  bottom.x0 = top.x0 = -1;
-  bottom.x1 = top.x1 = 1;
-  top.y0 = top.y1 = 0.02;
-  bottom.group = top.group = 1;
-  world.walls = {bottom, top};
+  four_disks_between_platens(world);
   LoadingSpec loading;
   RunOptions options;
   LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
