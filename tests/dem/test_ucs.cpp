@@ -105,6 +105,22 @@ TEST(LateralStrainFit, RecoversAnAffineStrainAndIgnoresATranslation) {
   EXPECT_THROW(LateralStrainFit(std::vector<double>{1.0, 1.0}, {0, 1}), demcal::Error);
 }
 
+TEST(NuGauge, FitsTheDisksOfTheMiddleThreeFifthsOfTheHeight) {
+  // Disk centres every 5 mm up a 100 mm specimen whose bottom platen is at
+  // y = -2 mm: the band [20, 80] mm above it holds those at 23, 28, ..., 78 mm.
+  const double height_m = 0.1, bottom_m = kNuGaugeBottomFraction * height_m, top_m = kNuGaugeTopFraction * height_m;
+  std::vector<double> y;
+  for (int k = 0; k <= 20; ++k) y.push_back(-2e-3 + 1e-3 * (5 * k - 2));
+  std::vector<std::size_t> expected;
+  for (std::size_t k = 5; k <= 16; ++k) expected.push_back(k);
+  EXPECT_EQ(disks_in_band(y, -2e-3, bottom_m, top_m), expected);
+  // Centres on the band's ends count.
+  EXPECT_EQ(disks_in_band({bottom_m, top_m, 0.5 * bottom_m, 1.01 * top_m}, 0.0, bottom_m, top_m),
+            (std::vector<std::size_t>{0, 1}));
+  EXPECT_DOUBLE_EQ(kNuGaugeTopFraction - kNuGaugeBottomFraction, 0.6);
+  EXPECT_DOUBLE_EQ(kNuGaugeBottomFraction, 1.0 - kNuGaugeTopFraction);  // symmetric about mid-height
+}
+
 TEST(UcsScene, SmallBondedSpecimenGivesPlausibleMacroValues) {
   Scene scene = Scene::load(scene_path());
   RunOptions options;

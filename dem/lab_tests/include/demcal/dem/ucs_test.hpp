@@ -23,6 +23,19 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
 std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve,
                                                const std::vector<double>* tangent_lateral_strain = nullptr);
 
+// The band of the height whose disks nu's tangent fits, as fractions of the
+// height above the bottom platen: the middle three fifths. Over E's short
+// window the fit to the middle third scattered 1.4-1.5x more from seed to seed
+// (docs/calibration.md, "Which disks measure nu"); a fifth of the height is
+// left out at each platen, whose frictionless contacts let the end layers
+// spread more.
+inline constexpr double kNuGaugeBottomFraction = 0.2;
+inline constexpr double kNuGaugeTopFraction = 0.8;
+
+// The disks whose centres lie between bottom_m and top_m (inclusive), measured
+// from y0_m: a gauge band of the specimen.
+std::vector<std::size_t> disks_in_band(const std::vector<double>& y, double y0_m, double bottom_m, double top_m);
+
 // The lateral strain of a set of disks as the least-squares slope of their
 // x-displacement on their initial x: the strain a measurement region fits
 // (as PFC's measure logic fits a strain rate to the balls in a circle). Every
