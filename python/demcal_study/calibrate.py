@@ -79,6 +79,13 @@ def trimmed_mean(rows, cut_fraction):
     return rows[cut:len(rows) - cut].mean(axis=0)
 
 
+def disk_factor_for(half_width_pct, tolerance):
+    """How many times its disks a specimen would need for a 95 % half-width of half_width_pct (on as many seeds) to
+    come down to the tolerance: a specimen's scatter falls about as one over the square root of its disks
+    (docs/calibration.md, "Which disks measure nu": twice the disks took nu's CV from 11.6 to 8.2 %)."""
+    return (half_width_pct / (100 * tolerance)) ** 2
+
+
 def secant_update(jacobian, earlier, later):
     """Broyden's rank-one update of the residuals' Jacobian from two measured points (centre, residuals): along
     the step between them it takes the measured change, across it the Jacobian stays as it was."""
@@ -572,9 +579,13 @@ class Calibration:
             if v["passed"] and used >= most:
                 wide = [o for o, r in rows.items() if r["half_width_pct"] is None
                         or r["half_width_pct"] > 100 * self.tolerance]
+                widths = [rows[o]["half_width_pct"] for o in wide if rows[o]["half_width_pct"] is not None]
+                larger = (f"a specimen with about {disk_factor_for(max(widths), self.tolerance):.1f}x the disks "
+                          "would scatter little enough" if len(widths) == len(wide) else "a larger specimen "
+                          "scatters less")
                 return self.finish("noisy", f"the means are within the tolerance but {', '.join(wide)} scatter too "
-                                   f"much for a {100 * self.tolerance:g} % half-width in {used} seeds: a larger "
-                                   "specimen scatters less", EXIT_BUDGET, point=point, verification=v)
+                                   f"much for a {100 * self.tolerance:g} % half-width in {used} seeds: {larger}",
+                                   EXIT_BUDGET, point=point, verification=v)
             # The specimens against specimen 1's model: an offset per response over every verified specimen, and
             # their scatter, which the prediction interval of one specimen must include. The offset is a trimmed
             # mean: one far seed (nu 2.5x the median at a dilatant point) would otherwise move the next point by

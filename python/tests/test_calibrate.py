@@ -524,3 +524,22 @@ def test_the_secant_update_takes_the_measured_change_along_the_step_and_keeps_th
     # No step, or residual vectors of another length (the bounded scale term came on): as it was.
     np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c1, r2)), jac)
     np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c2, np.append(r2, 0.0))), jac)
+
+
+def test_a_mean_met_with_an_interval_too_wide_is_noisy_and_says_how_many_disks_would_do(fake, tmp_path, bin_dir,
+                                                                                        monkeypatch):
+    # nu scatters 12 % from specimen to specimen, the stress outputs 2 %: 20 seeds leave nu's half-width above 5 %.
+    def noisy_nu(seed):
+        g = np.random.default_rng(1000 + seed).normal(size=3)
+        return 1 + np.array([0.02, 0.02, 0.12]) * g
+
+    monkeypatch.setattr(sys.modules[__name__], "specimen", noisy_nu)
+    code, solution, out = run_calibration(tmp_path, bin_dir, {"E_GPa": 10.0, "sigma_u_MPa": 60.0, "nu": 0.2},
+                                          budget=80)
+    assert solution["status"] == "noisy" and code == calibrate.EXIT_BUDGET, solution["why"]
+    with open(os.path.join(out, "verification.json")) as f:
+        final = json.load(f)["outputs"]["nu"]
+    assert final["half_width_pct"] > 5
+    factor = calibrate.disk_factor_for(final["half_width_pct"], 0.05)
+    assert f"about {factor:.1f}x the disks" in solution["why"]
+    assert calibrate.disk_factor_for(10.0, 0.05) == pytest.approx(4.0)  # twice the half-width, four times the disks
