@@ -79,11 +79,14 @@ def trimmed_mean(rows, cut_fraction):
     return rows[cut:len(rows) - cut].mean(axis=0)
 
 
-def disk_factor_for(half_width_pct, tolerance):
-    """How many times its disks a specimen would need for a 95 % half-width of half_width_pct (on as many seeds) to
-    come down to the tolerance: a specimen's scatter falls about as one over the square root of its disks
-    (docs/calibration.md, "Which disks measure nu": twice the disks took nu's CV from 11.6 to 8.2 %)."""
-    return (half_width_pct / (100 * tolerance)) ** 2
+def disk_factor_for(half_width_pct, tolerance, seeds, on_seeds):
+    """How many times its disks a specimen would need for a 95 % half-width of half_width_pct, measured on `seeds`
+    seeds, to come down to the tolerance on `on_seeds` seeds: a specimen's scatter falls about as one over the square
+    root of its disks (docs/calibration.md, "Which disks measure nu": twice the disks took nu's CV from 11.6 to
+    8.2 %), and a half-width is t(0.975, n - 1) times the scatter over sqrt(n)."""
+    per_seed = half_width_pct * math.sqrt(seeds) / trust_region.t975(seeds - 1)
+    on = per_seed * trust_region.t975(on_seeds - 1) / math.sqrt(on_seeds)
+    return (on / (100 * tolerance)) ** 2
 
 
 def secant_update(jacobian, earlier, later):
@@ -580,9 +583,12 @@ class Calibration:
                 wide = [o for o, r in rows.items() if r["half_width_pct"] is None
                         or r["half_width_pct"] > 100 * self.tolerance]
                 widths = [rows[o]["half_width_pct"] for o in wide if rows[o]["half_width_pct"] is not None]
-                larger = (f"a specimen with about {disk_factor_for(max(widths), self.tolerance):.1f}x the disks "
-                          "would scatter little enough" if len(widths) == len(wide) else "a larger specimen "
-                          "scatters less")
+                larger = "a larger specimen scatters less"
+                if widths and len(widths) == len(wide) and used >= 2:
+                    factor = disk_factor_for(max(widths), self.tolerance, used, MAX_VERIFICATION_SEEDS)
+                    larger = (f"{MAX_VERIFICATION_SEEDS} seeds, more than the budget left, would do" if factor <= 1
+                              else f"on {MAX_VERIFICATION_SEEDS} seeds a specimen with about {factor:.1f}x the disks "
+                              "would scatter little enough")
                 return self.finish("noisy", f"the means are within the tolerance but {', '.join(wide)} scatter too "
                                    f"much for a {100 * self.tolerance:g} % half-width in {used} seeds: {larger}",
                                    EXIT_BUDGET, point=point, verification=v)

@@ -540,6 +540,9 @@ def test_a_mean_met_with_an_interval_too_wide_is_noisy_and_says_how_many_disks_w
     with open(os.path.join(out, "verification.json")) as f:
         final = json.load(f)["outputs"]["nu"]
     assert final["half_width_pct"] > 5
-    factor = calibrate.disk_factor_for(final["half_width_pct"], 0.05)
-    assert f"about {factor:.1f}x the disks" in solution["why"]
-    assert calibrate.disk_factor_for(10.0, 0.05) == pytest.approx(4.0)  # twice the half-width, four times the disks
+    factor = calibrate.disk_factor_for(final["half_width_pct"], 0.05, 20, 20)
+    assert f"on 20 seeds a specimen with about {factor:.1f}x the disks" in solution["why"]
+    assert calibrate.disk_factor_for(10.0, 0.05, 20, 20) == pytest.approx(4.0)  # twice the half-width, 4x the disks
+    # 8.5 % on the 11 seeds a budget left is a 12.65 % scatter per seed: 5.92 % on 20 seeds, so 1.40x the disks.
+    assert calibrate.disk_factor_for(8.5, 0.05, 11, 20) == pytest.approx((8.5 * math.sqrt(11) / 2.228 * 2.093
+                                                                           / math.sqrt(20) / 5) ** 2, rel=2e-3)
