@@ -100,15 +100,10 @@ TEST(BiaxialTest, BondedHexagonalLatticeUnderConfinementGivesTheLatticeModuli) {
     // Walls 25 x stiffer than the bonds, so their contacts add little compliance.
     world.assign(0, kPlatenGroup, world.add_model(ContactModelRegistry::instance().create(
                                       "linear", {{"modulus_pa", 50e9}, {"kn_ks", 1.0}, {"friction", 0.0}}, "test")));
-    const double spacing = 2 * r + gap, row_height = spacing * std::sqrt(3.0) / 2;
-    double x_min = 1e9, x_max = -1e9;
-    for (int row = 0; row < rows; ++row)
-      for (int col = 0; col < columns; ++col) {
-        const double x = col * spacing + (row % 2 ? 0.5 * spacing : 0.0);
-        world.bodies.add_disk(x, row * row_height, r, 2650, 1, 0);
-        x_min = std::min(x_min, x - r);
-        x_max = std::max(x_max, x + r);
-      }
+    const double row_height = (2 * r + gap) * std::sqrt(3.0) / 2;
+    demcal::dem::testing::add_hexagonal_lattice(world.bodies, columns, rows, r, gap, 2650);
+    const double x_min = *std::min_element(world.bodies.x.begin(), world.bodies.x.end()) - r;
+    const double x_max = *std::max_element(world.bodies.x.begin(), world.bodies.x.end()) + r;
     world.install_bonds(2 * gap, 1);
     const double bottom = -r, top = (rows - 1) * row_height + r, H = top - bottom, W = x_max - x_min;
     auto wall = [&](double x0, double y0, double x1, double y1, double nx, double ny) {
@@ -127,7 +122,8 @@ TEST(BiaxialTest, BondedHexagonalLatticeUnderConfinementGivesTheLatticeModuli) {
     ASSERT_TRUE(result.ok) << result.reason;
     EXPECT_EQ(result.ended_by, "strain_limit");
     const double kn = bond_modulus * 1.0, ks = kn / ratio;
-    const double E = 2 * std::sqrt(3.0) * kn * (kn + ks) / ((3 * kn + ks) * 1.0), nu = (kn - ks) / (3 * kn + ks);
+    const double E = demcal::dem::testing::hexagonal_lattice_modulus_pa(kn, ks, 1.0);
+    const double nu = demcal::dem::testing::hexagonal_lattice_poisson(kn, ks);
     EXPECT_NEAR(result.macro.at("E_GPa") * 1e9, E, 0.03 * E) << "sigma_3 " << sigma_3;
     EXPECT_NEAR(result.macro.at("nu"), nu, 0.05 * nu) << "sigma_3 " << sigma_3;
     // The side walls hold the confinement within 2 % over the whole loading.

@@ -1,7 +1,7 @@
 // A regular hexagonal packing of equal disks joined by bonds is an isotropic
-// elastic sheet with (per thickness t, from the lattice energy)
-//   E  = 2 sqrt(3) kn (kn + ks) / ((3 kn + ks) t),   nu = (kn - ks) / (3 kn + ks).
-// A block under small uniaxial strain must reproduce both within 2 %.
+// elastic sheet (bonded_bodies.hpp: E = 2 sqrt(3) kn (kn + ks) / ((3 kn + ks) t),
+// nu = (kn - ks) / (3 kn + ks)). A block under small uniaxial strain must
+// reproduce both within 2 %.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,14 +21,12 @@ TEST(HexagonalLattice, UniaxialStrainGivesTheLatticeModuli) {
   World world(settings);
   world.assign(0, 0, world.add_model(demcal::dem::testing::unbreakable_parallel_bond(1e9, 2.0, bond_modulus, ratio)));
   const double spacing = 2 * r + gap;
+  const std::vector<std::size_t> ids = demcal::dem::testing::add_hexagonal_lattice(world.bodies, columns, rows, r, gap, 2650);
   std::vector<std::size_t> left, right;
-  for (int row = 0; row < rows; ++row)
-    for (int col = 0; col < columns; ++col) {
-      double x = col * spacing + (row % 2 ? 0.5 * spacing : 0.0);
-      std::size_t id = world.bodies.add_disk(x, row * spacing * std::sqrt(3.0) / 2, r, 2650, 1, 0);
-      if (col == 0) left.push_back(id);
-      if (col == columns - 1) right.push_back(id);
-    }
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    if (k % columns == 0) left.push_back(ids[k]);
+    if (k % columns == columns - 1) right.push_back(ids[k]);
+  }
   world.install_bonds(2 * gap, 1);
   // Bond springs (no linear contact: the disks never touch): kn = kn_b A = E_b t.
   const double kn = bond_modulus * 1.0, ks = kn / ratio;
@@ -85,8 +83,8 @@ TEST(HexagonalLattice, UniaxialStrainGivesTheLatticeModuli) {
   const double stress = -axial_force / (rows * spacing * std::sqrt(3.0) / 2 * 1.0);
   const double E = stress / exx;
   const double nu = -eyy / exx;
-  const double E_expected = 2 * std::sqrt(3.0) * kn * (kn + ks) / ((3 * kn + ks) * 1.0);
-  const double nu_expected = (kn - ks) / (3 * kn + ks);
+  const double E_expected = demcal::dem::testing::hexagonal_lattice_modulus_pa(kn, ks, 1.0);
+  const double nu_expected = demcal::dem::testing::hexagonal_lattice_poisson(kn, ks);
   EXPECT_NEAR(E, E_expected, 0.02 * E_expected);
   EXPECT_NEAR(nu, nu_expected, 0.02 * nu_expected);
   EXPECT_NEAR(exx, strain, 0.05 * std::abs(strain));

@@ -75,21 +75,18 @@ TEST(WaveStrip, ABondedLatticeStripCarriesAPulseAtTheBarSpeed) {
   world.assign(0, 0, world.add_model(demcal::dem::testing::unbreakable_parallel_bond(1e9, 2.0, bond_modulus, ratio)));
   const double spacing = 2 * r + gap;
   auto boundary = std::make_unique<BoundaryForces>();
-  for (int row = 0; row < rows; ++row)
-    for (int col = 0; col < columns; ++col) {
-      const std::size_t id = world.bodies.add_disk(col * spacing + (row % 2 ? 0.5 * spacing : 0.0),
-                                                   row * spacing * std::sqrt(3.0) / 2, r, density, 1, 0);
-      if (col == 0) {  // the input side, a dashpot of about the strip's impedance per disk
-        BoundaryDisk d;
-        d.disk = id;
-        d.outward_nx = -1;
-        d.input = true;
-        boundary->add_disk(d);
-      }
-    }
+  const std::vector<std::size_t> ids =
+      demcal::dem::testing::add_hexagonal_lattice(world.bodies, columns, rows, r, gap, density);
+  for (std::size_t k = 0; k < ids.size(); k += columns) {  // the input side, a dashpot of about the strip's impedance per disk
+    BoundaryDisk d;
+    d.disk = ids[k];
+    d.outward_nx = -1;
+    d.input = true;
+    boundary->add_disk(d);
+  }
   world.install_bonds(2 * gap, 1);
   const double kn = bond_modulus, ks = kn / ratio;
-  const double e = 2 * std::sqrt(3.0) * kn * (kn + ks) / (3 * kn + ks);
+  const double e = demcal::dem::testing::hexagonal_lattice_modulus_pa(kn, ks, 1.0);
   const double rho = density * M_PI * r * r / (std::sqrt(3.0) / 2 * spacing * spacing);
   const double bar_speed = std::sqrt(e / rho);
   // Each input disk's share of the strip's impedance (its row's height).
