@@ -6,7 +6,7 @@ Reads the curves a batch stored (runs.h5: points/NAME/curve_axial_strain, curve_
 and prints, per file, the mean and seed CV of E and nu as least-squares slopes over windows around the half-peak
 point (a twentieth of the points to the peak on each side, the DEM's window until 2026-12-04; a tenth, its window
 since; a fifth; and the 30-70 % stretch of the peak stress) and as secants at half the peak. The curves keep the edge gauges' lateral
-strain, not the fit over the middle third that the DEM's own tangent nu uses, so nu's tangent rows here are those
+strain, not the fit over the middle three fifths of the height that the DEM's own tangent nu uses, so nu's tangent rows here are those
 of the edge gauges.
 
     /usr/bin/python3 scripts/slope_scatter.py build/calibration_benchmark/issue13_sandstone/verify/v01/runs/runs.h5
