@@ -288,6 +288,18 @@ static void four_disks_between_platens(World& world) {
   world.walls = {bottom, top};
 }
 
+// Ten points of a curve that rises by these steps from zero, each of which
+// must keep the test going.
+static void record_ten_points(LoadingMonitor& monitor, const World& world, TestResult& result, double strain_step,
+                       double stress_step_pa) {
+  for (int k = 0; k < 10; ++k) {
+    CurvePoint point;
+    point.axial_strain = strain_step * k;
+    point.stress_pa = stress_step_pa * k;
+    ASSERT_TRUE(monitor.record(world, point, result, "test"));
+  }
+}
+
 TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) {
   // Disks between two platens, still and unloaded for ten points, then one
   // thrown at 100 m/s (1000 x the platen speed is 20 m/s): no work was done,
@@ -298,11 +310,7 @@ TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) 
   RunOptions options;
   LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
   TestResult result;
-  for (int k = 0; k < 10; ++k) {
-    CurvePoint point;
-    point.axial_strain = 1e-5 * k;
-    ASSERT_TRUE(monitor.record(world, point, result, "test"));
-  }
+  ASSERT_NO_FATAL_FAILURE(record_ten_points(monitor, world, result, 1e-5, 0.0));
   world.bodies.vx[1] = 100;
   CurvePoint point;
   point.axial_strain = 1e-4;
@@ -323,12 +331,7 @@ TEST(LoadingMonitor, AFastDiskWithBondsBreakingGoesOnButOneThatLeftTheDomainFail
   RunOptions options;
   LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
   TestResult result;
-  for (int k = 0; k < 10; ++k) {
-    CurvePoint point;
-    point.axial_strain = 1e-3 * k;
-    point.stress_pa = 1e7 * k;
-    ASSERT_TRUE(monitor.record(world, point, result, "test"));
-  }
+  ASSERT_NO_FATAL_FAILURE(record_ten_points(monitor, world, result, 1e-3, 1e7));
   world.bodies.vx[1] = 30;  // 0.5 x 6.3e-3 kg x 900 = 2.8 J, against 500 J of platen work
   CurvePoint point;
   point.axial_strain = 1e-2;
