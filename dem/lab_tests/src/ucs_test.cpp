@@ -130,9 +130,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   // Lateral strain from the outermost disks of the middle third of the height.
   double r_max = *std::max_element(specimen.radius.begin(), specimen.radius.end());
   std::vector<std::size_t> left, right;
-  for (std::size_t i = 0; i < specimen.size(); ++i) {
-    const double y = specimen.y[i] - world.walls[0].y0;
-    if (y < H0 / 3 || y > 2 * H0 / 3) continue;
+  for (std::size_t i : disks_in_band(specimen.y, world.walls[0].y0, H0 / 3, 2 * H0 / 3)) {
     if (specimen.x[i] - specimen.radius[i] < 2 * r_max) left.push_back(i);
     if (specimen.x[i] + specimen.radius[i] > W - 2 * r_max) right.push_back(i);
   }
