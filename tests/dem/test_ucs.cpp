@@ -300,16 +300,25 @@ static void record_ten_points(LoadingMonitor& monitor, const World& world, TestR
   }
 }
 
+// Four disks between platens and a loading monitor over them (which keeps
+// references to the loading and the options, declared first).
+struct MonitoredPlatens {
+  World world;
+  LoadingSpec loading;
+  RunOptions options;
+  LoadingMonitor monitor{loading, options, std::chrono::steady_clock::now(), 1e-3};
+  TestResult result;
+  MonitoredPlatens() { four_disks_between_platens(world); }
+};
+
 TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) {
   // Disks between two platens, still and unloaded for ten points, then one
   // thrown at 100 m/s (1000 x the platen speed is 20 m/s): no work was done,
   // so its energy came from nowhere, and the run fails as unstable.
-  World world;
-  four_disks_between_platens(world);
-  LoadingSpec loading;
-  RunOptions options;
-  LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
-  TestResult result;
+  MonitoredPlatens m;
+  World& world = m.world;
+  LoadingMonitor& monitor = m.monitor;
+  TestResult& result = m.result;
   ASSERT_NO_FATAL_FAILURE(record_ten_points(monitor, world, result, 1e-5, 0.0));
   world.bodies.vx[1] = 100;
   CurvePoint point;
@@ -325,12 +334,10 @@ TEST(LoadingMonitor, AFastDiskWithBondsBreakingGoesOnButOneThatLeftTheDomainFail
   // moves at 30 m/s (1000 x the platen speed is 20 m/s) with less energy than
   // that work: the test goes on. The same disk beyond the platens' ends has
   // left the domain, which fails the run whatever its speed.
-  World world;
-  four_disks_between_platens(world);
-  LoadingSpec loading;
-  RunOptions options;
-  LoadingMonitor monitor(loading, options, std::chrono::steady_clock::now(), 1e-3);
-  TestResult result;
+  MonitoredPlatens m;
+  World& world = m.world;
+  LoadingMonitor& monitor = m.monitor;
+  TestResult& result = m.result;
   ASSERT_NO_FATAL_FAILURE(record_ten_points(monitor, world, result, 1e-3, 1e7));
   world.bodies.vx[1] = 30;  // 0.5 x 6.3e-3 kg x 900 = 2.8 J, against 500 J of platen work
   CurvePoint point;
