@@ -291,7 +291,7 @@ static void four_disks_between_platens(World& world) {
 // Ten points of a curve that rises by these steps from zero, each of which
 // must keep the test going.
 static void record_ten_points(LoadingMonitor& monitor, const World& world, TestResult& result, double strain_step,
-                       double stress_step_pa) {
+                              double stress_step_pa) {
   for (int k = 0; k < 10; ++k) {
     CurvePoint point;
     point.axial_strain = strain_step * k;
