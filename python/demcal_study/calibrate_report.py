@@ -20,6 +20,19 @@ def _g(x):
     return "-" if x is None else f"{x:.4g}"
 
 
+def correction_text(correction):
+    """A correction's starting residuals and the change its step expects, in %; empty after the last verification."""
+    if not correction:
+        return ""
+
+    def listed(values):
+        return ", ".join(f"{n} {v:+.1f}" for n, v in values.items())
+    text = f"from {listed(correction['from_pct'])}: model {listed(correction['model_change_pct'])}"
+    if "secant_change_pct" in correction:
+        text += f"; secant {listed(correction['secant_change_pct'])}"
+    return text
+
+
 def final_runs_lines(runs_dir, out):
     """Each test's stress-strain curves over the final verification's runs, and the Mohr circles of a biaxial series
     among them (its mean peaks and envelope)."""
@@ -100,12 +113,14 @@ def report(out):
                      f"{r['runs']} |")
     if solution["verifications"]:
         lines += ["", "## Verifications on fresh seeds", "",
-                  "| verification | seeds | errors % (95 % half-width) | verdict | met | runs after |", "|---|---|---|---|---|---|"]
+                  "| verification | seeds | errors % (95 % half-width) | verdict | met | runs after | the correction after it "
+                  "expects (specimen 1's model; secant: measured between two verifications) |",
+                  "|---|---|---|---|---|---|---|"]
         for v in solution["verifications"]:
             e = ", ".join(f"{o} {pct(v['errors_pct'][o], '+.2f')} (+-{pct(v['half_width_pct'][o], '.2f')})"
                           for o in v["errors_pct"])
             lines.append(f"| {v['round']} | {v['first_seed']}-{v['first_seed'] + v['seeds'] - 1} | {e} | {v['verdict']} "
-                         f"| {'yes' if v['met'] else 'no'} | {v['runs']} |")
+                         f"| {'yes' if v['met'] else 'no'} | {v['runs']} | {correction_text(v.get('correction'))} |")
     if "x" in solution:
         lines += ["", "## Solution", "", f"Scale factor {solution['scale_factor']:.5g} (the bounds allow "
                   f"{solution['scale_interval'][0]:.4g} to {solution['scale_interval'][1]:.4g}).", "",
