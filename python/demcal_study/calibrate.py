@@ -802,8 +802,11 @@ def calibrate(args):
         os.makedirs(out, exist_ok=True)
         write_target(stored, json.dumps(config, indent=1) + "\n")
     started = time.time()
-    code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
-    record_wall_time(out, time.time() - started)
+    try:
+        code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
+    finally:
+        # An invocation stopped by an error or an interrupt spent its time too: the resumed calibration counts it.
+        record_wall_time(out, time.time() - started)
     report(out)
     return code
 
@@ -815,6 +818,8 @@ def record_wall_time(out, seconds):
     parts.append(round(seconds, 1))
     write_target(path, json.dumps(parts) + "\n")
     solution_path = os.path.join(out, "solution.json")
+    if not os.path.exists(solution_path):  # stopped before its first result: the next invocation states the sum
+        return
     solution = load_json(solution_path, "calibration solution")
     solution["wall_s_parts"] = parts
     solution["wall_s_total"] = sum(parts)

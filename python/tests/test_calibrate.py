@@ -526,6 +526,31 @@ def test_the_secant_update_takes_the_measured_change_along_the_step_and_keeps_th
     np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c2, np.append(r2, 0.0))), jac)
 
 
+def test_an_invocation_stopped_by_an_error_still_counts_its_wall_time(fake, tmp_path, bin_dir, monkeypatch):
+    import argparse
+    scene = tmp_path / "fake.json"
+    scene.write_text("{}")
+    args = argparse.Namespace(target=["E_GPa=6.5 sigma_u_MPa=48 nu=0.2"], fixed=None, tolerance=0.05, scene=str(scene),
+                              space=None, budget=60, name="cal", out_root=str(tmp_path), scale_parameter=None,
+                              check_resolution=None, check_test=None, strategy="trust-region", quiet=True)
+    working = calibrate_runs.run_points
+
+    def broken(*a, **k):
+        raise StudyError("demcal-dem batch: the machine went away")
+    monkeypatch.setattr(calibrate_runs, "run_points", broken)
+    with pytest.raises(StudyError, match="went away"):
+        calibrate.calibrate(args)
+    with open(tmp_path / "cal" / "wall_s.json") as f:
+        assert len(json.load(f)) == 1
+    assert not (tmp_path / "cal" / "solution.json").exists()
+    monkeypatch.setattr(calibrate_runs, "run_points", working)
+    assert calibrate.calibrate(args) == calibrate.EXIT_MET
+    with open(tmp_path / "cal" / "solution.json") as f:
+        solution = json.load(f)
+    assert len(solution["wall_s_parts"]) == 2
+    assert solution["wall_s_total"] == pytest.approx(sum(solution["wall_s_parts"]))
+
+
 def test_the_secant_update_keeps_only_the_part_of_a_mismatch_its_means_tell_from_their_noise():
     jac = np.array([[1.0, 0.0], [0.0, 2.0]])
     c1, c2 = np.array([0.0, 0.0]), np.array([0.5, 0.0])
