@@ -15,7 +15,6 @@ the three strategies meet on the same targets.
 import argparse
 import json
 import os
-import platform
 import subprocess
 import sys
 import time
@@ -25,6 +24,7 @@ sys.path.insert(0, os.path.join(REPO, "python"))
 
 from demcal_study.cost import study_cost  # noqa: E402
 from demcal_study.errors import StudyError, load_json  # noqa: E402
+from measured_on import commit, machine  # noqa: E402 (scripts/, the script's own folder)
 
 TARGETS = os.path.join(REPO, "data", "benchmarks", "calibration_targets.json")
 GLOBAL_TEMPLATE = os.path.join(REPO, "data", "studies", "rock_response_surface.json")
@@ -73,26 +73,6 @@ def run_global(entry, settings, build, jobs, out_root):
                           env=environment(build, jobs)).returncode
     if code != 0:
         print(f"calibration_benchmark: the global study on {entry['name']} stopped (exit {code})", file=sys.stderr)
-
-
-def machine():
-    model = "unknown CPU"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return f"{os.cpu_count()} cores, {model}, {platform.system()} {platform.release()}"
-
-
-def commit():
-    done = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO, capture_output=True, text=True)
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=REPO, capture_output=True,
-                           text=True).stdout.strip()
-    return (done.stdout.strip() or "unknown") + (" (with uncommitted changes)" if dirty else "")
 
 
 def calibration_table(entries, out_root, strategy):

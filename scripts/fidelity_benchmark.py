@@ -27,12 +27,13 @@ import csv
 import json
 import math
 import os
-import platform
 import shutil
 import statistics
 import subprocess
 import sys
 import time
+
+from measured_on import commit, machine
 
 REPO = os.path.dirname(os.path.abspath(__file__)).rsplit(os.sep, 1)[0]
 L64 = os.path.join(REPO, "data", "literature", "su2021_L64_orthogonal.csv")
@@ -105,23 +106,6 @@ def part_plan(part, bin_dir, quick=False):
         scene = CONCRETE if part == "reference" else CONCRETE_FINE
         return scene, [{"run": "1", **scene_parameters(scene, bin_dir)}], 5 if part == "reference" else 3
     return ROCK, [{"run": "1", **scene_parameters(ROCK, bin_dir)}], 5
-
-
-def commit():
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO, capture_output=True, text=True)
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=REPO, capture_output=True,
-                           text=True).stdout.strip()
-    return (head.stdout.strip() or "unknown") + ("+uncommitted" if dirty else "")
-
-
-def machine():
-    model = "unknown CPU"
-    try:
-        with open("/proc/cpuinfo") as f:
-            model = next((l.split(":", 1)[1].strip() for l in f if l.startswith("model name")), model)
-    except OSError:
-        pass
-    return f"{os.cpu_count()} cores, {model}, {platform.system()} {platform.release()}"
 
 
 def run_part(part, build, jobs, quick):

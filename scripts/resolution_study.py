@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Model no more than the test needs: macro values of the default parallel-bond
 UCS scene over 5 seeds against particle count and platen velocity, with the wall
-time of each run. Writes docs/resolution_study.md and .csv.
+time of each run. Writes docs/resolution_study.csv and the measured table of docs/resolution_study.md (between its
+marker lines; the prose around them stays).
 
     /usr/bin/python3 scripts/resolution_study.py [--build build] [--jobs 2]
 """
 import argparse, json, math, os, statistics, subprocess, sys, time
 
+from measured_on import commit, machine, write_block
 from seed_statistics import macro_mean_cv
 
 parser = argparse.ArgumentParser()
@@ -64,15 +66,15 @@ with open(args.out + ".csv", "w") as f:
     f.write(",".join(keys) + "\n")
     for row in rows:
         f.write(",".join(("%.6g" % row[k]) if isinstance(row[k], float) else str(row[k]) for k in keys) + "\n")
-with open(args.out + ".md", "w") as f:
-    f.write("# Resolution and loading-rate study (measured)\n\n")
-    f.write("Scene `data/scenes/ucs_rock_pb.json` at its default parameters, specimen H = 2 W scaled to the disk count, "
-            "%d seeds per case, `scripts/resolution_study.py`. Wall time per run: one run with its packed specimen "
-            "loaded from the cache; packing, once per seed, comes on top.\n\n" % args.seeds)
-    f.write("| disks | platen velocity (m/s) | sigma_u (MPa) | CV % | E (GPa) | CV % | nu | CV % | wall s/run | M particle-steps/s |\n")
-    f.write("|---|---|---|---|---|---|---|---|---|---|\n")
-    for r in rows:
-        f.write("| %.0f | %g | %.2f | %.1f | %.2f | %.1f | %.3f | %.1f | %.1f | %.1f |\n" % (
-            r["disks"], r["platen_velocity_m_s"], r["sigma_u_MPa_mean"], r["sigma_u_MPa_cv_pct"], r["E_GPa_mean"],
-            r["E_GPa_cv_pct"], r["nu_mean"], r["nu_cv_pct"], r["wall_s_per_run"], r["mps_per_s"]))
+lines = ["Scene `data/scenes/ucs_rock_pb.json` at its default parameters, specimen H = 2 W scaled to the disk count, "
+         "%d seeds per case, `/usr/bin/python3 scripts/resolution_study.py` (%s points at once, one thread each), "
+         "measured %s at commit %s on %s. Wall time per run: one run with its packed specimen loaded from the cache; "
+         "packing, once per seed, comes on top." % (args.seeds, args.jobs, time.strftime("%Y-%m-%d"), commit(), machine()),
+         "", "| disks | platen velocity (m/s) | sigma_u (MPa) | CV % | E (GPa) | CV % | nu | CV % | wall s/run | "
+         "M particle-steps/s |", "|---|---|---|---|---|---|---|---|---|---|"]
+for r in rows:
+    lines.append("| %.0f | %g | %.2f | %.1f | %.2f | %.1f | %.3f | %.1f | %.1f | %.1f |" % (
+        r["disks"], r["platen_velocity_m_s"], r["sigma_u_MPa_mean"], r["sigma_u_MPa_cv_pct"], r["E_GPa_mean"],
+        r["E_GPa_cv_pct"], r["nu_mean"], r["nu_cv_pct"], r["wall_s_per_run"], r["mps_per_s"]))
+write_block(args.out + ".md", "scripts/resolution_study.py", "\n".join(lines))
 print("wrote", args.out + ".md", file=sys.stderr)
