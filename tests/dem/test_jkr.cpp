@@ -26,8 +26,9 @@ nlohmann::json jkr(double work_of_adhesion_j_m2) {
 
 // Two fixed disks (no dashpot: fixed bodies have no moving mass) at centre
 // distance 2 r - overlap; the test moves disk 1 along x.
-World fixed_pair(double work_of_adhesion_j_m2, double overlap_m, double dt_s) {
+World fixed_pair(double work_of_adhesion_j_m2, double overlap_m, double dt_s, double skin_m = 0.0) {
   WorldSettings settings;
+  settings.skin_m = skin_m;
   settings.fixed_dt_s = dt_s;
   settings.damping = 0;
   World world(settings);
@@ -67,6 +68,41 @@ TEST(Jkr, PulledApartSlowlyItSticksUntilThePullOffForce) {
   EXPECT_NEAR(last_pull_gap, limit, 1.01 * speed * dt);
   EXPECT_GT(limit, 0.0);
   EXPECT_EQ(world.touching_pairs(), 0u);
+}
+
+// So strong an adhesion that the curve ends 0.39 R from touch, beyond the
+// default skin of 0.25 R: the list must keep the pair that far (the skin then
+// defaults to twice the model's largest delta_c). With the 0.25 R skin it left
+// the list at the first build past 0.25 R and let go there.
+TEST(Jkr, PulledPastAQuarterRadiusItStillHoldsUntilTheEndOfItsCurve) {
+  const double w = 1e4;
+  const double limit = separation_limit(w);
+  ASSERT_GT(limit, 0.3 * kRadius);
+  const double dt = 1e-6, steps_to_limit = 4000;
+  World world = fixed_pair(w, 2e-7, dt);
+  const double speed = (limit + 2e-7) / (steps_to_limit * dt);
+  double last_pull_gap = -1;
+  for (int s = 0; s < 1.5 * steps_to_limit; ++s) {
+    const double gap = (world.bodies.x[1] - world.bodies.x[0]) - 2 * kRadius;
+    demcal::dem::testing::imposed_step(world, speed, 0, 0);
+    if (world.bodies.fx[1] < 0) last_pull_gap = gap;
+  }
+  EXPECT_NEAR(last_pull_gap, limit, 1.01 * speed * dt);
+  EXPECT_GT(world.skin_m(), 2 * limit);  // 2 delta_c at R* = the disk's radius (a wall's pair)
+  EXPECT_GT(world.rebuilds(), 1u);
+}
+
+TEST(Jkr, ASkinSetBelowTheEndOfTheCurveIsRefused) {
+  const double w = 1e4;
+  World world = fixed_pair(w, 2e-7, 1e-6, 0.25 * kRadius);
+  const std::string message = demcal::test::error_of([&] { world.step(); });
+  EXPECT_NE(message.find("the neighbour-list skin (0.00025 m) does not exceed the largest gap a contact model's pairs "
+                         "pull across"),
+            std::string::npos)
+      << message;
+  // Ordinary adhesion fits the same skin.
+  World ordinary = fixed_pair(1.0, 2e-7, 1e-6, 0.25 * kRadius);
+  EXPECT_EQ(demcal::test::error_of([&] { ordinary.step(); }), "");
 }
 
 TEST(Jkr, ContactFormsOnlyOnTouchAndSnapsIn) {

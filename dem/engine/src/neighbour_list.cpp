@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
 #include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
@@ -165,7 +166,18 @@ void World::merge_into(ContactSet& fresh, ContactSet& old, bool wall) {
   }
 }
 
+double World::attachment_gap_m() const {
+  double radius_max = 0;
+  for (double r : bodies.radius) radius_max = std::max(radius_max, r);
+  double gap = 0;
+  for (const auto& model : models_) gap = std::max(gap, model->attachment_gap_m(radius_max));
+  return gap;
+}
+
 void World::rebuild() {
+  // A pair still pulling across a gap the skin does not cover would leave the
+  // list at this build and lose its force and history.
+  const double attached = attachment_gap_m();
   if (skin_m_ <= 0) {
     if (settings_.skin_m > 0) {
       skin_m_ = settings_.skin_m;
@@ -173,8 +185,13 @@ void World::rebuild() {
       double sum = 0;
       for (double r : bodies.radius) sum += r;
       skin_m_ = bodies.size() ? 0.25 * sum / static_cast<double>(bodies.size()) : 0.0;
+      skin_m_ = std::max(skin_m_, 2.0 * attached);
     }
   }
+  if (attached >= skin_m_)
+    throw Error("the neighbour-list skin (" + format_double(skin_m_) + " m) does not exceed the largest gap a contact "
+                "model's pairs pull across (" + format_double(attached) +
+                " m, JKR's delta_c at the largest disk): raise the skin above it");
   ContactSet fresh_pairs, fresh_walls;
   fresh_pairs.set_layout(layout_);
   fresh_walls.set_layout(layout_);

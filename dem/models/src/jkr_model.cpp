@@ -9,8 +9,9 @@
 // holds, pulling, until the separation at which the curve ends,
 // delta_c = -delta(a_c), a_c = (pi w R*^2 / (8 E*))^(1/3); friction and rolling
 // resistance use the repulsive part 4 E* a^3 / (3 R*). With w = 0 it is Hertz.
-// The neighbour list's skin must exceed delta_c (it is 0.25 of the mean
-// radius by default; delta_c is about 1e-3 to 1e-2 R* for powders).
+// The neighbour list's skin must exceed delta_c: the model states it for its
+// largest pairs (attachment_gap_m) and the world checks (delta_c is about 1e-3
+// to 1e-2 R* for powders, the default skin 0.25 of the mean radius).
 //   parameters: those of hertz_base.hpp and "work_of_adhesion_j_m2" (w >= 0).
 #include <algorithm>
 #include <cmath>
@@ -46,9 +47,12 @@ class JkrModel : public HertzBase {
   }
   void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const override {
     HertzBase::initialise(c, k, pair, thickness_m);
-    const double radius = c.column[kRadiusEff][k];
-    const double ac = std::cbrt(M_PI * work_of_adhesion_j_m2_ * radius * radius / (8.0 * e_eff_pa_));
-    c.column[kSeparationLimit][k] = std::max(0.0, -(ac * ac / radius - adhesion_ * std::sqrt(ac)));
+    c.column[kSeparationLimit][k] = separation_limit(c.column[kRadiusEff][k]);
+  }
+  // delta_c grows as the cube root of R*, whose largest value is a disk's own
+  // radius against a wall.
+  double attachment_gap_m(double radius_max_m) const override {
+    return radius_max_m > 0 ? separation_limit(radius_max_m) : 0.0;
   }
   double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const override {
     const double radius = c.column[kRadiusEff][k];
@@ -67,6 +71,12 @@ class JkrModel : public HertzBase {
   }
 
  private:
+  // delta_c = -delta(a_c) for the effective radius R*.
+  double separation_limit(double radius) const {
+    const double ac = std::cbrt(M_PI * work_of_adhesion_j_m2_ * radius * radius / (8.0 * e_eff_pa_));
+    return std::max(0.0, -(ac * ac / radius - adhesion_ * std::sqrt(ac)));
+  }
+
   // Not yet in contact: apart while there is a gap. In contact: until the curve ends.
   static bool apart(const PairBlock& c, std::size_t k, double gap) {
     const bool formed = c.flags[k] & kTouching;

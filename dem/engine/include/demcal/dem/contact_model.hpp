@@ -86,6 +86,11 @@ class ContactModel {
   // The stiffer spring (normal or shear) of a contact between two disks of
   // radius r, for a disk that has no neighbour yet (time step bound).
   virtual double stiffness_estimate(double radius_m, double thickness_m) const = 0;
+  // The largest gap (m) across which a pair of disks no larger than
+  // `radius_max_m`, or such a disk and a wall, can still carry force: 0 for
+  // models that act only in contact, JKR's delta_c for its largest pairs.
+  // The neighbour list must keep such pairs, so its skin must exceed it.
+  virtual double attachment_gap_m(double /*radius_max_m*/) const { return 0.0; }
   // True when the model's forces depend on the masses it was given in
   // PairInfo (a damping set for a coefficient of restitution): density
   // scaling, which raises masses later, is then refused.

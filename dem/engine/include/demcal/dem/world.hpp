@@ -26,7 +26,10 @@ struct WorldSettings {
   double thickness_m = 1.0;      // disk thickness t (2D, PFC's unit thickness)
   double damping = 0.7;          // local damping alpha: F_d = -alpha |F| sign(v), per component
   double safety_factor = 0.8;    // time step = safety * critical step
-  double skin_m = 0.0;           // neighbour-list skin; 0: 0.25 x the mean radius
+  // Neighbour-list skin; 0: 0.25 x the mean radius, or twice the largest gap
+  // a model's pairs pull across (JKR) when that is more. A skin set here that
+  // does not exceed that gap is an error.
+  double skin_m = 0.0;
   double gravity_x_m_s2 = 0.0, gravity_y_m_s2 = 0.0;
   double fixed_dt_s = 0.0;       // > 0 replaces the computed time step
   // Density scaling for quasi-static tests: > 0 raises each disk's mass and
@@ -141,6 +144,8 @@ class World {
 
  private:
   void rebuild();
+  // The largest gap any model's pairs pull across at the present radii, m.
+  double attachment_gap_m() const;
   void build_disk_pairs(ContactSet& fresh);
   void build_wall_pairs(ContactSet& fresh);
   void merge_into(ContactSet& fresh, ContactSet& old, bool walls);
