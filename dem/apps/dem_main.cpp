@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   run->add_option("--curve", curve, "stress-strain curve, .csv or .h5");
   run->add_option("--cache", cache_dir, "folder of cached packed specimens (\"\" to disable)")->capture_default_str();
   std::string vtk_dir;
-  run->add_option("--vtk", vtk_dir, "folder for VTK snapshots (disks and bonds, bond breaks) for ParaView");
+  run->add_option("--vtk", vtk_dir, "folder for VTK snapshots (disks and bonds, bond breaks, walls) for ParaView");
   std::string work_dir;
   run->add_option("--work", work_dir,
                   "folder for an external test's files (params.json, out.json, stdout.txt, stderr.txt; default: "

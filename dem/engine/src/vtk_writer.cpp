@@ -49,4 +49,20 @@ void write_vtk_breaks(const World& world, const std::string& path) {
   write_file_atomically(path, out.str());
 }
 
+void write_vtk_walls(const World& world, const std::string& path) {
+  const std::vector<Wall>& walls = world.walls;
+  std::ostringstream out;
+  out.precision(9);
+  out << "# vtk DataFile Version 3.0\ndemcal walls at t = " << world.time_s() << " s\nASCII\nDATASET POLYDATA\n";
+  out << "POINTS " << 2 * walls.size() << " double\n";
+  for (const Wall& w : walls) out << w.x0 << ' ' << w.y0 << " 0\n" << w.x1 << ' ' << w.y1 << " 0\n";
+  out << "LINES " << walls.size() << ' ' << 3 * walls.size() << '\n';
+  for (std::size_t k = 0; k < walls.size(); ++k) out << "2 " << 2 * k << ' ' << 2 * k + 1 << '\n';
+  out << "CELL_DATA " << walls.size() << "\nSCALARS active int 1\nLOOKUP_TABLE default\n";
+  for (const Wall& w : walls) out << (w.active ? 1 : 0) << '\n';
+  out << "VECTORS force double\n";
+  for (const Wall& w : walls) out << w.fx << ' ' << w.fy << " 0\n";
+  write_file_atomically(path, out.str());
+}
+
 }  // namespace demcal::dem

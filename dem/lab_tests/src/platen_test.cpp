@@ -195,6 +195,8 @@ void snapshot(const World& world, const RunOptions& options, std::size_t points,
   write_vtk_disks(world, options.vtk_dir + "/" + name);
   std::snprintf(name, sizeof(name), "%s_%06zu.vtk", final ? "final_breaks" : "breaks", points);
   write_vtk_breaks(world, options.vtk_dir + "/" + name);
+  std::snprintf(name, sizeof(name), "%s_%06zu.vtk", final ? "final_walls" : "walls", points);
+  write_vtk_walls(world, options.vtk_dir + "/" + name);
 }
 
 LoadingMonitor::LoadingMonitor(const LoadingSpec& loading, const RunOptions& options,
