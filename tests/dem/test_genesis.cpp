@@ -4,6 +4,7 @@
 // it force-free is test_force_free_installation.cpp.
 #include <gtest/gtest.h>
 
+#include "../common/error_of.hpp"
 #include "../common/scratch.hpp"
 
 #include <cmath>
@@ -113,6 +114,23 @@ TEST(Genesis, CacheStoresAndReloadsTheSamePacking) {
   std::string path = dir + "/probe.h5";
   save_specimen(packed, spec.cache_key(), path);
   EXPECT_THROW(load_specimen(path, other.cache_key()), demcal::Error);
+}
+
+// A cache named relative to another folder than the repository's (build/cache
+// from /tmp) has no parent yet: it is made; one under a file cannot be, and
+// says so (it used to say an HDF5 file could not be opened).
+TEST(Genesis, CacheMakesItsFolderWithParentsOrSaysWhyItCannot) {
+  const std::string root = demcal::test::scratch_path("cache_parents");
+  const SpecimenSpec spec = small_spec(5);
+  const Specimen packed = cached_specimen(spec, root + "/build/cache");
+  EXPECT_EQ(::access((root + "/build/cache").c_str(), W_OK), 0);
+  EXPECT_EQ(cached_specimen(spec, root + "/build/cache").x, packed.x);
+  const std::string file = root + "/a_file";
+  std::FILE* f = std::fopen(file.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fclose(f);
+  const std::string message = demcal::test::error_of([&] { cached_specimen(spec, file + "/cache"); });
+  EXPECT_NE(message.find("specimen cache " + file + "/cache: cannot create the folder ("), std::string::npos) << message;
 }
 
 TEST(Genesis, BadGeometryIsRejected) {

@@ -1,5 +1,6 @@
 // HDF5 cache of packed specimens, keyed by the text of their genesis spec.
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <sstream>
 #include <sys/stat.h>
@@ -62,7 +63,12 @@ Specimen load_specimen(const std::string& path, const std::string& key) {
 
 Specimen cached_specimen(const SpecimenSpec& spec, const std::string& cache_dir) {
   if (cache_dir.empty()) return pack_specimen(spec);
-  ::mkdir(cache_dir.c_str(), 0755);
+  // With its parents (a run from another folder than the repository's names
+  // build/cache relative to where it runs); a folder that cannot be made is
+  // said as such, not as an HDF5 file that cannot be opened.
+  std::error_code failed;
+  std::filesystem::create_directories(cache_dir, failed);
+  if (failed) throw Error("specimen cache " + cache_dir + ": cannot create the folder (" + failed.message() + ")");
   const std::string key = spec.cache_key();
   std::ostringstream name;
   name << cache_dir << "/specimen_" << std::hex << std::hash<std::string>{}(key) << ".h5";
