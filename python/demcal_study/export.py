@@ -11,8 +11,8 @@ names (they are that program's already). What does not carry over is said in the
   where the same numbers give another material, so the calibration must be repeated there (or run through
   demcal's external test on that program);
 * strength deviations (`*_std_pa`) have no property in the other programs: they are written as comments;
-* a contact bond's strengths are stresses here (force = stress x 2 R t per bond, R the pair's mean radius); PFC's
-  linearcbond takes forces, so the file gives the formula, not a number.
+* a contact bond's strengths are stresses here (force = stress x 2 min(R) t per bond, PFC's contact area), which
+  PFC's linearcbond takes through its cb_strength method after bonding, not as properties of the assignment table.
 """
 import json
 import math
@@ -87,9 +87,11 @@ def pfc_lines(role, model, p):
                      f"krat {p['kn_ks']:.10g}, fric {p['friction']:.10g}")
     elif model == "contact_bond":
         cmd = cmat.format(model="linearcbond") + f" property fric {p['friction']:.10g}"
-        notes.append(f"# cb_tenf and cb_shearf are forces in PFC: per bond {p['tensile_strength_pa']:.10g} Pa and "
-                     f"{p['shear_strength_pa']:.10g} Pa times 2 R t (R the pair's mean radius, t the thickness), e.g. "
-                     "contact property cb_tenf [2 * R * t * sigma] in a FISH loop over the bonded contacts")
+        # PFC multiplies cb_strength's stresses by the contact area 2 min(R) t, as our contact bond does.
+        notes.append("# after bonding (contact method bond gap ...), the strengths as stresses; PFC turns them into the "
+                     "forces cb_tenf and cb_shearf with the contact area 2 min(R) t, as demcal does:")
+        notes.append(f"# it.command(\"contact method cb_strength tensile {p['tensile_strength_pa']:.10g} "
+                     f"shear {p['shear_strength_pa']:.10g}\")")
     else:
         return [f"# {role}: model {model} has no PFC counterpart in this exporter"]
     return [f"# {role}: {model}"] + notes + [f"it.command(\"{cmd}\")"]

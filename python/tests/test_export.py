@@ -29,6 +29,20 @@ def test_pfc_gets_the_bound_values_under_its_own_keywords():
     assert "model linear method deformability emod 2.05e+10 kratio 1.45 property fric 0\")" in text
 
 
+def test_pfc_gets_a_contact_bonds_strengths_as_stresses_through_cb_strength():
+    scene = {"scene": "ucs_rock_cb.json", "test": "ucs",
+             "parameters": {"Ec_GPa": {"value": 20}, "cb_sigma_c_MPa": {"value": 40}, "cb_tau_c_MPa": {"value": 35}},
+             "contacts": {"disk-disk": {"model": "contact_bond", "parameters": {
+                 "modulus_pa": "Ec_GPa*1e9", "kn_ks": 1.8, "friction": 0.6, "tensile_strength_pa": "cb_sigma_c_MPa*1e6",
+                 "shear_strength_pa": "cb_tau_c_MPa*1e6"}}}}
+    text = export.export_text(scene, {"x": {"cb_sigma_c_MPa": 42.5}}, "pfc")
+    assert ('it.command("contact cmat default model linearcbond method deformability emod 2e+10 kratio 1.8 '
+            'property fric 0.6")') in text
+    # Stresses, which PFC multiplies by the contact area 2 min(R) t, as our contact bond does: no formula to apply.
+    assert '# it.command("contact method cb_strength tensile 42500000 shear 35000000")' in text
+    assert "2 min(R) t" in text
+
+
 def test_yade_takes_poisson_as_ks_over_kn_and_a_friction_angle():
     text = export.export_text(PB_SCENE, SOLUTION, "yade")
     assert "CAUTION: our DEM is 2D" in text

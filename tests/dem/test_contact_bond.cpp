@@ -1,6 +1,6 @@
 // The contact bond against its closed form: linear in tension and shear while
-// bonded, broken when the force reaches strength x 2 R_mean t, then a frictional
-// contact.
+// bonded, broken when the force reaches strength x 2 min(R) t (PFC's contact
+// area, as its cb_strength uses it), then a frictional contact.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,9 +16,10 @@ using demcal::dem::testing::imposed_step;
 namespace {
 
 constexpr double kR1 = 1e-3, kR2 = 1.5e-3, kDt = 1e-8, kModulus = 1e9, kKnKs = 2.5;
-// kn = A E / L with A = 2 min(R) t, L = R1 + R2; strengths as forces: stress x (R1 + R2) t.
+// kn = A E / L with A = 2 min(R) t, L = R1 + R2; strengths as forces: stress x A
+// (unequal radii, so the mean radius's 2.5 mm would not pass).
 constexpr double kKn = 2 * kR1 * kModulus / (kR1 + kR2);
-constexpr double kWidth = kR1 + kR2;
+constexpr double kWidth = 2 * kR1;
 
 // Two fixed disks `gap` apart, glued by a contact bond.
 World bonded_pair(double sigma_c, double tau_c, double gap = 0.0) {
@@ -73,7 +74,8 @@ TEST(ContactBond, TensionIsKnDeltaUntilTheNormalStrengthForce) {
 TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
   const double tau_c = 1e5, v = 1.0, ks = kKn / kKnKs;
   World world = bonded_pair(1e9, tau_c);
-  world.bodies.x[1] -= 1e-6;  // a small overlap so friction has a normal force afterwards
+  // A small overlap so friction has a normal force afterwards: mu Fn = 0.3 x 400 N, below the 200 N the bond held.
+  world.bodies.x[1] -= 0.5e-6;
   world.refresh();
   const int steps = shear_until_break(world, v);
   ASSERT_EQ(world.breaks().size(), 1u);
@@ -81,7 +83,7 @@ TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
   EXPECT_NEAR(ks * v * kDt * steps, tau_c * kWidth, 1.01 * ks * v * kDt);
   // After the break the shear force is capped at mu * Fn.
   imposed_step(world, 0, v, 0);
-  EXPECT_NEAR(std::abs(world.pair_state(0, "shear_force_n")), 0.3 * kKn * 1e-6, 1e-3 * 0.3 * kKn * 1e-6);
+  EXPECT_NEAR(std::abs(world.pair_state(0, "shear_force_n")), 0.3 * kKn * 0.5e-6, 1e-3 * 0.3 * kKn * 0.5e-6);
 }
 
 TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {
@@ -101,7 +103,7 @@ TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {
 TEST(ContactBond, TheBreakingStepAddsTheShearIncrementOnce) {
   const double tau_c = 1e5, v = 1.0, ks = kKn / kKnKs;
   World world = bonded_pair(1e9, tau_c);
-  world.bodies.x[1] -= 1e-5;  // pressed: mu Fn = 0.3 x 8000 N stays far above the 250 N shear strength force
+  world.bodies.x[1] -= 1e-5;  // pressed: mu Fn = 0.3 x 8000 N stays far above the 200 N shear strength force
   world.refresh();
   const int steps = shear_until_break(world, v);
   ASSERT_EQ(world.breaks().size(), 1u);

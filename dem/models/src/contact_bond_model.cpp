@@ -6,9 +6,12 @@
 //   parameters: {"modulus_pa", "kn_ks", "friction",
 //                "tensile_strength_pa", "tensile_strength_std_pa" (default 0),
 //                "shear_strength_pa", "shear_strength_std_pa" (default 0)}
-// Strengths are stresses; each bond gets force strengths stress x 2 R_mean t
-// with R_mean = (R_i + R_j) / 2, drawn per bond from a normal distribution
-// truncated at zero. A bond installed across a small gap (or overlap) is
+// Strengths are stresses; each bond gets force strengths stress x A with A =
+// 2 min(R_i, R_j) t, the contact area of the linear model's deformability
+// method, which is what PFC 5+'s `cb_strength` multiplies a stress by to set
+// cb_tenf and cb_shearf (before 2026-12-05 here: 2 R_mean t, without a PFC
+// source, 8 % stronger on the sandstone); drawn per bond from a normal
+// distribution truncated at zero. A bond installed across a small gap (or overlap) is
 // force-free there: while bonded, F_n = kn (overlap - overlap at installation).
 // Breaking follows PFC's linearcbond: in tension both forces drop to zero; in
 // shear the step's forces stand and the Coulomb limit applies from the next
@@ -57,7 +60,7 @@ class ContactBondModel : public LinearBase {
 
   bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m, Rng& rng) const override {
     if (pair.wall) return false;
-    const double width = (pair.radius_i + pair.radius_j) * thickness_m;  // 2 R_mean t
+    const double width = 2.0 * std::min(pair.radius_i, pair.radius_j) * thickness_m;  // PFC's contact area
     c.column[kNormalStrength][k] = draw_strength(sigma_c_, sigma_c_std_, rng) * width;
     c.column[kShearStrength][k] = draw_strength(tau_c_, tau_c_std_, rng) * width;
     // Glued as it lies, across a gap too (PFC sets a contact bond's reference
