@@ -29,10 +29,13 @@ def commit():
 def write_block(path, script, text):
     """Puts `text` into the doc at `path` between the marker lines of `script`: the whole file when it does not exist,
     the block alone when the file has its markers. A doc without them is left alone (an error), since writing over
-    it would lose what was written around the table by hand."""
+    it would lose what was written around the table by hand. With text None it only checks that it could write
+    (a script does that before its runs)."""
     begin, end = f"<!-- begin: written by {script} -->", f"<!-- end: written by {script} -->"
-    block = f"{begin}\n{text.rstrip()}\n{end}"
+    block = f"{begin}\n{(text or '').rstrip()}\n{end}"
     if not os.path.exists(path):
+        if text is None:
+            return
         with open(path, "w") as f:
             f.write(block + "\n")
         return
@@ -41,5 +44,7 @@ def write_block(path, script, text):
     if old.count(begin) != 1 or old.count(end) != 1 or old.index(begin) > old.index(end):
         raise SystemExit(f"{script}: {path} exists without one pair of lines '{begin}' and '{end}'; add them around "
                          "the table it should replace, or write elsewhere with --out")
+    if text is None:
+        return
     with open(path, "w") as f:
         f.write(old[:old.index(begin)] + block + old[old.index(end) + len(end):])

@@ -25,7 +25,8 @@ def fail(message):
 
 
 def read_vtk_lines(path):
-    """The segments ((x0, y0), (x1, y1)) of a legacy ASCII VTK POLYDATA file's LINES and its CELL_DATA scalars."""
+    """The segments ((x0, y0), (x1, y1)) and CELL_DATA scalars of a walls file as `demcal-dem run --vtk` writes it
+    (legacy ASCII VTK POLYDATA: a point per line, one LINES section, then its cell scalars)."""
     try:
         lines = open(path).read().split("\n")
     except OSError as e:

@@ -18,6 +18,9 @@ parser.add_argument("--seeds", type=int, default=5)
 parser.add_argument("--out", default="docs/resolution_study")
 args = parser.parse_args()
 
+# The doc must take the table before hours of runs are spent on it (a doc without its markers is not written over).
+write_block(args.out + ".md", "scripts/resolution_study.py", None)
+
 base = json.load(open("data/scenes/ucs_rock_pb.json"))
 work = os.path.join(args.build, "resolution_study")
 os.makedirs(work, exist_ok=True)

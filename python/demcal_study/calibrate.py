@@ -30,7 +30,7 @@ import numpy as np
 from . import calibrate_runs, commands, executables, kriging, outputs, trust_region
 from .calibrate_report import pct, report
 from .calibration_problem import Problem
-from .errors import fail, load_json
+from .errors import StudyError, fail, load_json
 from .files import write_target
 
 INITIAL_RADIUS = 0.25    # coded units: +- a quarter of each coordinate's half-range (about a decade of a ratio)
@@ -112,8 +112,8 @@ def secant_update(jacobian, earlier, later):
     Measured residuals are means over a few specimens, so their change over a short step can be mostly noise; with
     variances given, each residual's mismatch between the measured change and the Jacobian's is shrunk by
     max(0, 1 - noise variance / mismatch^2) (positive-part James-Stein), so only what the two means can tell apart
-    from their noise changes the slope. On yineng_packsand the unshrunk update took a mismatch of 2.9 % with a noise
-    SD of 2.2 % for the whole truth, and its correction moved the strength 2.7 times what it expected
+    from their noise changes the slope. On yineng_packsand the unshrunk update took a mismatch in sigma_u / E of
+    -5.6 % with a noise SD of 2.8 % for the whole truth, and its correction moved sigma_u / E 2.7 times what it expected
     (docs/calibration_benchmark.md)."""
     (c1, r1, *v1), (c2, r2, *v2) = earlier, later
     d = np.asarray(c2, float) - np.asarray(c1, float)
@@ -646,7 +646,7 @@ class Calibration:
                 # Specimen 1's local model can misjudge how far a step moves the population (nu at dilatant
                 # points moved 1.6 times what it predicted on yineng_siltstone); two verified points measure it.
                 jac = secant_update(jac, population[-2], population[-1])
-                self.verifications[-1]["secant_step"] = True
+                self.verifications[-1]["secant_step"] = jac is not model_jac
             delta, _, _ = trust_region.step(r0, jac, centre, max(radius, 0.05))
             self.record_correction(r0, model_jac, jac, delta)
             centre = np.clip(centre + delta, -1, 1)
@@ -806,7 +806,11 @@ def calibrate(args):
         code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
     finally:
         # An invocation stopped by an error or an interrupt spent its time too: the resumed calibration counts it.
-        record_wall_time(out, time.time() - started)
+        # A failure to record it must not hide the error that stopped the calibration.
+        try:
+            record_wall_time(out, time.time() - started)
+        except (OSError, StudyError) as e:
+            print(f"calibrate: warning: the wall time of this invocation was not recorded: {e}", file=sys.stderr)
     report(out)
     return code
 

@@ -31,8 +31,14 @@ def test_a_doc_without_its_markers_is_left_alone_with_a_one_line_error(tmp_path)
     with pytest.raises(SystemExit, match="exists without one pair of lines"):
         write_block(str(doc), SCRIPT, "| a |")
     assert doc.read_text() == "# Written by hand\n"
+    # The check a script makes before its runs (text None) says the same and writes nothing, nor a new file.
+    with pytest.raises(SystemExit, match="exists without one pair of lines"):
+        write_block(str(doc), SCRIPT, None)
+    write_block(str(tmp_path / "new.md"), SCRIPT, None)
+    assert not (tmp_path / "new.md").exists()
 
 
+@pytest.mark.skipif(not os.path.isdir(os.path.join(REPO, ".git")), reason="not a git checkout")
 def test_the_stamp_names_the_cores_and_a_commit():
     assert machine().split(" ", 1)[0] == str(os.cpu_count())
     assert commit().split(" ", 1)[0] not in ("", "unknown")

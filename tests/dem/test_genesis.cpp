@@ -9,6 +9,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <sstream>
+#include <string>
 #include <unistd.h>
 
 #include "demcal/core/error.hpp"
@@ -123,7 +126,9 @@ TEST(Genesis, CacheMakesItsFolderWithParentsOrSaysWhyItCannot) {
   const std::string root = demcal::test::scratch_path("cache_parents");
   const SpecimenSpec spec = small_spec(5);
   const Specimen packed = cached_specimen(spec, root + "/build/cache");
-  EXPECT_EQ(::access((root + "/build/cache").c_str(), W_OK), 0);
+  std::ostringstream entry;
+  entry << root << "/build/cache/specimen_" << std::hex << std::hash<std::string>{}(spec.cache_key()) << ".h5";
+  ASSERT_EQ(::access(entry.str().c_str(), R_OK), 0) << entry.str();
   EXPECT_EQ(cached_specimen(spec, root + "/build/cache").x, packed.x);
   const std::string file = root + "/a_file";
   std::FILE* f = std::fopen(file.c_str(), "w");

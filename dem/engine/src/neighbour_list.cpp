@@ -185,10 +185,11 @@ void World::rebuild() {
       double sum = 0;
       for (double r : bodies.radius) sum += r;
       skin_m_ = bodies.size() ? 0.25 * sum / static_cast<double>(bodies.size()) : 0.0;
-      skin_m_ = std::max(skin_m_, 2.0 * attached);
     }
   }
-  if (attached >= skin_m_)
+  // The default skin follows the models' need as the disks grow; one set by hand must already cover it.
+  if (settings_.skin_m <= 0) skin_m_ = std::max(skin_m_, 2.0 * attached);
+  if (attached > 0 && attached >= skin_m_)
     throw Error("the neighbour-list skin (" + format_double(skin_m_) + " m) does not exceed the largest gap a contact "
                 "model's pairs pull across (" + format_double(attached) +
                 " m, JKR's delta_c at the largest disk): raise the skin above it");

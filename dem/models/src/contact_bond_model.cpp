@@ -10,7 +10,7 @@
 // 2 min(R_i, R_j) t, the contact area of the linear model's deformability
 // method, which is what PFC 5+'s `cb_strength` multiplies a stress by to set
 // cb_tenf and cb_shearf (before 2026-12-05 here: 2 R_mean t, without a PFC
-// source, 8 % stronger on the sandstone); drawn per bond from a normal
+// source, 9 % stronger on the sandstone); drawn per bond from a normal
 // distribution truncated at zero. A bond installed across a small gap (or overlap) is
 // force-free there: while bonded, F_n = kn (overlap - overlap at installation).
 // Breaking follows PFC's linearcbond: in tension both forces drop to zero; in

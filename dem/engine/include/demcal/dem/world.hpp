@@ -26,9 +26,9 @@ struct WorldSettings {
   double thickness_m = 1.0;      // disk thickness t (2D, PFC's unit thickness)
   double damping = 0.7;          // local damping alpha: F_d = -alpha |F| sign(v), per component
   double safety_factor = 0.8;    // time step = safety * critical step
-  // Neighbour-list skin; 0: 0.25 x the mean radius, or twice the largest gap
-  // a model's pairs pull across (JKR) when that is more. A skin set here that
-  // does not exceed that gap is an error.
+  // Neighbour-list skin; 0: 0.25 x the mean radius at the first build, or
+  // twice the largest gap a model's pairs pull across (JKR) when that is more
+  // at any build. A skin set here that does not exceed that gap is an error.
   double skin_m = 0.0;
   double gravity_x_m_s2 = 0.0, gravity_y_m_s2 = 0.0;
   double fixed_dt_s = 0.0;       // > 0 replaces the computed time step
