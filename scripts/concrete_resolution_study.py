@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Resolution of the concrete UCS scene: the reference parameter set of Su et al. (2021) over
 several seeds at several mortar disk sizes (the 100 x 200 mm specimen and its aggregates stay
-the same), with the wall time of each run. Writes docs/concrete_resolution_study.md and .csv.
+the same), with the wall time of each run. Writes docs/concrete_resolution_study.csv and the table of
+docs/concrete_resolution_study.md (between its marker lines, with the date, commit and machine; the prose
+around it stays).
 
     /usr/bin/python3 scripts/concrete_resolution_study.py [--build build] [--jobs 2] [--seeds 5]
 """
@@ -12,7 +14,10 @@ import statistics
 import subprocess
 import time
 
+from measured_on import commit, machine, write_block
 from seed_statistics import macro_mean_cv
+
+SCRIPT = "scripts/concrete_resolution_study.py"
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--build", default="build")
@@ -22,6 +27,8 @@ parser.add_argument("--radii-mm", default="1.4,1.0,0.7,0.5", help="mean mortar r
 parser.add_argument("--fine-seeds", type=int, default=3, help="seeds for radii below 0.6 mm (slow)")
 parser.add_argument("--out", default="docs/concrete_resolution_study")
 args = parser.parse_args()
+write_block(args.out + ".md", SCRIPT, None)  # before hours of runs: refuse a doc it could not write into
+started = time.strftime("%Y-%m-%d")
 
 base = json.load(open("data/scenes/ucs_concrete.json"))
 work = os.path.join(args.build, "concrete_resolution_study")
@@ -77,16 +84,22 @@ with open(args.out + ".csv", "w") as f:
     f.write(",".join(keys) + "\n")
     for row in rows:
         f.write(",".join("%.6g" % row[k] if isinstance(row[k], float) else str(row[k]) for k in keys) + "\n")
-with open(args.out + ".md", "w") as f:
-    # PFC2D's nu is Su et al.'s secant at half the peak: our nu50; our nu is the tangent there.
-    f.write("| mean mortar radius | seeds ok | disks | porosity | sigma_u MPa (CV %) | E GPa (CV %) | nu (CV %) | "
-            "nu50 (CV %) | s per run (loading) | M particle-steps/s |\n|---|---|---|---|---|---|---|---|---|---|\n")
-    for r in rows:
-        f.write("| %.1f mm | %d/%d | %.0f | %.3f | %.2f (%.1f) | %.2f (%.1f) | %.3f (%.1f) | %.3f (%.1f) | %.1f (%.1f) | "
-                "%.1f |\n" % (
-                    r["r_mean_mm"], r["runs_ok"], r["seeds"], r["disks"], r["porosity"], r["sigma_u_MPa_mean"],
-                    r["sigma_u_MPa_cv_pct"], r["E_GPa_mean"], r["E_GPa_cv_pct"], r["nu_mean"], r["nu_cv_pct"],
-                    r["nu50_mean"], r["nu50_cv_pct"], r["wall_s_per_run"], r["loading_s_per_run"], r["mps_per_s"]))
-    f.write("| published PFC2D (Su et al. 2021) | | ~22,000 mortar | 0.12 | %.2f | %.2f | | %.3f | | |\n" % (
-        published["sigma_u_MPa"], published["E_GPa"], published["nu"]))
+# PFC2D's nu is Su et al.'s secant at half the peak: our nu50; our nu is the tangent there.
+lines = ["Scene `data/scenes/ucs_concrete.json` at its reference set, mortar radii scaled (R_max / R_min = 2.5), "
+         "`/usr/bin/python3 %s` on %s, %s, engine of commit %s, runs at a time: %s. Wall time per run: one run with "
+         "its packed specimen loaded from the cache (loading alone in brackets)." % (SCRIPT, machine(), started, commit(),
+                                                                                     args.jobs),
+         "",
+         "| mean mortar radius | seeds ok | disks | porosity | sigma_u MPa (CV %) | E GPa (CV %) | nu (CV %) | "
+         "nu50 (CV %) | s per run (loading) | M particle-steps/s |",
+         "|---|---|---|---|---|---|---|---|---|---|"]
+for r in rows:
+    lines.append("| %.1f mm | %d/%d | %.0f | %.3f | %.2f (%.1f) | %.2f (%.1f) | %.3f (%.1f) | %.3f (%.1f) | %.1f (%.1f) | "
+                 "%.1f |" % (r["r_mean_mm"], r["runs_ok"], r["seeds"], r["disks"], r["porosity"], r["sigma_u_MPa_mean"],
+                             r["sigma_u_MPa_cv_pct"], r["E_GPa_mean"], r["E_GPa_cv_pct"], r["nu_mean"], r["nu_cv_pct"],
+                             r["nu50_mean"], r["nu50_cv_pct"], r["wall_s_per_run"], r["loading_s_per_run"],
+                             r["mps_per_s"]))
+lines.append("| published PFC2D (Su et al. 2021) | | ~22,000 mortar | 0.12 | %.2f | %.2f | | %.3f | | |" % (
+    published["sigma_u_MPa"], published["E_GPa"], published["nu"]))
+write_block(args.out + ".md", SCRIPT, "\n".join(lines))
 print("wrote", args.out + ".md", args.out + ".csv")
