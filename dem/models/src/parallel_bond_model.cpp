@@ -18,6 +18,7 @@
 #include "demcal/dem/linear_base.hpp"
 #include "demcal/dem/bond_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
+#include "demcal/dem/pair_batch.hpp"
 
 namespace demcal::dem {
 namespace {
@@ -76,34 +77,20 @@ class ParallelBondModel : public LinearBase {
     return true;
   }
 
+  // The linear contact and the bond over batches of pairs, each batch one
+  // branch-free vectorised loop (pair_batch.hpp): the same arithmetic as the
+  // pair-by-pair form below it in the history (for_disk_pairs with the linear
+  // law and the bond's update), the same bits. A pair neither bonded nor
+  // touching is skipped as skip_unbonded_apart skips it: no force, no shear.
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    const double dt = step.dt_s;
-    for_disk_pairs(
-        c, b, step,
-        [&](std::size_t k, const Geometry& g) {
-          PairForce f = linear_force(c, k, g, dt);
-          if (!(c.flags[k] & kBonded)) return f;
-          double* const s = c.column.row(k);
-          const double area = s[kBondArea], inertia = s[kBondInertia];
-          s[kBondFn] -= s[kBondKn] * area * g.vn * dt;
-          s[kBondFs] -= s[kBondKs] * area * g.vs * dt;
-          s[kBondM] -= s[kBondKn] * inertia * g.relative_w * dt;
-          // sigma = -F_n / A + |M| R_b / I and tau = |F_s| / A against the
-          // strengths, both sides multiplied by A I (> 0): no division in the loop.
-          const double sigma_ai = -s[kBondFn] * inertia + std::abs(s[kBondM]) * s[kBondRadius] * area;
-          const double tau_a = std::abs(s[kBondFs]);
-          const bool tension = sigma_ai >= s[kTensileStrength] * area * inertia;
-          if (tension || tau_a >= s[kShearStrength] * area) {
-            break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
-            s[kBondFn] = s[kBondFs] = s[kBondM] = 0.0;
-            return f;
-          }
-          f.fn += s[kBondFn];
-          f.fs += s[kBondFs];
-          f.moment = s[kBondM];
-          return f;
-        },
-        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
+    GeometryBatch g;
+    ForceBatch f;
+    for (std::size_t from = 0; from < c.size; from += kPairBatch) {
+      const std::size_t n = std::min(kPairBatch, c.size - from);
+      batch_geometry(c, b, from, n, g);
+      bond_law(c, from, n, g, f, step.dt_s);
+      add_batch(c, b, from, n, g, f, step);
+    }
   }
 
   // The bond adds its springs in parallel with the contact's (kept after a
@@ -127,6 +114,57 @@ class ParallelBondModel : public LinearBase {
   }
 
  private:
+  // Pairs [from, from + n) of the block: their state updated, their forces and
+  // flags into `f`. Every condition is a select, so the loop vectorises.
+  static void bond_law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
+                       ForceBatch& __restrict f, double dt) {
+    double* __restrict rows = c.column.row(from);
+    const std::size_t stride = c.column.stride;
+    const PairFlags* __restrict flags = c.flags + from;
+#pragma omp simd
+    for (std::size_t p = 0; p < n; ++p) {
+      double* const s = rows + p * stride;
+      // The linear law (linear_law.hpp).
+      const double overlap = g.overlap[p] - s[kReferenceOverlap];
+      const bool touching = overlap > 0;
+      const double fn = s[kNormalStiffness] * select(0.0 < overlap, overlap, 0.0);  // std::max(0.0, overlap)
+      const double limit = s[kFriction] * fn;
+      const double trial = s[kShearForce] - s[kShearStiffness] * g.vs[p] * dt;
+      const double capped_below = select(trial < -limit, -limit, trial);  // std::max(trial, -limit)
+      const double fs = select(limit < capped_below, limit, capped_below) + 0.0;  // std::min(.., limit)
+      const bool bonded = (flags[p] & kBonded) != 0;
+      const bool skipped = !bonded & !touching;
+      s[kShearForce] = select(skipped, 0.0, fs);
+      // The bond's increments and its strength test (sigma and tau times A I
+      // and A: no division).
+      const double area = s[kBondArea], inertia = s[kBondInertia];
+      const double bond_fn = s[kBondFn] - s[kBondKn] * area * g.vn[p] * dt;
+      const double bond_fs = s[kBondFs] - s[kBondKs] * area * g.vs[p] * dt;
+      const double bond_m = s[kBondM] - s[kBondKn] * inertia * g.relative_w[p] * dt;
+      const double sigma_ai = -bond_fn * inertia + std::abs(bond_m) * s[kBondRadius] * area;
+      const double tau_a = std::abs(bond_fs);
+      const bool tension = sigma_ai >= s[kTensileStrength] * area * inertia;
+      const bool broke = bonded & (tension | (tau_a >= s[kShearStrength] * area));
+      const bool intact = bonded & !broke;
+      s[kBondFn] = select(intact, bond_fn, select(broke, 0.0, s[kBondFn]));
+      s[kBondFs] = select(intact, bond_fs, select(broke, 0.0, s[kBondFs]));
+      s[kBondM] = select(intact, bond_m, select(broke, 0.0, s[kBondM]));
+      const double fn_total = select(intact, fn + bond_fn, fn);
+      const double fs_total = select(intact, fs + bond_fs, fs);
+      const double moment = select(intact, bond_m, 0.0);
+      const double fx = fn_total * g.nx[p] - fs_total * g.ny[p];
+      const double fy = fn_total * g.ny[p] + fs_total * g.nx[p];
+      f.fx[p] = select(skipped, 0.0, fx);
+      f.fy[p] = select(skipped, 0.0, fy);
+      f.moment_i[p] = select(skipped, 0.0, -g.arm_i[p] * fs_total - moment);
+      f.moment_j[p] = select(skipped, 0.0, -g.arm_j[p] * fs_total + moment);
+      const PairFlags cleared = flags[p] & ~static_cast<PairFlags>(kTouching | (broke ? kBonded : 0u));
+      f.flags[p] = cleared | (touching ? static_cast<PairFlags>(kTouching) : 0u);
+      f.broke[p] = broke ? 1u : 0u;
+      f.tension[p] = tension ? 1u : 0u;
+    }
+  }
+
   double bond_modulus_pa_, bond_kn_ks_, lambda_;
   double sigma_c_, sigma_c_std_, tau_c_, tau_c_std_;
 };
