@@ -26,9 +26,9 @@
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/linear_base.hpp"
-#include "demcal/dem/bond_law.hpp"
 #include "demcal/dem/linear_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
+#include "demcal/dem/pair_batch.hpp"
 
 namespace demcal::dem {
 namespace {
@@ -71,40 +71,60 @@ class ContactBondModel : public LinearBase {
     return true;
   }
 
+  // Batches of pairs, each one vectorised loop (pair_batch.hpp): the law's
+  // branches as selects, the same arithmetic and bits as pair by pair. A
+  // pair neither bonded nor touching is skipped as skip_unbonded_apart skips
+  // it: no force, no shear (a broken bond's pair touches until its gap passes
+  // the reference gap).
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    const double dt = step.dt_s;
-    for_disk_pairs(
-        c, b, step,
-        [&](std::size_t k, const Geometry& g) {
-          if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
-          double* const s = c.column.row(k);
-          PairForce f;
-          f.fn = s[kNormalStiffness] * (g.overlap - s[kReferenceOverlap]);  // negative in tension
-          s[kShearForce] -= s[kShearStiffness] * g.vs * dt;
-          f.fs = s[kShearForce];
-          const bool tension = -f.fn >= s[kNormalStrength];
-          if (tension) {
-            break_bond(c, k, g, b, step, BreakMode::Tension);
-            release(c, k);
-            return PairForce{};
-          }
-          if (std::abs(f.fs) >= s[kShearStrength]) {
-            break_bond(c, k, g, b, step, BreakMode::Shear);
-            if (f.fn <= 0) {  // a bond that held the pair in tension: nothing is left to press it
-              release(c, k);
-              return PairForce{};
-            }
-            c.flags[k] |= kTouching;
-            return f;  // this step's shear increment is in fs already
-          }
-          c.flags[k] = static_cast<std::uint8_t>(g.overlap > 0 ? (c.flags[k] | kTouching) : (c.flags[k] & ~kTouching));
-          return f;
-        },
-        // A broken bond's pair touches until its gap passes the reference gap.
-        [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
+    GeometryBatch g;
+    ForceBatch f;
+    for (std::size_t from = 0; from < c.size; from += kPairBatch) {
+      const std::size_t n = std::min(kPairBatch, c.size - from);
+      batch_geometry(c, b, from, n, g);
+      bond_law(c, from, n, g, f, step.dt_s);
+      add_batch(c, b, from, n, g, f, step);
+    }
   }
 
  private:
+  // Bonded: the normal spring carries tension from the glued overlap and the
+  // shear force grows without limit; in tension past the strength both drop
+  // to zero (released), past the shear strength the step's forces stand
+  // unless the pair was held in tension (then released too). Unbonded: the
+  // linear law.
+  static void bond_law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
+                       ForceBatch& __restrict f, double dt) {
+    double* __restrict rows = c.column.row(from);
+    const std::size_t stride = c.column.stride;
+    const PairFlags* __restrict flags = c.flags + from;
+#pragma omp simd
+    for (std::size_t p = 0; p < n; ++p) {
+      double* const s = rows + p * stride;
+      const bool bonded = (flags[p] & kBonded) != 0;
+      const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
+      const bool skipped = (!bonded) & (!lin.touching);
+      const double bond_fn = s[kNormalStiffness] * (g.overlap[p] - s[kReferenceOverlap]);  // negative in tension
+      const double bond_fs = s[kShearForce] - s[kShearStiffness] * g.vs[p] * dt;
+      const bool tension = -bond_fn >= s[kNormalStrength];
+      const bool shear = (!tension) & (std::abs(bond_fs) >= s[kShearStrength]);
+      const bool released = tension | (shear & (bond_fn <= 0));
+      const bool broke = bonded & (tension | shear);
+      const double fn = select(bonded, select(released, 0.0, bond_fn), lin.fn);
+      const double fs = select(bonded, select(released, 0.0, bond_fs), lin.fs);
+      s[kShearForce] = select(bonded, select(released, 0.0, bond_fs), select(skipped, 0.0, lin.fs));
+      batch_force(f, p, g, skipped, fn, fs, 0.0);
+      // Bonded and holding: touching while the disks overlap; broken in shear
+      // and still pressed: touching; released: not.
+      const bool bonded_touching = (!released) & (shear | (g.overlap[p] > 0));
+      const bool touching = (bonded & bonded_touching) | ((!bonded) & lin.touching);
+      const PairFlags cleared = flags[p] & ~static_cast<PairFlags>(kTouching | (broke ? kBonded : 0u));
+      f.flags[p] = cleared | (touching ? static_cast<PairFlags>(kTouching) : 0u);
+      f.broke[p] = broke ? 1u : 0u;
+      f.tension[p] = tension ? 1u : 0u;
+    }
+  }
+
   double sigma_c_, sigma_c_std_, tau_c_, tau_c_std_;
 };
 

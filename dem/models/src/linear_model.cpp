@@ -2,12 +2,15 @@
 //   parameters: {"modulus_pa": E_c, "kn_ks": kn/ks, "friction": mu}
 //   state: the linear columns only (kn_n_m, ks_n_m, friction, shear_force_n,
 //   reference_overlap_m).
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/linear_base.hpp"
 #include "demcal/dem/linear_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
+#include "demcal/dem/pair_batch.hpp"
 
 namespace demcal::dem {
 namespace {
@@ -19,9 +22,32 @@ class LinearModel : public LinearBase {
   }
   std::string name() const override { return "linear"; }
 
+  // Batches of pairs, each one vectorised loop (pair_batch.hpp), with
+  // linear_force's arithmetic: the same bits as pair by pair. A pair apart is
+  // skipped as skip_apart skips it: no force, no shear.
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    for_disk_pairs(c, b, step, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
-                   [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
+    GeometryBatch g;
+    ForceBatch f;
+    for (std::size_t from = 0; from < c.size; from += kPairBatch) {
+      const std::size_t n = std::min(kPairBatch, c.size - from);
+      batch_geometry(c, b, from, n, g);
+      double* __restrict rows = c.column.row(from);
+      const std::size_t stride = c.column.stride;
+      const PairFlags* __restrict flags = c.flags + from;
+      const double dt = step.dt_s;
+#pragma omp simd
+      for (std::size_t p = 0; p < n; ++p) {
+        double* const s = rows + p * stride;
+        const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
+        s[kShearForce] = select(!lin.touching, 0.0, lin.fs);
+        batch_force(f, p, g, !lin.touching, lin.fn, lin.fs, 0.0);
+        f.flags[p] = (flags[p] & ~static_cast<PairFlags>(kTouching)) |
+                     (lin.touching ? static_cast<PairFlags>(kTouching) : 0u);
+        f.broke[p] = 0u;
+        f.tension[p] = 0u;
+      }
+      add_batch(c, b, from, n, g, f, step);
+    }
   }
 };
 

@@ -16,7 +16,7 @@
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/linear_base.hpp"
-#include "demcal/dem/bond_law.hpp"
+#include "demcal/dem/linear_law.hpp"
 #include "demcal/dem/model_parameters.hpp"
 #include "demcal/dem/pair_batch.hpp"
 
@@ -124,16 +124,11 @@ class ParallelBondModel : public LinearBase {
 #pragma omp simd
     for (std::size_t p = 0; p < n; ++p) {
       double* const s = rows + p * stride;
-      // The linear law (linear_law.hpp).
-      const double overlap = g.overlap[p] - s[kReferenceOverlap];
-      const bool touching = overlap > 0;
-      const double fn = s[kNormalStiffness] * select(0.0 < overlap, overlap, 0.0);  // std::max(0.0, overlap)
-      const double limit = s[kFriction] * fn;
-      const double trial = s[kShearForce] - s[kShearStiffness] * g.vs[p] * dt;
-      const double capped_below = select(trial < -limit, -limit, trial);  // std::max(trial, -limit)
-      const double fs = select(limit < capped_below, limit, capped_below) + 0.0;  // std::min(.., limit)
+      const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
+      const double fn = lin.fn, fs = lin.fs;
+      const bool touching = lin.touching;
       const bool bonded = (flags[p] & kBonded) != 0;
-      const bool skipped = !bonded & !touching;
+      const bool skipped = (!bonded) & (!touching);
       s[kShearForce] = select(skipped, 0.0, fs);
       // The bond's increments and its strength test (sigma and tau times A I
       // and A: no division).
@@ -145,19 +140,14 @@ class ParallelBondModel : public LinearBase {
       const double tau_a = std::abs(bond_fs);
       const bool tension = sigma_ai >= s[kTensileStrength] * area * inertia;
       const bool broke = bonded & (tension | (tau_a >= s[kShearStrength] * area));
-      const bool intact = bonded & !broke;
+      const bool intact = bonded & (!broke);
       s[kBondFn] = select(intact, bond_fn, select(broke, 0.0, s[kBondFn]));
       s[kBondFs] = select(intact, bond_fs, select(broke, 0.0, s[kBondFs]));
       s[kBondM] = select(intact, bond_m, select(broke, 0.0, s[kBondM]));
       const double fn_total = select(intact, fn + bond_fn, fn);
       const double fs_total = select(intact, fs + bond_fs, fs);
       const double moment = select(intact, bond_m, 0.0);
-      const double fx = fn_total * g.nx[p] - fs_total * g.ny[p];
-      const double fy = fn_total * g.ny[p] + fs_total * g.nx[p];
-      f.fx[p] = select(skipped, 0.0, fx);
-      f.fy[p] = select(skipped, 0.0, fy);
-      f.moment_i[p] = select(skipped, 0.0, -g.arm_i[p] * fs_total - moment);
-      f.moment_j[p] = select(skipped, 0.0, -g.arm_j[p] * fs_total + moment);
+      batch_force(f, p, g, skipped, fn_total, fs_total, moment);
       const PairFlags cleared = flags[p] & ~static_cast<PairFlags>(kTouching | (broke ? kBonded : 0u));
       f.flags[p] = cleared | (touching ? static_cast<PairFlags>(kTouching) : 0u);
       f.broke[p] = broke ? 1u : 0u;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "demcal/dem/contact_geometry.hpp"
+#include "demcal/dem/pair_batch.hpp"
 
 namespace demcal::dem {
 
@@ -69,6 +70,39 @@ inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry&
   f.fn = fn;
   f.fs = fs;
   return f;
+}
+
+// The linear law for one lane of a batch loop (pair_batch.hpp): linear_force's
+// arithmetic, term for term, with selects for its max and min and without its
+// stores, so a loop of it vectorises. The caller stores the shear force and
+// the flags.
+struct LinearLane {
+  double fn, fs;  // N
+  bool touching;  // past the reference overlap
+};
+
+inline LinearLane linear_lane(const double* s, double overlap_m, double vs_m_s, double dt) {
+  const double overlap = overlap_m - s[kReferenceOverlap];
+  LinearLane l;
+  l.touching = overlap > 0;
+  l.fn = s[kNormalStiffness] * select(0.0 < overlap, overlap, 0.0);               // std::max(0.0, overlap)
+  const double limit = s[kFriction] * l.fn;
+  const double trial = s[kShearForce] - s[kShearStiffness] * vs_m_s * dt;
+  const double capped_below = select(trial < -limit, -limit, trial);              // std::max(trial, -limit)
+  l.fs = select(limit < capped_below, limit, capped_below) + 0.0;                 // std::min(.., limit)
+  return l;
+}
+
+// Pair p's force as for_disk_pairs turns a PairForce into one, into the batch
+// (zero for a pair skipped this step).
+inline void batch_force(ForceBatch& __restrict f, std::size_t p, const GeometryBatch& __restrict g, bool skipped,
+                        double fn, double fs, double moment) {
+  const double fx = fn * g.nx[p] - fs * g.ny[p];
+  const double fy = fn * g.ny[p] + fs * g.nx[p];
+  f.fx[p] = select(skipped, 0.0, fx);
+  f.fy[p] = select(skipped, 0.0, fy);
+  f.moment_i[p] = select(skipped, 0.0, -g.arm_i[p] * fs - moment);
+  f.moment_j[p] = select(skipped, 0.0, -g.arm_j[p] * fs + moment);
 }
 
 }  // namespace demcal::dem

@@ -1,0 +1,280 @@
+// The batched force laws (pair_batch.hpp) against the pair-by-pair laws they
+// replaced, kept here as the reference: on pairs in every state a step meets
+// (apart, touching, sliding, bonded, breaking in tension and in shear, glued
+// across a gap), the same forces, moments, state, flags and break log, to the
+// bit, in both of the loop's forms (sums into the disks, and per-pair results
+// for the threaded sum).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/rng.hpp"
+#include "demcal/dem/bond_law.hpp"
+#include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/linear_law.hpp"
+
+using namespace demcal::dem;
+
+namespace {
+
+// The models' own column indices (their enums are private to their files);
+// each test checks the names against state_columns(), so a change there fails here.
+enum ParallelBondColumn : std::size_t {
+  kPbKn = kLinearColumns, kPbKs, kPbArea, kPbInertia, kPbRadius, kPbFn, kPbFs, kPbM, kPbTensile, kPbShear, kPbColumns
+};
+enum ContactBondColumn : std::size_t { kCbNormal = kLinearColumns, kCbShear, kCbColumns };
+
+constexpr double kDt = 2e-8;
+constexpr std::size_t kPairs = 300;  // several batches of 64 and a remainder
+
+using ReferenceLaw = std::function<void(PairBlock&, Bodies&, const StepContext&)>;
+
+// The pair-by-pair laws as they were before the batches (commit bd5296f).
+void reference_linear(PairBlock& c, Bodies& b, const StepContext& step) {
+  for_disk_pairs(c, b, step, [&](std::size_t k, const Geometry& g) { return linear_force(c, k, g, step.dt_s); },
+                 [&](std::size_t k, double gap) { return skip_apart(c, k, gap); });
+}
+
+void reference_parallel_bond(PairBlock& c, Bodies& b, const StepContext& step) {
+  const double dt = step.dt_s;
+  for_disk_pairs(
+      c, b, step,
+      [&](std::size_t k, const Geometry& g) {
+        PairForce f = linear_force(c, k, g, dt);
+        if (!(c.flags[k] & kBonded)) return f;
+        double* const s = c.column.row(k);
+        const double area = s[kPbArea], inertia = s[kPbInertia];
+        s[kPbFn] -= s[kPbKn] * area * g.vn * dt;
+        s[kPbFs] -= s[kPbKs] * area * g.vs * dt;
+        s[kPbM] -= s[kPbKn] * inertia * g.relative_w * dt;
+        const double sigma_ai = -s[kPbFn] * inertia + std::abs(s[kPbM]) * s[kPbRadius] * area;
+        const double tau_a = std::abs(s[kPbFs]);
+        const bool tension = sigma_ai >= s[kPbTensile] * area * inertia;
+        if (tension || tau_a >= s[kPbShear] * area) {
+          break_bond(c, k, g, b, step, tension ? BreakMode::Tension : BreakMode::Shear);
+          s[kPbFn] = s[kPbFs] = s[kPbM] = 0.0;
+          return f;
+        }
+        f.fn += s[kPbFn];
+        f.fs += s[kPbFs];
+        f.moment = s[kPbM];
+        return f;
+      },
+      [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
+}
+
+void reference_contact_bond(PairBlock& c, Bodies& b, const StepContext& step) {
+  const double dt = step.dt_s;
+  for_disk_pairs(
+      c, b, step,
+      [&](std::size_t k, const Geometry& g) {
+        if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
+        double* const s = c.column.row(k);
+        PairForce f;
+        f.fn = s[kNormalStiffness] * (g.overlap - s[kReferenceOverlap]);
+        s[kShearForce] -= s[kShearStiffness] * g.vs * dt;
+        f.fs = s[kShearForce];
+        if (-f.fn >= s[kCbNormal]) {
+          break_bond(c, k, g, b, step, BreakMode::Tension);
+          release(c, k);
+          return PairForce{};
+        }
+        if (std::abs(f.fs) >= s[kCbShear]) {
+          break_bond(c, k, g, b, step, BreakMode::Shear);
+          if (f.fn <= 0) {
+            release(c, k);
+            return PairForce{};
+          }
+          c.flags[k] |= kTouching;
+          return f;
+        }
+        c.flags[k] = static_cast<std::uint8_t>(g.overlap > 0 ? (c.flags[k] | kTouching) : (c.flags[k] & ~kTouching));
+        return f;
+      },
+      [&](std::size_t k, double gap) { return skip_unbonded_apart(c, k, gap); });
+}
+
+struct Case {
+  Bodies bodies;
+  ContactSet pairs;
+};
+
+// Half the pairs are two disks of their own 30 um either side of touching
+// (so a reference overlap from genesis decides whether they touch), the other
+// half join disks of the first half at random (mostly far apart, and sharing
+// disks, so the sums' order counts). Random motion; random state in every
+// column, with bond forces of the order of their strengths so some break in
+// each mode.
+Case random_case(std::uint64_t seed, std::size_t columns, const std::string& model) {
+  demcal::Rng rng(seed);
+  Case c;
+  for (std::size_t k = 0; k < kPairs / 2; ++k) {
+    const double ri = rng.uniform(4e-4, 6e-4), rj = rng.uniform(4e-4, 6e-4);
+    const double xi = rng.uniform(0, 0.02), yi = rng.uniform(0, 0.02), angle = rng.uniform(0, 2 * M_PI);
+    const double distance = ri + rj - rng.uniform(-3e-5, 3e-5);
+    c.bodies.add_disk(xi, yi, ri, 2650, 1.0, 0);
+    c.bodies.add_disk(xi + distance * std::cos(angle), yi + distance * std::sin(angle), rj, 2650, 1.0, 1);
+  }
+  const std::size_t disks = c.bodies.size();
+  for (std::size_t d = 0; d < disks; ++d) {
+    c.bodies.vx[d] = rng.uniform(-1, 1);
+    c.bodies.vy[d] = rng.uniform(-1, 1);
+    c.bodies.w[d] = rng.uniform(-2e3, 2e3);
+  }
+  c.bodies.clear_forces();
+  c.pairs.set_layout({columns});
+  for (std::size_t k = 0; k < kPairs / 2; ++k)
+    c.pairs.add(static_cast<std::int32_t>(2 * k), static_cast<std::int32_t>(2 * k + 1), 0);
+  for (std::size_t k = kPairs / 2; k < kPairs; ++k) {
+    const auto i = static_cast<std::int32_t>(rng.below(disks - 1));
+    const auto j = static_cast<std::int32_t>(i + 1 + static_cast<std::int32_t>(rng.below(disks - 1 - i)));
+    c.pairs.add(i, j, 0);
+  }
+  PairBlock block = c.pairs.block(0);
+  for (std::size_t k = 0; k < kPairs; ++k) {
+    double* s = block.column.row(k);
+    s[kNormalStiffness] = rng.uniform(1e6, 1e8);
+    s[kShearStiffness] = s[kNormalStiffness] / rng.uniform(1, 3);
+    s[kFriction] = rng.uniform(0, 1);
+    s[kShearForce] = rng.uniform(-5, 5);
+    // Genesis's reference overlaps: zero, an overlap kept, or a gap glued.
+    const double kind = rng.uniform();
+    s[kReferenceOverlap] = kind < 0.4 ? 0.0 : rng.uniform(-2e-5, 2e-5);
+    const bool bonded = rng.uniform() < 0.7;
+    block.flags[k] = (bonded ? kBonded : 0u) | (rng.uniform() < 0.5 ? kTouching : 0u);
+    if (model == "parallel_bond") {
+      const double rb = rng.uniform(4e-4, 6e-4);
+      s[kPbKn] = rng.uniform(1e12, 1e13);
+      s[kPbKs] = s[kPbKn] / rng.uniform(1, 3);
+      s[kPbArea] = 2 * rb;
+      s[kPbInertia] = 2.0 / 3.0 * rb * rb * rb;
+      s[kPbRadius] = rb;
+      s[kPbTensile] = rng.uniform(1e6, 2e7);
+      s[kPbShear] = rng.uniform(1e6, 4e7);
+      // Forces up to about twice what the strengths allow.
+      s[kPbFn] = bonded ? rng.uniform(-2, 1) * s[kPbTensile] * s[kPbArea] : 0.0;
+      s[kPbFs] = bonded ? rng.uniform(-1.5, 1.5) * s[kPbShear] * s[kPbArea] : 0.0;
+      s[kPbM] = bonded ? rng.uniform(-0.5, 0.5) * s[kPbTensile] * s[kPbInertia] / rb : 0.0;
+    } else if (model == "contact_bond") {
+      // Tensile strengths up to the force of 30 um of pull; shear strengths
+      // about the shear forces drawn above.
+      s[kCbNormal] = rng.uniform(0, 3e-5) * s[kNormalStiffness];
+      s[kCbShear] = rng.uniform(0.5, 8);
+    }
+  }
+  return c;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+struct Counts {
+  std::size_t skipped = 0, tension = 0, shear = 0;
+};
+
+// Runs the model's batched law and the reference on copies of one case, in
+// both forms, and compares everything they wrote.
+Counts check(const std::string& model_name, const nlohmann::json& parameters, std::size_t columns,
+             const ReferenceLaw& reference, std::uint64_t seed) {
+  const auto model = ContactModelRegistry::instance().create(model_name, parameters, "test");
+  EXPECT_EQ(model->state_columns().size(), columns);
+  Counts counts;
+  for (const bool keep_results : {false, true}) {
+    const Case base = random_case(seed, columns, model_name);
+    Case batched = base, pairwise = base;
+    std::vector<BreakEvent> batched_log, pairwise_log;
+    std::vector<PairResult> batched_results(kPairs), pairwise_results(kPairs);
+    StepContext batched_step{kDt, 1e-3, 1.0, &batched_log, keep_results ? batched_results.data() : nullptr};
+    StepContext pairwise_step{kDt, 1e-3, 1.0, &pairwise_log, keep_results ? pairwise_results.data() : nullptr};
+    PairBlock batched_block = batched.pairs.block(0), pairwise_block = pairwise.pairs.block(0);
+    model->disk_forces(batched_block, batched.bodies, batched_step);
+    reference(pairwise_block, pairwise.bodies, pairwise_step);
+
+    EXPECT_TRUE(same_bits(batched.bodies.fx, pairwise.bodies.fx)) << model_name << " seed " << seed;
+    EXPECT_TRUE(same_bits(batched.bodies.fy, pairwise.bodies.fy)) << model_name << " seed " << seed;
+    EXPECT_TRUE(same_bits(batched.bodies.moment, pairwise.bodies.moment)) << model_name << " seed " << seed;
+    if (keep_results) {
+      EXPECT_EQ(std::memcmp(batched_results.data(), pairwise_results.data(), kPairs * sizeof(PairResult)), 0)
+          << model_name << " seed " << seed;
+    }
+    const ConstPairBlock before = base.pairs.block(0);
+    for (std::size_t k = 0; k < kPairs; ++k) {
+      EXPECT_EQ(batched_block.flags[k], pairwise_block.flags[k]) << model_name << " pair " << k;
+      EXPECT_EQ(std::memcmp(batched_block.column.row(k), pairwise_block.column.row(k), columns * sizeof(double)), 0)
+          << model_name << " pair " << k << " seed " << seed;
+      if (!(before.flags[k] & kBonded) && !(pairwise_block.flags[k] & kTouching)) ++counts.skipped;
+    }
+    EXPECT_EQ(batched_log.size(), pairwise_log.size()) << model_name << " seed " << seed;
+    if (batched_log.size() != pairwise_log.size()) return counts;
+    for (std::size_t e = 0; e < pairwise_log.size(); ++e) {
+      EXPECT_EQ(std::memcmp(&batched_log[e].x_m, &pairwise_log[e].x_m, sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(&batched_log[e].y_m, &pairwise_log[e].y_m, sizeof(double)), 0);
+      EXPECT_EQ(batched_log[e].time_s, pairwise_log[e].time_s);
+      EXPECT_EQ(batched_log[e].mode, pairwise_log[e].mode);
+      EXPECT_EQ(batched_log[e].group_i, pairwise_log[e].group_i);
+      EXPECT_EQ(batched_log[e].group_j, pairwise_log[e].group_j);
+      if (!keep_results) ++(pairwise_log[e].mode == BreakMode::Tension ? counts.tension : counts.shear);
+    }
+  }
+  return counts;
+}
+
+}  // namespace
+
+TEST(PairBatch, LinearModelGivesThePairByPairBits) {
+  const nlohmann::json p = {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}};
+  std::size_t skipped = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) skipped += check("linear", p, kLinearColumns, reference_linear, seed).skipped;
+  EXPECT_GT(skipped, 50u);  // pairs apart are part of the comparison
+}
+
+TEST(PairBatch, ParallelBondGivesThePairByPairBitsAndBreaks) {
+  const nlohmann::json p = {{"modulus_pa", 1e9},         {"kn_ks", 2.0},         {"friction", 0.5},
+                            {"bond_modulus_pa", 1e9},    {"bond_kn_ks", 2.0},    {"tensile_strength_pa", 1e7},
+                            {"shear_strength_pa", 2e7}};
+  const auto model = ContactModelRegistry::instance().create("parallel_bond", p, "test");
+  const std::vector<std::string> names = model->state_columns();
+  ASSERT_EQ(names.size(), kPbColumns);
+  EXPECT_EQ(names[kPbKn], "bond_kn_pa_m");
+  EXPECT_EQ(names[kPbFn], "bond_normal_force_n");
+  EXPECT_EQ(names[kPbM], "bond_moment_nm");
+  EXPECT_EQ(names[kPbShear], "bond_shear_strength_pa");
+  Counts all;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Counts c = check("parallel_bond", p, kPbColumns, reference_parallel_bond, seed);
+    all.skipped += c.skipped;
+    all.tension += c.tension;
+    all.shear += c.shear;
+  }
+  EXPECT_GT(all.skipped, 10u);
+  EXPECT_GT(all.tension, 20u);
+  EXPECT_GT(all.shear, 20u);
+}
+
+TEST(PairBatch, ContactBondGivesThePairByPairBitsAndBreaks) {
+  const nlohmann::json p = {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"tensile_strength_pa", 1e7},
+                            {"shear_strength_pa", 2e7}};
+  const auto model = ContactModelRegistry::instance().create("contact_bond", p, "test");
+  const std::vector<std::string> names = model->state_columns();
+  ASSERT_EQ(names.size(), kCbColumns);
+  EXPECT_EQ(names[kCbNormal], "bond_normal_strength_n");
+  EXPECT_EQ(names[kCbShear], "bond_shear_strength_n");
+  Counts all;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Counts c = check("contact_bond", p, kCbColumns, reference_contact_bond, seed);
+    all.skipped += c.skipped;
+    all.tension += c.tension;
+    all.shear += c.shear;
+  }
+  EXPECT_GT(all.skipped, 10u);
+  EXPECT_GT(all.tension, 20u);
+  EXPECT_GT(all.shear, 20u);
+}
