@@ -227,13 +227,24 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
   return counts;
 }
 
+// check() over seeds 1-5, the counts summed.
+Counts check_seeds(const std::string& model_name, const nlohmann::json& parameters, std::size_t columns,
+                   const ReferenceLaw& reference) {
+  Counts all;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Counts c = check(model_name, parameters, columns, reference, seed);
+    all.skipped += c.skipped;
+    all.tension += c.tension;
+    all.shear += c.shear;
+  }
+  return all;
+}
+
 }  // namespace
 
 TEST(PairBatch, LinearModelGivesThePairByPairBits) {
   const nlohmann::json p = {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}};
-  std::size_t skipped = 0;
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) skipped += check("linear", p, kLinearColumns, reference_linear, seed).skipped;
-  EXPECT_GT(skipped, 50u);  // pairs apart are part of the comparison
+  EXPECT_GT(check_seeds("linear", p, kLinearColumns, reference_linear).skipped, 50u);  // pairs apart are part of the comparison
 }
 
 TEST(PairBatch, ParallelBondGivesThePairByPairBitsAndBreaks) {
@@ -247,13 +258,7 @@ TEST(PairBatch, ParallelBondGivesThePairByPairBitsAndBreaks) {
   EXPECT_EQ(names[kPbFn], "bond_normal_force_n");
   EXPECT_EQ(names[kPbM], "bond_moment_nm");
   EXPECT_EQ(names[kPbShear], "bond_shear_strength_pa");
-  Counts all;
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const Counts c = check("parallel_bond", p, kPbColumns, reference_parallel_bond, seed);
-    all.skipped += c.skipped;
-    all.tension += c.tension;
-    all.shear += c.shear;
-  }
+  const Counts all = check_seeds("parallel_bond", p, kPbColumns, reference_parallel_bond);
   EXPECT_GT(all.skipped, 10u);
   EXPECT_GT(all.tension, 20u);
   EXPECT_GT(all.shear, 20u);
@@ -267,13 +272,7 @@ TEST(PairBatch, ContactBondGivesThePairByPairBitsAndBreaks) {
   ASSERT_EQ(names.size(), kCbColumns);
   EXPECT_EQ(names[kCbNormal], "bond_normal_strength_n");
   EXPECT_EQ(names[kCbShear], "bond_shear_strength_n");
-  Counts all;
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const Counts c = check("contact_bond", p, kCbColumns, reference_contact_bond, seed);
-    all.skipped += c.skipped;
-    all.tension += c.tension;
-    all.shear += c.shear;
-  }
+  const Counts all = check_seeds("contact_bond", p, kCbColumns, reference_contact_bond);
   EXPECT_GT(all.skipped, 10u);
   EXPECT_GT(all.tension, 20u);
   EXPECT_GT(all.shear, 20u);

@@ -2,7 +2,6 @@
 //   parameters: {"modulus_pa": E_c, "kn_ks": kn/ks, "friction": mu}
 //   state: the linear columns only (kn_n_m, ks_n_m, friction, shear_force_n,
 //   reference_overlap_m).
-#include <algorithm>
 
 #include <nlohmann/json.hpp>
 
@@ -26,27 +25,27 @@ class LinearModel : public LinearBase {
   // linear_force's arithmetic: the same bits as pair by pair. A pair apart is
   // skipped as skip_apart skips it: no force, no shear.
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    GeometryBatch g;
-    ForceBatch f;
-    for (std::size_t from = 0; from < c.size; from += kPairBatch) {
-      const std::size_t n = std::min(kPairBatch, c.size - from);
-      batch_geometry(c, b, from, n, g);
-      double* __restrict rows = c.column.row(from);
-      const std::size_t stride = c.column.stride;
-      const PairFlags* __restrict flags = c.flags + from;
-      const double dt = step.dt_s;
+    for_pair_batches(c, b, step, [&](std::size_t from, std::size_t n, const GeometryBatch& g, ForceBatch& f) {
+      law(c, from, n, g, f, step.dt_s);
+    });
+  }
+
+ private:
+  static void law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
+                  ForceBatch& __restrict f, double dt) {
+    double* __restrict rows = c.column.row(from);
+    const std::size_t stride = c.column.stride;
+    const PairFlags* __restrict flags = c.flags + from;
 #pragma omp simd
-      for (std::size_t p = 0; p < n; ++p) {
-        double* const s = rows + p * stride;
-        const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
-        s[kShearForce] = select(!lin.touching, 0.0, lin.fs);
-        batch_force(f, p, g, !lin.touching, lin.fn, lin.fs, 0.0);
-        f.flags[p] = (flags[p] & ~static_cast<PairFlags>(kTouching)) |
-                     (lin.touching ? static_cast<PairFlags>(kTouching) : 0u);
-        f.broke[p] = 0u;
-        f.tension[p] = 0u;
-      }
-      add_batch(c, b, from, n, g, f, step);
+    for (std::size_t p = 0; p < n; ++p) {
+      double* const s = rows + p * stride;
+      const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
+      s[kShearForce] = select(!lin.touching, 0.0, lin.fs);
+      batch_force(f, p, g, !lin.touching, lin.fn, lin.fs, 0.0);
+      f.flags[p] = (flags[p] & ~static_cast<PairFlags>(kTouching)) |
+                   (lin.touching ? static_cast<PairFlags>(kTouching) : 0u);
+      f.broke[p] = 0u;
+      f.tension[p] = 0u;
     }
   }
 };

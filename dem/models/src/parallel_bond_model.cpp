@@ -83,14 +83,9 @@ class ParallelBondModel : public LinearBase {
   // law and the bond's update), the same bits. A pair neither bonded nor
   // touching is skipped as skip_unbonded_apart skips it: no force, no shear.
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    GeometryBatch g;
-    ForceBatch f;
-    for (std::size_t from = 0; from < c.size; from += kPairBatch) {
-      const std::size_t n = std::min(kPairBatch, c.size - from);
-      batch_geometry(c, b, from, n, g);
+    for_pair_batches(c, b, step, [&](std::size_t from, std::size_t n, const GeometryBatch& g, ForceBatch& f) {
       bond_law(c, from, n, g, f, step.dt_s);
-      add_batch(c, b, from, n, g, f, step);
-    }
+    });
   }
 
   // The bond adds its springs in parallel with the contact's (kept after a

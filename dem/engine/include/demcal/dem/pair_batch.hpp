@@ -127,4 +127,19 @@ inline void add_batch(const PairBlock& c, Bodies& b, std::size_t from, std::size
   }
 }
 
+// A model's disk_forces over its block in batches: law(from, n, g, f) fills
+// `f` for pairs [from, from + n) from their geometry `g` (and updates their
+// state); the forces then go to the disks or to step.pair_results.
+template <typename Law>
+inline void for_pair_batches(const PairBlock& c, Bodies& b, const StepContext& step, Law law) {
+  GeometryBatch g;
+  ForceBatch f;
+  for (std::size_t from = 0; from < c.size; from += kPairBatch) {
+    const std::size_t n = c.size - from < kPairBatch ? c.size - from : kPairBatch;
+    batch_geometry(c, b, from, n, g);
+    law(from, n, g, f);
+    add_batch(c, b, from, n, g, f, step);
+  }
+}
+
 }  // namespace demcal::dem
