@@ -8,6 +8,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/rng.hpp"
+#include "disk_integration.hpp"
 
 namespace demcal::dem {
 
@@ -240,17 +241,18 @@ void World::update_time_step() {
 }
 
 void World::compute_forces() {
-  if (threads_in_use_ <= 1) bodies.clear_forces();  // else cleared by the threads
+  bodies.clear_forces();
   for (Wall& wall : walls) wall.fx = wall.fy = 0;
   StepContext context{dt_s_, time_s_, settings_.thickness_m, &breaks_};
-  if (threads_in_use_ > 1) {
-    compute_disk_forces_in_threads();
-  } else {
-    for (std::uint8_t m : run_models_) {
-      PairBlock block = pairs_.block(m);
-      models_[m]->disk_forces(block, bodies, context);
-    }
+  for (std::uint8_t m : run_models_) {
+    PairBlock block = pairs_.block(m);
+    models_[m]->disk_forces(block, bodies, context);
   }
+  compute_wall_forces();
+}
+
+void World::compute_wall_forces() {
+  StepContext context{dt_s_, time_s_, settings_.thickness_m, &breaks_};
   for (std::uint8_t m : wall_run_models_) {
     PairBlock block = wall_pairs_.block(m);
     models_[m]->wall_forces(block, bodies, walls, context);
@@ -286,88 +288,12 @@ void World::wall_forces_on_disks(std::vector<double>& fx, std::vector<double>& f
   bodies.moment = keep_moment;
 }
 
-namespace {
-
-// What the disks' integration reads and writes.
-struct DiskArrays {
-  double *x, *y, *vx, *vy, *w;
-  const double *force_x, *force_y, *moment, *mass, *inverse_mass, *inverse_inertia, *x_built, *y_built;
-  const std::uint8_t* fixed;
-  const std::int32_t* clump;
-};
-
-// Moves the free disks [from, to) one step; returns the largest squared
-// move since the last rebuild among them and `max_move2`.
-double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t to, double dt, double alpha, double gx,
-                       double gy, double max_move2) {
-  // Local pointers, so they stay in registers through the loop.
-  double* __restrict x = a.x;
-  double* __restrict y = a.y;
-  double* __restrict vx = a.vx;
-  double* __restrict vy = a.vy;
-  double* __restrict w = a.w;
-  const double* __restrict force_x = a.force_x;
-  const double* __restrict force_y = a.force_y;
-  const double* __restrict moment = a.moment;
-  const double* __restrict mass = a.mass;
-  const double* __restrict inverse_mass = a.inverse_mass;
-  const double* __restrict inverse_inertia = a.inverse_inertia;
-  const double* __restrict x_built = a.x_built;
-  const double* __restrict y_built = a.y_built;
-  const std::uint8_t* __restrict fixed = a.fixed;
-  const std::int32_t* __restrict clump = a.clump;
-  // No branch in the loop, so it vectorises: a fixed disk, and a clump's
-  // member (which its clump moves afterwards), get `moves` = 0, which stops
-  // them (v = 0, x unchanged) with the free disks' arithmetic untouched.
-  // The max is exact in any order, so the vector lanes may take it apart.
-#pragma omp simd reduction(max : max_move2)
-  for (std::size_t i = from; i < to; ++i) {
-    const double moves = (fixed[i] == 0) & (clump[i] < 0) ? 1.0 : 0.0;
-    const double m = mass[i];
-    // Local non-viscous damping opposes the velocity with a fraction of the force.
-    const double fx = force_x[i] + m * gx;
-    const double fy = force_y[i] + m * gy;
-    const double mz = moment[i];
-    const double sx = vx[i] > 0 ? 1.0 : (vx[i] < 0 ? -1.0 : 0.0);
-    const double sy = vy[i] > 0 ? 1.0 : (vy[i] < 0 ? -1.0 : 0.0);
-    const double sw = w[i] > 0 ? 1.0 : (w[i] < 0 ? -1.0 : 0.0);
-    const double to_velocity = inverse_mass[i] * dt;
-    const double new_vx = (vx[i] + (fx - alpha * std::abs(fx) * sx) * to_velocity) * moves;
-    const double new_vy = (vy[i] + (fy - alpha * std::abs(fy) * sy) * to_velocity) * moves;
-    w[i] = (w[i] + (mz - alpha * std::abs(mz) * sw) * (inverse_inertia[i] * dt)) * moves;
-    vx[i] = new_vx;
-    vy[i] = new_vy;
-    x[i] += new_vx * dt;
-    y[i] += new_vy * dt;
-    const double ddx = x[i] - x_built[i], ddy = y[i] - y_built[i];
-    max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
-  }
-  return max_move2;
-}
-
-}  // namespace
-
 void World::integrate() {
   const std::size_t n = bodies.size();
-  const DiskArrays arrays{bodies.x.data(),      bodies.y.data(),        bodies.vx.data(),
-                          bodies.vy.data(),     bodies.w.data(),        bodies.fx.data(),
-                          bodies.fy.data(),     bodies.moment.data(),   bodies.mass.data(),
-                          inverse_mass_.data(), inverse_inertia_.data(), x_built_.data(),
-                          y_built_.data(),      bodies.fixed.data(),    bodies.clump.data()};
+  const DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
   const double dt = dt_s_, alpha = settings_.damping;
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
-  double max_move2 = max_disk_move2_;
-  if (threads_in_use_ > 1) {
-    // max is exact, so the threads' maxima combine to the serial value.
-#pragma omp parallel num_threads(threads_in_use_) reduction(max : max_move2)
-    {
-      const std::size_t team = static_cast<std::size_t>(omp_get_num_threads());
-      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
-      max_move2 = integrate_disks(arrays, n * t / team, n * (t + 1) / team, dt, alpha, gx, gy, max_move2);
-    }
-  } else {
-    max_move2 = integrate_disks(arrays, 0, n, dt, alpha, gx, gy, max_move2);
-  }
+  double max_move2 = integrate_disks(arrays, 0, n, dt, alpha, gx, gy, max_disk_move2_);
   integrate_clumps(max_move2);
   max_disk_move2_ = max_move2;
 }
@@ -441,9 +367,13 @@ void World::step() {
   for (std::size_t w = 0; w < walls.size() && w < wall_built_.size(); ++w)
     wall_move = std::max(wall_move, std::hypot(walls[w].x0 - wall_built_[w][0], walls[w].y0 - wall_built_[w][1]));
   if (2.0 * disk_move > skin_m_ || disk_move + wall_move > skin_m_ || wall_built_.size() != walls.size()) rebuild();
-  compute_forces();
-  for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
-  integrate();
+  if (threads_in_use_ > 1) {
+    step_in_threads();
+  } else {
+    compute_forces();
+    for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
+    integrate();
+  }
   for (auto& forces : external_forces_) forces->after_integration(bodies, time_s_, dt_s_);
   move_walls();
   time_s_ += dt_s_;

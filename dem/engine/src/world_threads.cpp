@@ -1,162 +1,150 @@
-// The World's threaded force loop, with the serial loop's sums to the bit.
+// The World's threaded step (forces, then the disks' integration, in one
+// parallel region), with the serial step's bits.
 //
-// Each thread owns the disks of one range of ids (genesis numbers disks
-// along a Hilbert curve, so a range is a compact region). Pairs are sorted by
-// (model, id_i, id_j), so the pairs whose i a thread owns are one contiguous
-// segment of each model's block. A pair whose j another thread owns (a
-// crossing pair: few, along the regions' borders) is computed first and its
-// contribution stored; then every thread walks its own segments in pair
-// order, adding the crossing pairs where it owns j before its segment (their
-// i has a lower id, so they come first in pair order), computing the other
-// pairs and adding their forces as the serial loop does. Every disk thus gets
-// its additions in the serial order, whatever the number of threads, and the
-// bond breaks are logged in pair order.
-#include <algorithm>
-
+// The disk pairs are cut into one contiguous range per thread (equal pair
+// counts, whole batches, whatever the models). A disk whose pairs all lie in
+// one range gets its additions from that range's thread alone, in pair
+// order, as in the serial loop; the thread adds them directly. A disk whose
+// pairs lie in several ranges (a shared disk: few, where the ranges meet,
+// because genesis numbers the disks along a Hilbert curve) gets nothing in
+// the first phase: every pair's contribution is also stored, and in the
+// second phase each shared disk sums its pairs' contributions in pair order
+// with the serial loop's signs. Every sum thus gets the same terms in the
+// same order whatever the number of threads. The ranges follow one another,
+// so their break logs joined in range order are in pair order.
 #include <omp.h>
 
-#include "demcal/core/error.hpp"
+#include <algorithm>
+
+#include "demcal/dem/pair_batch.hpp"
 #include "demcal/dem/world.hpp"
+#include "disk_integration.hpp"
 
 namespace demcal::dem {
 
 void World::build_thread_partition() {
-  const std::size_t n = bodies.size(), team = static_cast<std::size_t>(threads_in_use_);
   ThreadPartition& tp = partition_;
-  // Owner by the rank of the disk's id: equal numbers of disks per thread.
-  std::vector<std::uint32_t> ids(bodies.id.begin(), bodies.id.end());
-  std::sort(ids.begin(), ids.end());
-  std::vector<std::uint32_t> first_id(team);
-  for (std::size_t t = 0; t < team; ++t) first_id[t] = ids[n * t / team];
-  tp.owner.resize(n);
-  for (std::size_t d = 0; d < n; ++d)
-    tp.owner[d] = static_cast<std::uint8_t>(
-        std::upper_bound(first_id.begin(), first_id.end(), bodies.id[d]) - first_id.begin() - 1);
+  const std::size_t n = bodies.size(), pairs = pairs_.size();
+  const std::size_t team = static_cast<std::size_t>(threads_in_use_);
+  tp.range_start.resize(team + 1);
+  for (std::size_t t = 0; t <= team; ++t) tp.range_start[t] = pairs * t / team;
 
-  const std::size_t models = run_models_.size();
-  tp.segment.assign(models * (team + 1), 0);
-  tp.crossing.clear();
-  tp.crossing_range.assign(models * (team + 1), 0);
-  std::vector<std::vector<std::uint32_t>> incoming(models * team);
-  for (std::size_t p = 0; p < models; ++p) {
-    const std::uint8_t m = run_models_[p];
-    const std::size_t begin = pairs_.begin(m), end = pairs_.end(m);
-    std::size_t k = begin;
-    for (std::size_t t = 0; t < team; ++t) {
-      tp.segment[p * (team + 1) + t] = k;
-      tp.crossing_range[p * (team + 1) + t] = tp.crossing.size();
-      for (; k < end && tp.owner[static_cast<std::size_t>(pairs_.i[k])] == t; ++k) {
-        const std::size_t owner_j = tp.owner[static_cast<std::size_t>(pairs_.j[k])];
-        if (owner_j == t) continue;
-        incoming[p * team + owner_j].push_back(static_cast<std::uint32_t>(tp.crossing.size()));
-        tp.crossing.push_back(static_cast<std::uint32_t>(k));
+  // A disk is shared when its pairs lie in more than one range.
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> range_of(n, kNone);
+  std::vector<std::uint8_t> shared(n, 0);
+  for (std::size_t t = 0; t < team; ++t)
+    for (std::size_t k = tp.range_start[t]; k < tp.range_start[t + 1]; ++k)
+      for (const std::int32_t d : {pairs_.i[k], pairs_.j[k]}) {
+        const std::size_t disk = static_cast<std::size_t>(d);
+        if (range_of[disk] == kNone) range_of[disk] = static_cast<std::uint32_t>(t);
+        shared[disk] |= static_cast<std::uint8_t>(range_of[disk] != t);
       }
+  tp.direct.resize(pairs);
+  for (std::size_t k = 0; k < pairs; ++k)
+    tp.direct[k] = static_cast<std::uint8_t>((shared[static_cast<std::size_t>(pairs_.i[k])] ? 0 : kAddToI) |
+                                             (shared[static_cast<std::size_t>(pairs_.j[k])] ? 0 : kAddToJ));
+
+  // Each shared disk's pairs in pair order: a counting sort over the pairs,
+  // taken in order.
+  std::vector<std::uint32_t> slot(n, kNone);
+  tp.shared.clear();
+  for (std::size_t d = 0; d < n; ++d)
+    if (shared[d]) {
+      slot[d] = static_cast<std::uint32_t>(tp.shared.size());
+      tp.shared.push_back(static_cast<std::uint32_t>(d));
     }
-    tp.segment[p * (team + 1) + team] = k;
-    tp.crossing_range[p * (team + 1) + team] = tp.crossing.size();
-    if (k != end) throw Error("internal: the pairs are not sorted by the owner of their lower-id disk");
+  tp.incidence_start.assign(tp.shared.size() + 1, 0);
+  for (std::size_t k = 0; k < pairs; ++k)
+    for (const std::int32_t d : {pairs_.i[k], pairs_.j[k]})
+      if (slot[static_cast<std::size_t>(d)] != kNone) ++tp.incidence_start[slot[static_cast<std::size_t>(d)] + 1];
+  for (std::size_t s = 0; s < tp.shared.size(); ++s) tp.incidence_start[s + 1] += tp.incidence_start[s];
+  tp.incidence.resize(tp.incidence_start.back());
+  std::vector<std::uint32_t> next(tp.incidence_start.begin(), tp.incidence_start.end() - 1);
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const std::uint32_t si = slot[static_cast<std::size_t>(pairs_.i[k])];
+    const std::uint32_t sj = slot[static_cast<std::size_t>(pairs_.j[k])];
+    if (si != kNone) tp.incidence[next[si]++] = static_cast<std::uint32_t>(2 * k);
+    if (sj != kNone) tp.incidence[next[sj]++] = static_cast<std::uint32_t>(2 * k + 1);
   }
-  tp.incoming_start.assign(models * team + 1, 0);
-  tp.incoming.clear();
-  for (std::size_t s = 0; s < models * team; ++s) {
-    tp.incoming.insert(tp.incoming.end(), incoming[s].begin(), incoming[s].end());
-    tp.incoming_start[s + 1] = tp.incoming.size();
-  }
-  tp.results.resize(tp.crossing.size());
-  tp.crossing_log.resize(team);
-  tp.crossing_break.assign(tp.crossing.size(), {});
-  tp.log.resize(models * team);
+  tp.results.resize(pairs);
+  tp.log.resize(team);
 }
 
-void World::compute_disk_forces_in_threads() {
-  // Phase 1 clears the force sums itself.
+void World::step_in_threads() {
   ThreadPartition& tp = partition_;
-  const std::size_t team = static_cast<std::size_t>(threads_in_use_);
-  const std::size_t models = run_models_.size();
+  const std::size_t n = bodies.size();
+  const std::size_t team = tp.range_start.size() - 1;
   double* __restrict fx = bodies.fx.data();
   double* __restrict fy = bodies.fy.data();
   double* __restrict moment = bodies.moment.data();
+  for (Wall& wall : walls) wall.fx = wall.fy = 0;
+  const DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
+  const double dt = dt_s_, alpha = settings_.damping;
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  double max_move2 = max_disk_move2_;
 
-#pragma omp parallel num_threads(threads_in_use_)
-  // Ranges were cut for `team` threads: each thread takes every team-th of
-  // them, so a smaller team than asked still covers them all.
+  // max is exact, so the threads' maxima combine to the serial value.
+#pragma omp parallel num_threads(threads_in_use_) reduction(max : max_move2)
   {
+    // A smaller team than asked takes every size-th range each.
     const std::size_t size = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t me = static_cast<std::size_t>(omp_get_thread_num());
-    // 1. The disks' force sums start from zero, and the crossing pairs (shared
-    // out evenly, whoever owns them) store their contributions and keep any
-    // break aside.
-    {
-      const std::size_t n = bodies.size();
-      std::fill(fx + n * me / size, fx + n * (me + 1) / size, 0.0);
-      std::fill(fy + n * me / size, fy + n * (me + 1) / size, 0.0);
-      std::fill(moment + n * me / size, moment + n * (me + 1) / size, 0.0);
-      std::vector<BreakEvent>& log = tp.crossing_log[me];
+    const std::size_t my_first = n * me / size, my_last = n * (me + 1) / size;
+    // 0. The sums start from zero, as the serial loop's cleared sums.
+    std::fill(fx + my_first, fx + my_last, 0.0);
+    std::fill(fy + my_first, fy + my_last, 0.0);
+    std::fill(moment + my_first, moment + my_last, 0.0);
+#pragma omp barrier
+    // 1. This thread's ranges, model by model: every contribution stored, and
+    // added directly to the disks that are not shared.
+    for (std::size_t t = me; t < team; t += size) {
+      std::vector<BreakEvent>& log = tp.log[t];
       log.clear();
-      const std::size_t crossing = tp.crossing.size();
-      std::size_t p = 0;
-      for (std::size_t s = crossing * me / size; s < crossing * (me + 1) / size; ++s) {
-        while (s >= tp.crossing_range[p * (team + 1) + team]) ++p;  // the model of crossing pair s
-        const std::uint8_t m = run_models_[p];
-        const std::size_t k = tp.crossing[s] - pairs_.begin(m);
-        const std::size_t logged = log.size();
-        StepContext context{dt_s_, time_s_, settings_.thickness_m, &log, &tp.results[s]};
-        PairBlock one = pairs_.block(m).slice(k, k + 1);
-        models_[m]->disk_forces(one, bodies, context);
-        tp.crossing_break[s] = {static_cast<std::uint32_t>(me), static_cast<std::uint32_t>(logged),
-                                static_cast<std::uint32_t>(log.size() - logged)};
+      for (std::uint8_t m : run_models_) {
+        const std::size_t begin = std::max(tp.range_start[t], pairs_.begin(m));
+        const std::size_t end = std::min(tp.range_start[t + 1], pairs_.end(m));
+        if (begin >= end) continue;
+        StepContext context{
+            dt_s_, time_s_, settings_.thickness_m, &log, tp.results.data() + begin, tp.direct.data() + begin};
+        PairBlock run = pairs_.block(m).slice(begin - pairs_.begin(m), end - pairs_.begin(m));
+        models_[m]->disk_forces(run, bodies, context);
       }
     }
 #pragma omp barrier
-    // 2. Each thread its own disks, in pair order.
-    for (std::size_t t = me; t < team; t += size) {
-      for (std::size_t p = 0; p < models; ++p) {
-        const std::uint8_t m = run_models_[p];
-        PairBlock block = pairs_.block(m);
-        const std::size_t base = pairs_.begin(m);
-        std::vector<BreakEvent>& log = tp.log[p * team + t];
-        log.clear();
-        for (std::size_t a = tp.incoming_start[p * team + t]; a < tp.incoming_start[p * team + t + 1]; ++a) {
-          const std::uint32_t s = tp.incoming[a];
-          const PairResult& r = tp.results[s];
-          const std::size_t j = static_cast<std::size_t>(pairs_.j[tp.crossing[s]]);
-          fx[j] += r.fx;
-          fy[j] += r.fy;
-          moment[j] += r.moment_j;
-        }
-        StepContext context{dt_s_, time_s_, settings_.thickness_m, &log, nullptr};
-        std::size_t from = tp.segment[p * (team + 1) + t] - base;
-        const std::size_t to = tp.segment[p * (team + 1) + t + 1] - base;
-        for (std::size_t s = tp.crossing_range[p * (team + 1) + t]; s < tp.crossing_range[p * (team + 1) + t + 1];
-             ++s) {
-          const std::size_t k = tp.crossing[s] - base;
-          if (k > from) {
-            PairBlock run = block.slice(from, k);
-            models_[m]->disk_forces(run, bodies, context);
-          }
-          const PairResult& r = tp.results[s];
-          const std::size_t i = static_cast<std::size_t>(pairs_.i[tp.crossing[s]]);
-          fx[i] -= r.fx;
-          fy[i] -= r.fy;
-          moment[i] += r.moment_i;
-          const CrossingBreaks& b = tp.crossing_break[s];
-          for (std::uint32_t e = 0; e < b.count; ++e) log.push_back(tp.crossing_log[b.thread][b.first + e]);
-          from = k + 1;
-        }
-        if (to > from) {
-          PairBlock run = block.slice(from, to);
-          models_[m]->disk_forces(run, bodies, context);
-        }
+    // 2. The shared disks, each summing its pairs in pair order (x - y is
+    // x + (-y) to the bit, so the side only selects a term).
+    const std::size_t shared = tp.shared.size();
+    for (std::size_t s = shared * me / size; s < shared * (me + 1) / size; ++s) {
+      double sum_x = 0.0, sum_y = 0.0, sum_moment = 0.0;
+      for (std::uint32_t e = tp.incidence_start[s]; e < tp.incidence_start[s + 1]; ++e) {
+        const std::uint32_t entry = tp.incidence[e];
+        const PairResult& r = tp.results[entry >> 1];
+        const bool is_j = (entry & 1u) != 0;
+        sum_x += select(is_j, r.fx, -r.fx);
+        sum_y += select(is_j, r.fy, -r.fy);
+        sum_moment += select(is_j, r.moment_j, r.moment_i);
       }
+      const std::size_t d = tp.shared[s];
+      fx[d] = sum_x;
+      fy[d] = sum_y;
+      moment[d] = sum_moment;
     }
+#pragma omp barrier
+    // 3. What the serial step does next, on one thread: the breaks in pair
+    // order (the ranges follow one another), the wall contacts (few) and
+    // the external forces. The end of `single` waits for it.
+#pragma omp single
+    {
+      for (std::size_t t = 0; t < team; ++t) breaks_.insert(breaks_.end(), tp.log[t].begin(), tp.log[t].end());
+      compute_wall_forces();
+      for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
+    }
+    // 4. This thread's disks move.
+    max_move2 = integrate_disks(arrays, my_first, my_last, dt, alpha, gx, gy, max_move2);
   }
-
-  // Breaks in pair order: model by model, each model's segments in order.
-  for (std::size_t p = 0; p < models; ++p)
-    for (std::size_t t = 0; t < team; ++t) {
-      const auto& log = tp.log[p * team + t];
-      breaks_.insert(breaks_.end(), log.begin(), log.end());
-    }
+  integrate_clumps(max_move2);
+  max_disk_move2_ = max_move2;
 }
 
 }  // namespace demcal::dem

@@ -39,12 +39,34 @@ struct PairResult {
   double moment_i, moment_j;  // what each disk's moment sum gets, N m
 };
 
+// The bits of StepContext::direct.
+constexpr std::uint8_t kAddToI = 1, kAddToJ = 2, kAddToBoth = 3;
+
+// Adds one pair's contribution to the disks' sums, as the serial loop does,
+// to those of its disks that `direct` names.
+inline void add_pair_where(double* __restrict fx_sum, double* __restrict fy_sum, double* __restrict moment_sum,
+                           std::int32_t i, std::int32_t j, const PairResult& r, std::uint8_t direct) {
+  if (direct & kAddToJ) {
+    fx_sum[j] += r.fx;
+    fy_sum[j] += r.fy;
+    moment_sum[j] += r.moment_j;
+  }
+  if (direct & kAddToI) {
+    fx_sum[i] -= r.fx;
+    fy_sum[i] -= r.fy;
+    moment_sum[i] += r.moment_i;
+  }
+}
+
 // Law: PairForce law(std::size_t k, const Geometry& g) for the block's pair k;
 // Skip: bool skip(std::size_t k, double gap) true when the pair can be
 // ignored this step at separation `gap` (> 0 apart). With step.pair_results
-// set, pair k's contribution goes to pair_results[k] instead of the disks.
+// set, pair k's contribution goes to pair_results[k] instead of the disks;
+// with step.direct too, it goes to the disks direct[k] names and is stored
+// only where that is not both.
 template <bool kKeepResults, typename Law, typename Skip>
-inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __restrict results, Law& law, Skip& skip) {
+inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __restrict results,
+                                const std::uint8_t* __restrict direct, Law& law, Skip& skip) {
   // Local pointers: the loop reads and writes through them only, so the
   // compiler keeps them in registers instead of reloading them from the vectors.
   const std::int32_t* __restrict ci = c.i;
@@ -65,7 +87,8 @@ inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __res
     const double distance = std::sqrt(dx * dx + dy * dy);
     const double overlap = r[i] + r[j] - distance;
     if (skip(k, -overlap)) {
-      if constexpr (kKeepResults) results[k] = PairResult{0.0, 0.0, 0.0, 0.0};
+      if constexpr (kKeepResults)
+        if (!direct || direct[k] != kAddToBoth) results[k] = PairResult{0.0, 0.0, 0.0, 0.0};
       continue;
     }
     Geometry g;
@@ -87,7 +110,9 @@ inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __res
     const double moment_i = -g.arm_i * f.fs - f.moment;
     const double moment_j = -g.arm_j * f.fs + f.moment;
     if constexpr (kKeepResults) {
-      results[k] = PairResult{fx, fy, moment_i, moment_j};
+      const PairResult r{fx, fy, moment_i, moment_j};
+      if (!direct || direct[k] != kAddToBoth) results[k] = r;
+      if (direct) add_pair_where(fx_sum, fy_sum, moment_sum, i, j, r, direct[k]);
     } else {
       fx_sum[j] += fx;
       fy_sum[j] += fy;
@@ -102,9 +127,9 @@ inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __res
 template <typename Law, typename Skip>
 inline void for_disk_pairs(const PairBlock& c, Bodies& b, const StepContext& step, Law law, Skip skip) {
   if (step.pair_results)
-    for_disk_pairs_into<true>(c, b, step.pair_results, law, skip);
+    for_disk_pairs_into<true>(c, b, step.pair_results, step.direct, law, skip);
   else
-    for_disk_pairs_into<false>(c, b, nullptr, law, skip);
+    for_disk_pairs_into<false>(c, b, nullptr, nullptr, law, skip);
 }
 
 // From the wall's point nearest to (x, y) to (x, y): the offset and its length.

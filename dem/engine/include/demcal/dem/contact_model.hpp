@@ -35,6 +35,11 @@ struct StepContext {
   // stored here (index = the block's pair index) for the world to sum, instead
   // of being added to the disks (see for_disk_pairs).
   PairResult* pair_results = nullptr;
+  // With pair_results, the pairs whose disks one thread alone sums: bit
+  // kAddToI (kAddToJ) of direct[k] adds pair k's contribution to its i (j),
+  // in pair order (index as pair_results), and pair_results[k] is written
+  // only when a disk is left out.
+  const std::uint8_t* direct = nullptr;
 };
 
 // The two sides of a pair when it enters the neighbour list.

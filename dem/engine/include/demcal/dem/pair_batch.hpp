@@ -94,7 +94,8 @@ inline void batch_geometry(const PairBlock& c, const Bodies& b, std::size_t from
 
 // Pair by pair in order: the new flags, a break's log entry (its contact
 // point as for_disk_pairs computes it), and the forces, added to the disks or,
-// with `results`, stored per pair for the world's threaded sum.
+// with step.pair_results, stored per pair for the world's threaded sum (and
+// added to the disks step.direct names).
 inline void add_batch(const PairBlock& c, Bodies& b, std::size_t from, std::size_t n, const GeometryBatch& g,
                       const ForceBatch& f, const StepContext& step) {
   PairFlags* __restrict flags = c.flags + from;
@@ -108,14 +109,32 @@ inline void add_batch(const PairBlock& c, Bodies& b, std::size_t from, std::size
                               f.tension[p] ? BreakMode::Tension : BreakMode::Shear, b.group[i], b.group[j]});
     }
   }
-  if (step.pair_results) {
-    PairResult* __restrict results = step.pair_results + from;
-    for (std::size_t p = 0; p < n; ++p) results[p] = PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]};
-    return;
-  }
   double* __restrict fx_sum = b.fx.data();
   double* __restrict fy_sum = b.fy.data();
   double* __restrict moment_sum = b.moment.data();
+  if (step.pair_results) {
+    PairResult* __restrict results = step.pair_results + from;
+    if (!step.direct) {
+      for (std::size_t p = 0; p < n; ++p) results[p] = PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]};
+      return;
+    }
+    const std::uint8_t* __restrict direct = step.direct + from;
+    for (std::size_t p = 0; p < n; ++p) {
+      const std::int32_t i = ci[p], j = cj[p];
+      if (direct[p] == kAddToBoth) {
+        fx_sum[j] += f.fx[p];
+        fy_sum[j] += f.fy[p];
+        fx_sum[i] -= f.fx[p];
+        fy_sum[i] -= f.fy[p];
+        moment_sum[i] += f.moment_i[p];
+        moment_sum[j] += f.moment_j[p];
+      } else {
+        results[p] = PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]};
+        add_pair_where(fx_sum, fy_sum, moment_sum, i, j, results[p], direct[p]);
+      }
+    }
+    return;
+  }
   for (std::size_t p = 0; p < n; ++p) {
     const std::int32_t i = ci[p], j = cj[p];
     fx_sum[j] += f.fx[p];

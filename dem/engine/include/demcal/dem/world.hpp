@@ -151,10 +151,12 @@ class World {
   void merge_into(ContactSet& fresh, ContactSet& old, bool walls);
   void update_time_step();
   void refresh_inverse_masses();
+  // One step's forces and integration on one thread (world.cpp) or several (world_threads.cpp), same bits.
   void compute_forces();
-  void compute_disk_forces_in_threads();
-  void build_thread_partition();
+  void compute_wall_forces();
   void integrate();
+  void step_in_threads();
+  void build_thread_partition();
   void move_walls();
   void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
@@ -178,22 +180,16 @@ class World {
   // every rebuild, so masses set by hand count from the next refresh(), as
   // genesis's new radii do), so the integration does not divide.
   std::vector<double> inverse_mass_, inverse_inertia_;
-  // The threaded force loop's partition, made at each rebuild (see
-  // world_threads.cpp). Per model position p and thread t, index p * (team + 1) + t.
-  struct CrossingBreaks {
-    std::uint32_t thread = 0, first = 0, count = 0;  // the crossing pair's breaks in crossing_log[thread]
-  };
+  // The threaded force loop's bookkeeping, made at each rebuild (see
+  // world_threads.cpp). Range t of the disk pairs is [range_start[t], range_start[t + 1]).
   struct ThreadPartition {
-    std::vector<std::uint8_t> owner;               // per disk: the thread that owns it
-    std::vector<std::size_t> segment;              // first pair whose i thread t owns
-    std::vector<std::uint32_t> crossing;           // pairs whose j another thread owns, in pair order
-    std::vector<std::size_t> crossing_range;       // thread t's crossing pairs of model p start here
-    std::vector<std::uint32_t> incoming;           // per (p, t): crossing pairs whose j t owns (index p * team + t)
-    std::vector<std::size_t> incoming_start;
-    std::vector<PairResult> results;               // per crossing pair
-    std::vector<CrossingBreaks> crossing_break;    // per crossing pair
-    std::vector<std::vector<BreakEvent>> crossing_log;  // per thread
-    std::vector<std::vector<BreakEvent>> log;      // per (p, t), pair order
+    std::vector<std::size_t> range_start;
+    std::vector<std::uint8_t> direct;             // per disk pair: kAddToI, kAddToJ where that disk is not shared
+    std::vector<PairResult> results;              // per disk pair
+    std::vector<std::uint32_t> shared;            // disks with pairs in more than one range
+    std::vector<std::uint32_t> incidence_start;   // shared disk s's entries are [start[s], start[s + 1])
+    std::vector<std::uint32_t> incidence;         // pair index * 2, + 1 where the disk is the pair's j
+    std::vector<std::vector<BreakEvent>> log;     // per range, its pairs' breaks in pair order
   };
   ThreadPartition partition_;
   int threads_in_use_ = 1;
