@@ -128,7 +128,12 @@ Case random_case(std::uint64_t seed, std::size_t columns, const std::string& mod
     c.bodies.vy[d] = rng.uniform(-1, 1);
     c.bodies.w[d] = rng.uniform(-2e3, 2e3);
   }
-  c.bodies.clear_forces();
+  // Sums that already hold the forces of other models (never -0, as sums that start at +0).
+  for (std::size_t d = 0; d < disks; ++d) {
+    c.bodies.fx[d] = rng.uniform(-1, 1);
+    c.bodies.fy[d] = rng.uniform(-1, 1);
+    c.bodies.moment[d] = rng.uniform(-1e-3, 1e-3);
+  }
   c.pairs.set_layout({columns});
   for (std::size_t k = 0; k < kPairs / 2; ++k)
     c.pairs.add(static_cast<std::int32_t>(2 * k), static_cast<std::int32_t>(2 * k + 1), 0);
@@ -187,13 +192,23 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
   const auto model = ContactModelRegistry::instance().create(model_name, parameters, "test");
   EXPECT_EQ(model->state_columns().size(), columns);
   Counts counts;
-  for (const bool keep_results : {false, true}) {
+  // The three forms: forces to the disks (one thread), every pair's result
+  // stored, and the threaded step's form (results stored and forces added to
+  // the disks a random mask names).
+  enum Form { kToDisks, kResults, kResultsAndDirect };
+  for (const Form form : {kToDisks, kResults, kResultsAndDirect}) {
+    const bool keep_results = form != kToDisks;
     const Case base = random_case(seed, columns, model_name);
     Case batched = base, pairwise = base;
     std::vector<BreakEvent> batched_log, pairwise_log;
     std::vector<PairResult> batched_results(kPairs), pairwise_results(kPairs);
-    StepContext batched_step{kDt, 1e-3, 1.0, &batched_log, keep_results ? batched_results.data() : nullptr};
-    StepContext pairwise_step{kDt, 1e-3, 1.0, &pairwise_log, keep_results ? pairwise_results.data() : nullptr};
+    std::vector<std::uint8_t> direct(kPairs);
+    demcal::Rng mask_rng(seed + 1000);
+    for (std::uint8_t& d : direct) d = static_cast<std::uint8_t>(mask_rng.uniform() < 0.7 ? kAddToBoth : mask_rng.below(3));
+    StepContext batched_step{kDt, 1e-3, 1.0, &batched_log, keep_results ? batched_results.data() : nullptr,
+                             form == kResultsAndDirect ? direct.data() : nullptr};
+    StepContext pairwise_step{kDt, 1e-3, 1.0, &pairwise_log, keep_results ? pairwise_results.data() : nullptr,
+                              form == kResultsAndDirect ? direct.data() : nullptr};
     PairBlock batched_block = batched.pairs.block(0), pairwise_block = pairwise.pairs.block(0);
     model->disk_forces(batched_block, batched.bodies, batched_step);
     reference(pairwise_block, pairwise.bodies, pairwise_step);
@@ -221,7 +236,7 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
       EXPECT_EQ(batched_log[e].mode, pairwise_log[e].mode);
       EXPECT_EQ(batched_log[e].group_i, pairwise_log[e].group_i);
       EXPECT_EQ(batched_log[e].group_j, pairwise_log[e].group_j);
-      if (!keep_results) ++(pairwise_log[e].mode == BreakMode::Tension ? counts.tension : counts.shear);
+      if (form == kToDisks) ++(pairwise_log[e].mode == BreakMode::Tension ? counts.tension : counts.shear);
     }
   }
   return counts;

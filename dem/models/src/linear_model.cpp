@@ -23,11 +23,13 @@ class LinearModel : public LinearBase {
 
   // Batches of pairs, each one vectorised loop (pair_batch.hpp), with
   // linear_force's arithmetic: the same bits as pair by pair. A pair apart is
-  // skipped as skip_apart skips it: no force, no shear.
+  // skipped as skip_apart skips it: no force, no shear, and nothing added to
+  // its disks (many listed pairs stand apart in a loose packing).
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    for_pair_batches(c, b, step, [&](std::size_t from, std::size_t n, const GeometryBatch& g, ForceBatch& f) {
-      law(c, from, n, g, f, step.dt_s);
-    });
+    for_pair_batches</*kSkipZero=*/true>(c, b, step,
+                                         [&](std::size_t from, std::size_t n, const GeometryBatch& g, ForceBatch& f) {
+                                           law(c, from, n, g, f, step.dt_s);
+                                         });
   }
 
  private:

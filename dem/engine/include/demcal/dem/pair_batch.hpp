@@ -20,6 +20,7 @@ namespace demcal::dem {
 // Pairs per batch: enough for the loops to run in full vectors, few enough
 // that the batch's arrays stay in the first-level cache.
 constexpr std::size_t kPairBatch = 64;
+static_assert(kPairBatch <= 256, "add_batch numbers a batch's pairs in bytes");
 
 struct GeometryBatch {
   alignas(64) double nx[kPairBatch];
@@ -92,10 +93,70 @@ inline void batch_geometry(const PairBlock& c, const Bodies& b, std::size_t from
   }
 }
 
+inline std::uint64_t bits_of(double v) {
+  std::uint64_t u;
+  std::memcpy(&u, &v, sizeof u);
+  return u;
+}
+
+// Adds the batch's forces to the disks in pair order (with kDirect, only to
+// the disks `direct` names). With kSkipZero, only the pairs that add
+// something: a sum that starts at +0 never becomes -0, so a zero term leaves
+// it as it is and skipping one keeps the bits. For a model whose pairs may
+// stand apart (a loose packing lists many); a batch in which every pair adds
+// takes the plain loop.
+template <bool kDirect, bool kSkipZero>
+inline void add_to_disks(Bodies& b, const std::int32_t* __restrict ci, const std::int32_t* __restrict cj,
+                         const ForceBatch& f, const std::uint8_t* __restrict direct, std::size_t n) {
+  double* __restrict fx_sum = b.fx.data();
+  double* __restrict fy_sum = b.fy.data();
+  double* __restrict moment_sum = b.moment.data();
+  auto add = [&](std::size_t p) {
+    const std::int32_t i = ci[p], j = cj[p];
+    if (!kDirect || direct[p] == kAddToBoth) {
+      fx_sum[j] += f.fx[p];
+      fy_sum[j] += f.fy[p];
+      fx_sum[i] -= f.fx[p];
+      fy_sum[i] -= f.fy[p];
+      moment_sum[i] += f.moment_i[p];
+      moment_sum[j] += f.moment_j[p];
+    } else {
+      add_pair_where(fx_sum, fy_sum, moment_sum, i, j, PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]},
+                     direct[p]);
+    }
+  };
+  if (!kSkipZero) {
+    for (std::size_t p = 0; p < n; ++p) add(p);
+    return;
+  }
+  // Whether pair p adds a term that is not +-0: in integer bits (the sign
+  // shifted out), so the count vectorises.
+  std::uint8_t adds[kPairBatch];
+  std::size_t count = 0;
+#pragma omp simd reduction(+ : count)
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::uint64_t any = bits_of(f.fx[p]) | bits_of(f.fy[p]) | bits_of(f.moment_i[p]) | bits_of(f.moment_j[p]);
+    adds[p] = static_cast<std::uint8_t>((any << 1) != 0);
+    count += adds[p];
+  }
+  if (count == n) {
+    for (std::size_t p = 0; p < n; ++p) add(p);
+    return;
+  }
+  std::uint8_t listed[kPairBatch];
+  std::size_t m = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    listed[m] = static_cast<std::uint8_t>(p);
+    m += adds[p];
+  }
+  for (std::size_t k = 0; k < m; ++k) add(listed[k]);
+}
+
 // Pair by pair in order: the new flags, a break's log entry (its contact
 // point as for_disk_pairs computes it), and the forces, added to the disks or,
 // with step.pair_results, stored per pair for the world's threaded sum (and
 // added to the disks step.direct names).
+template <bool kSkipZero>
 inline void add_batch(const PairBlock& c, Bodies& b, std::size_t from, std::size_t n, const GeometryBatch& g,
                       const ForceBatch& f, const StepContext& step) {
   PairFlags* __restrict flags = c.flags + from;
@@ -109,47 +170,26 @@ inline void add_batch(const PairBlock& c, Bodies& b, std::size_t from, std::size
                               f.tension[p] ? BreakMode::Tension : BreakMode::Shear, b.group[i], b.group[j]});
     }
   }
-  double* __restrict fx_sum = b.fx.data();
-  double* __restrict fy_sum = b.fy.data();
-  double* __restrict moment_sum = b.moment.data();
-  if (step.pair_results) {
-    PairResult* __restrict results = step.pair_results + from;
-    if (!step.direct) {
-      for (std::size_t p = 0; p < n; ++p) results[p] = PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]};
-      return;
-    }
-    const std::uint8_t* __restrict direct = step.direct + from;
-    for (std::size_t p = 0; p < n; ++p) {
-      const std::int32_t i = ci[p], j = cj[p];
-      if (direct[p] == kAddToBoth) {
-        fx_sum[j] += f.fx[p];
-        fy_sum[j] += f.fy[p];
-        fx_sum[i] -= f.fx[p];
-        fy_sum[i] -= f.fy[p];
-        moment_sum[i] += f.moment_i[p];
-        moment_sum[j] += f.moment_j[p];
-      } else {
-        results[p] = PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]};
-        add_pair_where(fx_sum, fy_sum, moment_sum, i, j, results[p], direct[p]);
-      }
-    }
-    return;
+  PairResult* __restrict results = step.pair_results ? step.pair_results + from : nullptr;
+  const std::uint8_t* __restrict direct = step.direct ? step.direct + from : nullptr;
+  if (results) {
+    // Stored for every pair the world sums from `results` (all of them, or
+    // those with a disk that `direct` leaves out).
+    for (std::size_t p = 0; p < n; ++p)
+      if (!direct || direct[p] != kAddToBoth) results[p] = PairResult{f.fx[p], f.fy[p], f.moment_i[p], f.moment_j[p]};
+    if (!direct) return;
   }
-  for (std::size_t p = 0; p < n; ++p) {
-    const std::int32_t i = ci[p], j = cj[p];
-    fx_sum[j] += f.fx[p];
-    fy_sum[j] += f.fy[p];
-    fx_sum[i] -= f.fx[p];
-    fy_sum[i] -= f.fy[p];
-    moment_sum[i] += f.moment_i[p];
-    moment_sum[j] += f.moment_j[p];
-  }
+  if (direct)
+    add_to_disks<true, kSkipZero>(b, ci, cj, f, direct, n);
+  else
+    add_to_disks<false, kSkipZero>(b, ci, cj, f, nullptr, n);
 }
 
 // A model's disk_forces over its block in batches: law(from, n, g, f) fills
 // `f` for pairs [from, from + n) from their geometry `g` (and updates their
-// state); the forces then go to the disks or to step.pair_results.
-template <typename Law>
+// state); the forces then go to the disks or to step.pair_results (with
+// kSkipZero, zero contributions are not added: see add_to_disks).
+template <bool kSkipZero = false, typename Law>
 inline void for_pair_batches(const PairBlock& c, Bodies& b, const StepContext& step, Law law) {
   GeometryBatch g;
   ForceBatch f;
@@ -157,7 +197,7 @@ inline void for_pair_batches(const PairBlock& c, Bodies& b, const StepContext& s
     const std::size_t n = c.size - from < kPairBatch ? c.size - from : kPairBatch;
     batch_geometry(c, b, from, n, g);
     law(from, n, g, f);
-    add_batch(c, b, from, n, g, f, step);
+    add_batch<kSkipZero>(c, b, from, n, g, f, step);
   }
 }
 
