@@ -10,6 +10,10 @@ no damping, nve/sphere disc, enforce2d and fix wall/gran for the box; demcal
 runs `demcal-dem released` (linear springs kn, ks, Coulomb friction, no
 damping). Same skin. The kinetic energy histories say whether the two did the
 same work; the loop times give particle-steps per second and their ratio.
+Each case runs --repeats times, the two programs in turn (ours, LAMMPS, ours,
+LAMMPS ...); the table gives the median loop time of each and the median of
+the paired ratios: on a shared machine one run of each can put the ratio
+anywhere within +-20 %.
 Debian's lammps package is installed here on demand, never by `make test`.
 """
 import argparse
@@ -18,6 +22,7 @@ import os
 import re
 import subprocess
 import sys
+import statistics
 import tempfile
 
 import debian_package
@@ -93,7 +98,10 @@ def energy_difference(ours, lammps_history):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default="build")
+    parser.add_argument("--repeats", type=int, default=3, help="runs of each program per case (median taken)")
     args = parser.parse_args()
+    if args.repeats < 1:
+        sys.exit("bench_lammps: --repeats must be at least 1")
     debian_package.ensure("lammps", "lmp", "bench_lammps")
     binary = os.path.join(args.build, "bin", "demcal-dem")
     cache = os.path.join(args.build, "cache")
@@ -108,18 +116,26 @@ def main():
             subprocess.run([binary, "export", "--scene", scene, "--cache", cache, "--lammps", data], check=True,
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             for box in (False, True):
-                ours = run_ours(binary, scene, cache, box, 1)
-                lammps_s, history, neighbours = run_lammps(workdir, data, ours, box)
-                ours2 = run_ours(binary, scene, cache, box, 2)
+                ours_s, ours2_s, lammps_runs = [], [], []
+                for _ in range(args.repeats):
+                    ours = run_ours(binary, scene, cache, box, 1)
+                    ours_s.append(ours["wall_s"])
+                    lammps_runs.append(run_lammps(workdir, data, ours, box))
+                    ours2_s.append(run_ours(binary, scene, cache, box, 2)["wall_s"])
+                lammps_s = statistics.median(run[0] for run in lammps_runs)
+                _, history, neighbours = lammps_runs[0]
+                mine, mine2 = statistics.median(ours_s), statistics.median(ours2_s)
+                # Paired: each LAMMPS run against the demcal run just before it.
+                ratio = statistics.median(run[0] / o for run, o in zip(lammps_runs, ours_s))
                 early, whole = energy_difference(ours, history)
                 n = ours["disks"]
                 print(f"{label:<24} {'box' if box else 'released':<9} {n:>6} {lammps_s:>9.3f} "
-                      f"{n * STEPS / lammps_s / 1e6:>6.1f} {ours['wall_s']:>9.3f} {n * STEPS / ours['wall_s'] / 1e6:>6.1f} "
-                      f"{lammps_s / ours['wall_s']:>5.2f}x {ours2['wall_s']:>8.3f} "
-                      f"{100 * early:>8.3f}% {100 * whole:>7.3f}% {neighbours:>10.2f}")
-    print("ratio: LAMMPS loop time / demcal loop time, one core each (> 1: demcal faster); 2 thr: demcal on two "
-          "threads; KE diff: largest relative difference of the translational kinetic energy, first quarter / "
-          "whole run")
+                      f"{n * STEPS / lammps_s / 1e6:>6.1f} {mine:>9.3f} {n * STEPS / mine / 1e6:>6.1f} "
+                      f"{ratio:>5.2f}x {mine2:>8.3f} "
+                      f"{100 * early:>8.3f}% {100 * whole:>7.3f}% {neighbours:>10.2f}", flush=True)
+    print(f"times: medians of {args.repeats} runs each; ratio: median over the runs of LAMMPS loop time / demcal "
+          "loop time, one core each (> 1: demcal faster); 2 thr: demcal on two threads; KE diff: largest relative "
+          "difference of the translational kinetic energy, first quarter / whole run")
 
 
 if __name__ == "__main__":
