@@ -1,20 +1,21 @@
 // The World's threaded step (forces, then the disks' integration, in one
 // parallel region), with the serial step's bits.
 //
-// The disk pairs are cut into one contiguous range per thread (equal pair
-// counts, whole batches, whatever the models). A disk whose pairs all lie in
-// one range gets its additions from that range's thread alone, in pair
+// Each model's block of disk pairs is cut into one part per thread (equal
+// pair counts, whole batches); thread t takes part t of every block, so its
+// pairs cover one region of the specimen (pairs are sorted by model, then by
+// their disks, numbered along a Hilbert curve). A disk whose pairs all lie in
+// one thread's parts gets its additions from that thread alone, in pair
 // order, as in the serial loop; the thread adds them directly. A disk whose
-// pairs lie in several ranges (a shared disk: few, where the ranges meet,
-// because genesis numbers the disks along a Hilbert curve) gets nothing in
-// the first phase: every pair's contribution is also stored, and in the
-// second phase each shared disk sums its pairs' contributions in pair order
-// with the serial loop's signs. Every sum thus gets the same terms in the
-// same order whatever the number of threads. The ranges follow one another,
-// so their break logs joined in range order are in pair order.
-#include <omp.h>
-
+// pairs lie with several threads (a shared disk: few, where the regions
+// meet) gets nothing in the first phase: its pairs' contributions are
+// stored, and in the second phase it sums them in pair order with the serial
+// loop's signs. Every sum thus gets the same terms in the same order whatever
+// the number of threads. The break logs, joined model by model and part by
+// part, are in pair order.
 #include <algorithm>
+
+#include <omp.h>
 
 #include "demcal/dem/pair_batch.hpp"
 #include "demcal/dem/world.hpp"
@@ -26,15 +27,24 @@ void World::build_thread_partition() {
   ThreadPartition& tp = partition_;
   const std::size_t n = bodies.size(), pairs = pairs_.size();
   const std::size_t team = static_cast<std::size_t>(threads_in_use_);
-  tp.range_start.resize(team + 1);
-  for (std::size_t t = 0; t <= team; ++t) tp.range_start[t] = pairs * t / team;
+  // Each model's block cut into `team` parts of equal pair counts; range t is
+  // part t of every block, so a range covers one region of the specimen
+  // whatever the models (pairs are sorted by model, then by their disks).
+  const std::size_t models = run_models_.size();
+  tp.team = team;
+  tp.range_start.resize(models * (team + 1));
+  for (std::size_t p = 0; p < models; ++p) {
+    const std::size_t begin = pairs_.begin(run_models_[p]), size = pairs_.end(run_models_[p]) - begin;
+    for (std::size_t t = 0; t <= team; ++t) tp.range_start[p * (team + 1) + t] = begin + size * t / team;
+  }
 
   // A disk is shared when its pairs lie in more than one range.
   constexpr std::uint32_t kNone = 0xffffffffu;
   std::vector<std::uint32_t> range_of(n, kNone);
   std::vector<std::uint8_t> shared(n, 0);
-  for (std::size_t t = 0; t < team; ++t)
-    for (std::size_t k = tp.range_start[t]; k < tp.range_start[t + 1]; ++k)
+  for (std::size_t p = 0; p < models; ++p)
+    for (std::size_t t = 0; t < team; ++t)
+      for (std::size_t k = tp.range_start[p * (team + 1) + t]; k < tp.range_start[p * (team + 1) + t + 1]; ++k)
       for (const std::int32_t d : {pairs_.i[k], pairs_.j[k]}) {
         const std::size_t disk = static_cast<std::size_t>(d);
         if (range_of[disk] == kNone) range_of[disk] = static_cast<std::uint32_t>(t);
@@ -68,13 +78,13 @@ void World::build_thread_partition() {
     if (sj != kNone) tp.incidence[next[sj]++] = static_cast<std::uint32_t>(2 * k + 1);
   }
   tp.results.resize(pairs);
-  tp.log.resize(team);
+  tp.log.resize(models * team);
 }
 
 void World::step_in_threads() {
   ThreadPartition& tp = partition_;
   const std::size_t n = bodies.size();
-  const std::size_t team = tp.range_start.size() - 1;
+  const std::size_t team = tp.team, models = run_models_.size();
   double* __restrict fx = bodies.fx.data();
   double* __restrict fy = bodies.fy.data();
   double* __restrict moment = bodies.moment.data();
@@ -99,14 +109,14 @@ void World::step_in_threads() {
     // 1. This thread's ranges, model by model: every contribution stored, and
     // added directly to the disks that are not shared.
     for (std::size_t t = me; t < team; t += size) {
-      std::vector<BreakEvent>& log = tp.log[t];
-      log.clear();
-      for (std::uint8_t m : run_models_) {
-        const std::size_t begin = std::max(tp.range_start[t], pairs_.begin(m));
-        const std::size_t end = std::min(tp.range_start[t + 1], pairs_.end(m));
+      for (std::size_t p = 0; p < models; ++p) {
+        const std::uint8_t m = run_models_[p];
+        std::vector<BreakEvent>& log = tp.log[p * team + t];
+        log.clear();
+        const std::size_t begin = tp.range_start[p * (team + 1) + t], end = tp.range_start[p * (team + 1) + t + 1];
         if (begin >= end) continue;
-        StepContext context{
-            dt_s_, time_s_, settings_.thickness_m, &log, tp.results.data() + begin, tp.direct.data() + begin};
+        StepContext context{dt_s_, time_s_, settings_.thickness_m, &log, tp.results.data() + begin,
+                            tp.direct.data() + begin};
         PairBlock run = pairs_.block(m).slice(begin - pairs_.begin(m), end - pairs_.begin(m));
         models_[m]->disk_forces(run, bodies, context);
       }
@@ -136,7 +146,9 @@ void World::step_in_threads() {
     // the external forces. The end of `single` waits for it.
 #pragma omp single
     {
-      for (std::size_t t = 0; t < team; ++t) breaks_.insert(breaks_.end(), tp.log[t].begin(), tp.log[t].end());
+      for (std::size_t p = 0; p < models; ++p)
+        for (std::size_t t = 0; t < team; ++t)
+          breaks_.insert(breaks_.end(), tp.log[p * team + t].begin(), tp.log[p * team + t].end());
       compute_wall_forces();
       for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
     }

@@ -181,15 +181,17 @@ class World {
   // genesis's new radii do), so the integration does not divide.
   std::vector<double> inverse_mass_, inverse_inertia_;
   // The threaded force loop's bookkeeping, made at each rebuild (see
-  // world_threads.cpp). Range t of the disk pairs is [range_start[t], range_start[t + 1]).
+  // world_threads.cpp). Range t is, for each model position p, the pairs
+  // [range_start[p * (team + 1) + t], range_start[p * (team + 1) + t + 1]).
   struct ThreadPartition {
+    std::size_t team = 1;
     std::vector<std::size_t> range_start;
     std::vector<std::uint8_t> direct;             // per disk pair: kAddToI, kAddToJ where that disk is not shared
     std::vector<PairResult> results;              // per disk pair
     std::vector<std::uint32_t> shared;            // disks with pairs in more than one range
     std::vector<std::uint32_t> incidence_start;   // shared disk s's entries are [start[s], start[s + 1])
     std::vector<std::uint32_t> incidence;         // pair index * 2, + 1 where the disk is the pair's j
-    std::vector<std::vector<BreakEvent>> log;     // per range, its pairs' breaks in pair order
+    std::vector<std::vector<BreakEvent>> log;     // per (model position p, range t) at p * team + t, in pair order
   };
   ThreadPartition partition_;
   int threads_in_use_ = 1;
