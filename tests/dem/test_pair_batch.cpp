@@ -6,6 +6,7 @@
 // for the threaded sum).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -19,6 +20,7 @@
 #include "demcal/dem/bond_law.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/linear_law.hpp"
+#include "demcal/dem/pair_batch.hpp"
 
 using namespace demcal::dem;
 
@@ -111,14 +113,17 @@ struct Case {
 // half join disks of the first half at random (mostly far apart, and sharing
 // disks, so the sums' order counts). Random motion; random state in every
 // column, with bond forces of the order of their strengths so some break in
-// each mode.
-Case random_case(std::uint64_t seed, std::size_t columns, const std::string& model) {
+// each mode. With apart, every pair stands apart by its distance (the first
+// half by up to 30 um, where a glued gap still makes some touch) and the
+// random half has no glued gaps, so whole batches of it stand apart for the
+// linear model's shortcut.
+Case random_case(std::uint64_t seed, std::size_t columns, const std::string& model, bool apart = false) {
   demcal::Rng rng(seed);
   Case c;
   for (std::size_t k = 0; k < kPairs / 2; ++k) {
     const double ri = rng.uniform(4e-4, 6e-4), rj = rng.uniform(4e-4, 6e-4);
     const double xi = rng.uniform(0, 0.02), yi = rng.uniform(0, 0.02), angle = rng.uniform(0, 2 * M_PI);
-    const double distance = ri + rj - rng.uniform(-3e-5, 3e-5);
+    const double distance = ri + rj - rng.uniform(-3e-5, apart ? -1e-7 : 3e-5);
     c.bodies.add_disk(xi, yi, ri, 2650, 1.0, 0);
     c.bodies.add_disk(xi + distance * std::cos(angle), yi + distance * std::sin(angle), rj, 2650, 1.0, 1);
   }
@@ -151,7 +156,7 @@ Case random_case(std::uint64_t seed, std::size_t columns, const std::string& mod
     s[kShearForce] = rng.uniform(-5, 5);
     // Genesis's reference overlaps: zero, an overlap kept, or a gap glued.
     const double kind = rng.uniform();
-    s[kReferenceOverlap] = kind < 0.4 ? 0.0 : rng.uniform(-2e-5, 2e-5);
+    s[kReferenceOverlap] = kind < 0.4 ? 0.0 : rng.uniform(apart && k >= kPairs / 2 ? 0.0 : -2e-5, 2e-5);
     const bool bonded = rng.uniform() < 0.7;
     block.flags[k] = (bonded ? kBonded : 0u) | (rng.uniform() < 0.5 ? kTouching : 0u);
     if (model == "parallel_bond") {
@@ -183,12 +188,13 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 
 struct Counts {
   std::size_t skipped = 0, tension = 0, shear = 0;
+  std::size_t touching = 0;  // pairs touching after the step (the reference's flags)
 };
 
 // Runs the model's batched law and the reference on copies of one case, in
 // both forms, and compares everything they wrote.
 Counts check(const std::string& model_name, const nlohmann::json& parameters, std::size_t columns,
-             const ReferenceLaw& reference, std::uint64_t seed) {
+             const ReferenceLaw& reference, std::uint64_t seed, bool apart = false) {
   const auto model = ContactModelRegistry::instance().create(model_name, parameters, "test");
   EXPECT_EQ(model->state_columns().size(), columns);
   Counts counts;
@@ -198,10 +204,12 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
   enum Form { kToDisks, kResults, kResultsAndDirect };
   for (const Form form : {kToDisks, kResults, kResultsAndDirect}) {
     const bool keep_results = form != kToDisks;
-    const Case base = random_case(seed, columns, model_name);
+    const Case base = random_case(seed, columns, model_name, apart);
     Case batched = base, pairwise = base;
     std::vector<BreakEvent> batched_log, pairwise_log;
-    std::vector<PairResult> batched_results(kPairs), pairwise_results(kPairs);
+    // Stored results from an earlier step, which every pair the law writes must replace.
+    std::vector<PairResult> batched_results(kPairs, PairResult{7.0, -7.0, 1e-3, -1e-3});
+    std::vector<PairResult> pairwise_results = batched_results;
     std::vector<std::uint8_t> direct(kPairs);
     demcal::Rng mask_rng(seed + 1000);
     for (std::uint8_t& d : direct) d = static_cast<std::uint8_t>(mask_rng.uniform() < 0.7 ? kAddToBoth : mask_rng.below(3));
@@ -226,6 +234,7 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
       EXPECT_EQ(std::memcmp(batched_block.column.row(k), pairwise_block.column.row(k), columns * sizeof(double)), 0)
           << model_name << " pair " << k << " seed " << seed;
       if (!(before.flags[k] & kBonded) && !(pairwise_block.flags[k] & kTouching)) ++counts.skipped;
+      if (form == kToDisks && (pairwise_block.flags[k] & kTouching)) ++counts.touching;
     }
     EXPECT_EQ(batched_log.size(), pairwise_log.size()) << model_name << " seed " << seed;
     if (batched_log.size() != pairwise_log.size()) return counts;
@@ -244,13 +253,14 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
 
 // check() over seeds 1-5, the counts summed.
 Counts check_seeds(const std::string& model_name, const nlohmann::json& parameters, std::size_t columns,
-                   const ReferenceLaw& reference) {
+                   const ReferenceLaw& reference, bool apart = false) {
   Counts all;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const Counts c = check(model_name, parameters, columns, reference, seed);
+    const Counts c = check(model_name, parameters, columns, reference, seed, apart);
     all.skipped += c.skipped;
     all.tension += c.tension;
     all.shear += c.shear;
+    all.touching += c.touching;
   }
   return all;
 }
@@ -260,6 +270,56 @@ Counts check_seeds(const std::string& model_name, const nlohmann::json& paramete
 TEST(PairBatch, LinearModelGivesThePairByPairBits) {
   const nlohmann::json p = {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}};
   EXPECT_GT(check_seeds("linear", p, kLinearColumns, reference_linear).skipped, 50u);  // pairs apart are part of the comparison
+}
+
+// The linear model releases a batch whose pairs all stand apart without its
+// geometry (linear_model.cpp): the same state, flags, sums and stored results;
+// a batch apart by distance with a glued gap among its pairs takes the law.
+TEST(PairBatch, LinearModelReleasesBatchesApartWithThePairByPairBits) {
+  const nlohmann::json p = {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}};
+  // The premise: some of the cases' batches stand apart, so the shortcut runs.
+  std::size_t apart_batches = 0, batches = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    Case c = random_case(seed, kLinearColumns, "linear", true);
+    const PairBlock block = c.pairs.block(0);
+    for (std::size_t from = 0; from < block.size; from += kPairBatch, ++batches)
+      apart_batches += batch_stands_apart(block, c.bodies, from, std::min(kPairBatch, block.size - from));
+  }
+  EXPECT_GE(apart_batches, 15u) << "of " << batches;  // 21 of 25
+  // ... and some of their pairs touch through a glued gap (76).
+  EXPECT_GT(check_seeds("linear", p, kLinearColumns, reference_linear, true).touching, 50u);
+}
+
+// batch_stands_apart: true only when every pair's squared distance clears
+// (r_i + r_j)^2 by more than rounding; a pair that touches exactly, or misses
+// by a relative 1e-12, keeps its batch in the law.
+TEST(PairBatch, BatchStandsApartOnlyWhenEveryPairClearsItsReach) {
+  Bodies b;
+  ContactSet pairs;
+  pairs.set_layout({kLinearColumns});
+  const double r = 5e-4;
+  // Pair k: disks 2k and 2k+1 on a row, 1 % of their reach apart.
+  for (std::size_t k = 0; k < kPairBatch; ++k) {
+    const double x = 0.01 * static_cast<double>(k);
+    b.add_disk(x, 0.0, r, 2650, 1.0, 0);
+    b.add_disk(x + 2 * r * 1.01, 0.0, r, 2650, 1.0, 0);
+    pairs.add(static_cast<std::int32_t>(2 * k), static_cast<std::int32_t>(2 * k + 1), 0);
+  }
+  const PairBlock c = pairs.block(0);
+  EXPECT_TRUE(batch_stands_apart(c, b, 0, kPairBatch));
+  EXPECT_TRUE(batch_stands_apart(c, b, 0, 5));  // a short batch
+  for (const std::size_t k : {std::size_t{0}, std::size_t{9}, kPairBatch - 1}) {
+    for (const double gap : {0.0, 1e-12, -1e-6}) {  // exact contact, within rounding, overlapping
+      const double saved = b.x[2 * k + 1];
+      b.x[2 * k + 1] = b.x[2 * k] + 2 * r * (1 + gap);
+      EXPECT_FALSE(batch_stands_apart(c, b, 0, kPairBatch)) << "pair " << k << " gap " << gap;
+      b.x[2 * k + 1] = saved;
+    }
+  }
+  // Pairs past the batch's end do not count.
+  b.x[2 * 6 + 1] = b.x[2 * 6];
+  EXPECT_TRUE(batch_stands_apart(c, b, 0, 6));
+  EXPECT_FALSE(batch_stands_apart(c, b, 0, 7));
 }
 
 TEST(PairBatch, ParallelBondGivesThePairByPairBitsAndBreaks) {

@@ -24,15 +24,35 @@ class LinearModel : public LinearBase {
   // Batches of pairs, each one vectorised loop (pair_batch.hpp), with
   // linear_force's arithmetic: the same bits as pair by pair. A pair apart is
   // skipped as skip_apart skips it: no force, no shear, and nothing added to
-  // its disks (many listed pairs stand apart in a loose packing).
+  // its disks (many listed pairs stand apart in a loose packing). A batch
+  // whose pairs all stand apart is released without its geometry (no square
+  // roots): the same state, flags and (zero) forces as through the law.
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
-    for_pair_batches</*kSkipZero=*/true>(c, b, step,
-                                         [&](std::size_t from, std::size_t n, const GeometryBatch& g, ForceBatch& f) {
-                                           law(c, from, n, g, f, step.dt_s);
-                                         });
+    for_pair_batches</*kSkipZero=*/true>(
+        c, b, step,
+        [&](std::size_t from, std::size_t n, const GeometryBatch& g, ForceBatch& f) {
+          law(c, from, n, g, f, step.dt_s);
+        },
+        [&](std::size_t from, std::size_t n) { return release_if_apart(c, b, from, n, step); });
   }
 
  private:
+  // A pair apart by distance is apart for the law when its reference overlap
+  // is >= 0 (overlap - reference <= 0); a negative reference (a gap that
+  // genesis bonded) takes the law.
+  static bool release_if_apart(const PairBlock& c, const Bodies& b, std::size_t from, std::size_t n,
+                               const StepContext& step) {
+    if (!batch_stands_apart(c, b, from, n)) return false;
+    const double* __restrict reference = c.column.row(from) + kReferenceOverlap;
+    const std::size_t stride = c.column.stride;
+    unsigned gap = 0;
+    for (std::size_t p = 0; p < n; ++p) gap |= static_cast<unsigned>(!(reference[p * stride] >= 0));
+    if (gap) return false;
+    for (std::size_t p = 0; p < n; ++p) release(c, from + p);
+    store_zero_results(step, from, n);
+    return true;
+  }
+
   static void law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
                   ForceBatch& __restrict f, double dt) {
     double* __restrict rows = c.column.row(from);

@@ -185,16 +185,65 @@ inline void add_batch(const PairBlock& c, Bodies& b, std::size_t from, std::size
     add_to_disks<false, kSkipZero>(b, ci, cj, f, nullptr, n);
 }
 
+// Whether every pair of [from, from + n) stands apart on the distance alone:
+// its squared distance, computed as batch_geometry computes it, exceeds
+// (r_i + r_j)^2 by far more than rounding, so sqrt rounds to at least
+// r_i + r_j and the overlap is <= 0. Looks at 8 pairs at a time and stops at
+// the first group with a pair that may touch, so a packed batch costs little.
+inline bool batch_stands_apart(const PairBlock& c, const Bodies& b, std::size_t from, std::size_t n) {
+  const std::int32_t* __restrict ci = c.i + from;
+  const std::int32_t* __restrict cj = c.j + from;
+  const double* __restrict x = b.x.data();
+  const double* __restrict y = b.y.data();
+  const double* __restrict r = b.radius.data();
+  // (1 + 2^-30): the product and its rounding stay above the exact square.
+  constexpr double kMargin = 1.0 + 1.0 / 1073741824.0;
+  constexpr std::size_t kGroup = 8;
+  for (std::size_t start = 0; start < n; start += kGroup) {
+    const std::size_t end = n - start < kGroup ? n : start + kGroup;
+    unsigned near = 0;
+#pragma omp simd reduction(| : near)
+    for (std::size_t p = start; p < end; ++p) {
+      const std::int32_t i = ci[p], j = cj[p];
+      const double dx = x[j] - x[i], dy = y[j] - y[i];
+      const double reach = r[i] + r[j];
+      near |= static_cast<unsigned>(!(dx * dx + dy * dy > reach * reach * kMargin));
+    }
+    if (near) return false;
+  }
+  return true;
+}
+
+// What add_batch stores for a batch whose forces are all +0: nothing goes to
+// the disks, but the stored results the world sums must not keep an earlier
+// step's forces.
+inline void store_zero_results(const StepContext& step, std::size_t from, std::size_t n) {
+  if (!step.pair_results) return;
+  PairResult* __restrict results = step.pair_results + from;
+  const std::uint8_t* __restrict direct = step.direct ? step.direct + from : nullptr;
+  for (std::size_t p = 0; p < n; ++p)
+    if (!direct || direct[p] != kAddToBoth) results[p] = PairResult{0.0, 0.0, 0.0, 0.0};
+}
+
+// The default for models without a shortcut for batches standing apart.
+struct NoApartShortcut {
+  bool operator()(std::size_t, std::size_t) const { return false; }
+};
+
 // A model's disk_forces over its block in batches: law(from, n, g, f) fills
 // `f` for pairs [from, from + n) from their geometry `g` (and updates their
 // state); the forces then go to the disks or to step.pair_results (with
 // kSkipZero, zero contributions are not added: see add_to_disks).
-template <bool kSkipZero = false, typename Law>
-inline void for_pair_batches(const PairBlock& c, Bodies& b, const StepContext& step, Law law) {
+// apart(from, n) may take a whole batch instead, when it finds that none of
+// its pairs touches and gives them what the law would (its state and flags,
+// and zero forces: see store_zero_results); it returns whether it did.
+template <bool kSkipZero = false, typename Law, typename Apart = NoApartShortcut>
+inline void for_pair_batches(const PairBlock& c, Bodies& b, const StepContext& step, Law law, Apart apart = {}) {
   GeometryBatch g;
   ForceBatch f;
   for (std::size_t from = 0; from < c.size; from += kPairBatch) {
     const std::size_t n = c.size - from < kPairBatch ? c.size - from : kPairBatch;
+    if (apart(from, n)) continue;
     batch_geometry(c, b, from, n, g);
     law(from, n, g, f);
     add_batch<kSkipZero>(c, b, from, n, g, f, step);
