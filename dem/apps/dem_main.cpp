@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
                   "results do not depend on it)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  run->add_flag("--quiet", quiet, "no progress on stderr");
+  run->add_flag("--quiet", quiet, "no progress on stderr (and, with --out, no copy of the result on stdout)");
   jobs::BatchOptions batch_options;
   CLI::App* batch = app.add_subcommand("batch", "run every point of a design (x seeds), resumable");
   batch->add_option("--scene", batch_options.scene_path, "scene JSON")->required();
@@ -257,7 +257,8 @@ int main(int argc, char** argv) {
     summary.erase("curve");
     if (!out.empty()) write_file_atomically(out, summary.dump(2) + "\n");
     if (!curve.empty()) write_curves(scene, curves, curve);
-    if (!quiet) std::cout << summary.dump(2) << "\n";
+    // Without --out, stdout is where the result goes, --quiet or not.
+    if (out.empty() || !quiet) std::cout << summary.dump(2) << "\n";
     return summary.at("status") == "ok" ? 0 : 4;
   });
 }

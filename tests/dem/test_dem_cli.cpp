@@ -54,6 +54,23 @@ TEST(DemcalDem, RunWritesTheResultFile) {
   EXPECT_EQ(header, "run,axial_strain,stress_MPa,lateral_strain,cracks");
 }
 
+// stdout is where the result goes without --out, --quiet or not; with --out
+// and --quiet, stdout stays empty.
+TEST(DemcalDem, RunPrintsTheResultOnStdoutWithoutOut) {
+  const std::string printed = temp("printed.json"), printed_too = temp("printed_too.json");
+  const std::string base =
+      std::string(DEMCAL_BIN_DIR) + "/demcal-dem run --scene " + kScene + " --seed 3 --quiet --cache " + temp("cache");
+  ASSERT_EQ(std::system((base + " >" + printed + " 2>/dev/null").c_str()), 0);
+  nlohmann::json result;
+  std::ifstream(printed) >> result;
+  EXPECT_EQ(result.at("status"), "ok");
+  EXPECT_EQ(result.at("seed"), 3);
+  const std::string with_out = base + " --out " + temp("printed_out.json") + " >" + printed_too + " 2>/dev/null";
+  ASSERT_EQ(std::system(with_out.c_str()), 0);
+  std::ifstream quiet(printed_too);
+  EXPECT_EQ(quiet.peek(), std::ifstream::traits_type::eof());
+}
+
 TEST(DemcalDem, VtkSnapshotsHoldTheDisksBondsAndBreaks) {
   std::string dir = temp("vtk");
   Result r = run("run --scene " + kScene + " --out " + temp("vtk.json") + " --vtk " + dir);
