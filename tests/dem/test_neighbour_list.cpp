@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <set>
+#include <string>
+#include <tuple>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/rng.hpp"
@@ -62,6 +64,29 @@ TEST(NeighbourList, FindsExactlyTheBruteForcePairs) {
   }
 }
 
+// The grid search on several threads (each a band of cell rows, used from
+// the second build on, once the world knows its threads) finds the same
+// pairs, in (model, id i, id j) order, each once.
+TEST(NeighbourList, FindsTheBruteForcePairsInOrderOnSeveralThreads) {
+  for (const int threads : {2, 3}) {
+    World world = random_world(600, 4, 2e-4);
+    world.settings().threads = threads;
+    world.settings().min_disks_per_thread = 1;
+    world.refresh();
+    ASSERT_EQ(world.threads_in_use(), threads);
+    world.refresh();
+    const ContactSet& pairs = world.pairs();
+    std::set<std::pair<int, int>> found;
+    for (std::size_t k = 0; k < pairs.size(); ++k) found.insert({pairs.i[k], pairs.j[k]});
+    EXPECT_EQ(found, brute_force(world, 2e-4)) << threads << " threads";
+    EXPECT_EQ(found.size(), pairs.size()) << "no pair twice";
+    for (std::size_t k = 1; k < pairs.size(); ++k)
+      EXPECT_LT(std::make_tuple(pairs.model[k - 1], pairs.i[k - 1], pairs.j[k - 1]),
+                std::make_tuple(pairs.model[k], pairs.i[k], pairs.j[k]))
+          << "pair " << k;
+  }
+}
+
 TEST(NeighbourList, EveryDeclaredStateColumnSurvivesARebuild) {
   World world = random_world(300, 4, 2e-4);
   world.refresh();
@@ -109,6 +134,35 @@ TEST(NeighbourList, RebuildsOnlyAfterHalfTheSkinIsUsed) {
   EXPECT_EQ(world.rebuilds(), first + 1);
 }
 
+// assign_blocks makes at once what add() makes pair by pair; a set given its
+// layout again is empty and takes new blocks of any size.
+TEST(ContactSet, AssignBlocksMatchesAddingPairByPair) {
+  ContactSet added, assigned;
+  for (ContactSet* set : {&added, &assigned}) set->set_layout({2, 0, 3});
+  for (int k = 0; k < 3; ++k) added.add(k, k + 1, 0);
+  for (int k = 0; k < 2; ++k) added.add(k, k + 2, 2);
+  assigned.assign_blocks({3, 0, 2});
+  ASSERT_EQ(assigned.size(), added.size());
+  for (std::size_t k = 0; k < added.size(); ++k) {
+    assigned.i[k] = added.i[k];
+    assigned.j[k] = added.j[k];
+    EXPECT_EQ(assigned.model[k], added.model[k]);
+    EXPECT_EQ(assigned.flags[k], 0);
+  }
+  for (std::uint8_t m : {0, 1, 2}) {
+    EXPECT_EQ(assigned.begin(m), added.begin(m)) << int(m);
+    EXPECT_EQ(assigned.end(m), added.end(m)) << int(m);
+  }
+  assigned.state(4, 2) = 7.0;
+  assigned.set_layout({2, 0, 3});
+  EXPECT_EQ(assigned.size(), 0u);
+  assigned.assign_blocks({0, 0, 5});
+  EXPECT_EQ(assigned.begin(2), 0u);
+  for (std::size_t k = 0; k < 5; ++k)
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(assigned.state(k, c), 0.0) << k << " " << c;
+  EXPECT_THROW(assigned.assign_blocks({0, 0, 0, 1}), demcal::Error);
+}
+
 TEST(ContactModels, RegistryNamesModelsAndRejectsBadParameters) {
   auto& registry = ContactModelRegistry::instance();
   const std::vector<std::string> names = registry.names();
@@ -133,4 +187,20 @@ TEST(ContactModels, PairsWithoutAModelAreAnError) {
   world.bodies.add_disk(0, 0, 1e-3, 2000, 1, 0);
   world.bodies.add_disk(1.5e-3, 0, 1e-3, 2000, 1, 3);
   EXPECT_THROW(world.refresh(), demcal::Error);
+}
+
+TEST(ContactModels, PairsWithoutAModelAreAnErrorOnThreadsToo) {
+  World world = random_world(600, 5, 2e-4);
+  world.settings().threads = 2;
+  world.settings().min_disks_per_thread = 1;
+  world.refresh();
+  ASSERT_EQ(world.threads_in_use(), 2);
+  world.bodies.group[300] = 3;  // no model for groups 3 and 0 or 1
+  try {
+    world.refresh();
+    FAIL() << "expected an error";
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no contact model assigned to material groups"), std::string::npos)
+        << e.what();
+  }
 }

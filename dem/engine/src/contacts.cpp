@@ -9,6 +9,10 @@ namespace demcal::dem {
 
 void ContactSet::set_layout(const std::vector<std::size_t>& columns_per_model) {
   clear();
+  // The same layout keeps the blocks' storage (the neighbour list reuses its sets).
+  bool same = blocks_.size() == columns_per_model.size();
+  for (std::size_t m = 0; same && m < blocks_.size(); ++m) same = blocks_[m].columns == columns_per_model[m];
+  if (same) return;
   blocks_.assign(columns_per_model.size(), ModelBlock{});
   for (std::size_t m = 0; m < columns_per_model.size(); ++m) {
     if (columns_per_model[m] > kMaxStateColumns)
@@ -34,6 +38,24 @@ void ContactSet::reserve(std::size_t n) {
   j.reserve(n);
   model.reserve(n);
   flags.reserve(n);
+}
+
+void ContactSet::assign_blocks(const std::vector<std::size_t>& pairs_per_model) {
+  if (pairs_per_model.size() > blocks_.size())
+    throw Error("contact set: model " + std::to_string(pairs_per_model.size() - 1) + " has no state layout");
+  clear();
+  std::size_t total = 0;
+  for (std::size_t m = 0; m < pairs_per_model.size(); ++m) {
+    ModelBlock& block = blocks_[m];
+    block.count = pairs_per_model[m];
+    block.begin = block.count ? total : 0;  // as add() leaves an empty block
+    block.state.assign(block.count * block.columns, 0.0);
+    model.insert(model.end(), block.count, static_cast<std::uint8_t>(m));
+    total += block.count;
+  }
+  i.assign(total, 0);
+  j.assign(total, 0);
+  flags.assign(total, 0);
 }
 
 std::size_t ContactSet::add(std::int32_t a, std::int32_t b, std::uint8_t model_index) {

@@ -98,6 +98,10 @@ class ContactSet {
   std::size_t size() const { return i.size(); }
   void clear();
   void reserve(std::size_t n);
+  // Empties the set and makes pairs_per_model[m] pairs of each model index
+  // m, in model order, with zero state and flags and i = j = 0, for the
+  // caller to fill in (as many add() calls would, at once).
+  void assign_blocks(const std::vector<std::size_t>& pairs_per_model);
   // Appends a pair with every state value zero. Pairs must come in
   // non-decreasing model order (the neighbour list's sort order).
   std::size_t add(std::int32_t a, std::int32_t b, std::uint8_t model_index);

@@ -48,6 +48,15 @@ struct WorldSettings {
   std::size_t min_disks_per_thread = 500;
 };
 
+namespace detail {
+// A pair the neighbour-list build found: its sort key and its disks' indices.
+struct FoundPair {
+  std::uint64_t key;
+  std::uint32_t i, j;
+  bool operator<(const FoundPair& o) const { return key < o.key; }
+};
+}  // namespace detail
+
 class World {
  public:
   static constexpr std::uint8_t kNoModel = 255;
@@ -194,6 +203,19 @@ class World {
     std::vector<std::vector<BreakEvent>> log;     // per (model position p, range t) at p * team + t, in pair order
   };
   ThreadPartition partition_;
+  // The neighbour-list build's working arrays, kept from one build to the
+  // next so a rebuild allocates (and the kernel zeroes) nothing new once the
+  // list has reached its size (neighbour_list.cpp).
+  using FoundPair = detail::FoundPair;
+  struct ListScratch {
+    std::vector<std::uint32_t> cell_of, cell_start, order, bucket_start, bucket_next;
+    std::vector<double> x, y, radius;
+    std::vector<std::int32_t> clump;
+    std::vector<std::vector<FoundPair>> found_by_thread;
+    std::vector<FoundPair> found;
+    ContactSet pairs, wall_pairs;  // the next build's sets: the last but one's storage
+  };
+  ListScratch list_scratch_;
   int threads_in_use_ = 1;
   double max_disk_move2_ = 0;
   double skin_m_ = 0;
