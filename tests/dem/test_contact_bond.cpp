@@ -86,6 +86,24 @@ TEST(ContactBond, ShearBreaksAtTheShearStrengthThenSlidesWithFriction) {
   EXPECT_NEAR(std::abs(world.pair_state(0, "shear_force_n")), 0.3 * kKn * 0.5e-6, 1e-3 * 0.3 * kKn * 0.5e-6);
 }
 
+TEST(ContactBond, UtilisationIsTheBreakTestsForceOverItsStrength) {
+  // Tension: kn delta against sigma_c A; shear: ks delta against tau_c A.
+  const double sigma_c = 1e7, tau_c = 4e6, v = 1.0, ks = kKn / kKnKs;
+  World pulled = bonded_pair(sigma_c, 1e9);
+  EXPECT_EQ(pulled.max_bond_utilisation(), 0.0);
+  for (int s = 0; s < 30; ++s) imposed_step(pulled, v, 0, 0);
+  const double tension = kKn * v * kDt * 30 / (sigma_c * kWidth);
+  EXPECT_NEAR(pulled.max_bond_utilisation(), tension, 1e-6 * tension);
+
+  World sheared = bonded_pair(1e9, tau_c);
+  for (int s = 0; s < 30; ++s) imposed_step(sheared, 0, v, 0);
+  const double shear = ks * v * kDt * 30 / (tau_c * kWidth);
+  EXPECT_NEAR(sheared.max_bond_utilisation(), shear, 1e-5 * shear);
+  shear_until_break(sheared, v);
+  ASSERT_EQ(sheared.breaks().size(), 1u);
+  EXPECT_EQ(sheared.max_bond_utilisation(), 0.0);  // no bond left intact
+}
+
 TEST(ContactBond, ABondInstalledAcrossAGapStartsFreeOfForce) {
   World world = bonded_pair(1e6, 1e6, 1e-6);  // a 1 um gap
   imposed_step(world, 0, 0, 0);

@@ -109,6 +109,53 @@ TEST(ParallelBond, BendingBreaksInTensionAtSigmaC) {
   EXPECT_NEAR(2 * w * kDt * steps, theta_break, 2 * w * kDt);
 }
 
+TEST(ParallelBond, UtilisationIsTheBreakTestsStressOverItsStrength) {
+  // Tension: sigma = kn_b delta against sigma_c; bending: |M| R_b / I = kn_b theta R_b;
+  // shear: tau = ks_b delta against tau_c (the normal turns by delta / 2R: 1e-5).
+  const double sigma_c = 1e7, tau_c = 4e6, v = 1.0, w = 100.0;
+  World pulled = bonded_pair(sigma_c, 1e9);
+  EXPECT_EQ(pulled.max_bond_utilisation(), 0.0);  // installed force-free
+  int steps = 0;
+  for (; steps < 30; ++steps) imposed_step(pulled, v, 0, 0);
+  const double tension = kKnBond * v * kDt * steps / sigma_c;
+  EXPECT_NEAR(pulled.max_bond_utilisation(), tension, 1e-9 * tension);
+  while (pulled.breaks().empty() && steps < 5000) {
+    imposed_step(pulled, v, 0, 0);
+    ++steps;
+    if (pulled.breaks().empty()) ASSERT_LT(pulled.max_bond_utilisation(), 1.0);  // every bond that held
+  }
+  ASSERT_EQ(pulled.breaks().size(), 1u);
+  EXPECT_EQ(pulled.max_bond_utilisation(), 0.0);  // no bond left intact
+
+  World bent = bonded_pair(sigma_c, 1e9);
+  for (int s = 0; s < 20; ++s) imposed_step(bent, 0, 0, w);
+  const double bending = kKnBond * 2 * w * kDt * 20 * kRadius / sigma_c;
+  EXPECT_NEAR(bent.max_bond_utilisation(), bending, 1e-9 * bending);
+
+  World sheared = bonded_pair(1e9, tau_c);
+  for (int s = 0; s < 20; ++s) imposed_step(sheared, 0, v, 0);
+  const double shear = kKsBond * v * kDt * 20 / tau_c;
+  EXPECT_NEAR(sheared.max_bond_utilisation(), shear, 1e-5 * shear);
+
+  // A zero strength breaks at the first test, loaded or not (tau >= 0).
+  World weak = bonded_pair(sigma_c, 0.0);
+  EXPECT_EQ(weak.max_bond_utilisation(), INFINITY);
+  imposed_step(weak, 0, 0, 0);
+  EXPECT_EQ(weak.breaks().size(), 1u);
+  EXPECT_EQ(weak.max_bond_utilisation(), 0.0);
+}
+
+TEST(ParallelBond, AWorldWithoutBondsReportsNoUtilisation) {
+  World world;
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                        "linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}}, "test")));
+  world.bodies.add_disk(0, 0, kRadius, 2650, 1, 0);
+  world.bodies.add_disk(1.9 * kRadius, 0, kRadius, 2650, 1, 0);  // touching: a listed pair
+  world.refresh();
+  ASSERT_EQ(world.pairs().size(), 1u);
+  EXPECT_TRUE(std::isnan(world.max_bond_utilisation()));
+}
+
 TEST(ParallelBond, ABondKeepsItsPairBeyondTheSkin) {
   World world = bonded_pair(1e12, 1e12);
   world.bodies.x[1] += 3 * kRadius;  // far beyond the skin

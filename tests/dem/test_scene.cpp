@@ -105,6 +105,39 @@ TEST(Scene, ShippedVariantsEqualTheirBaseExceptWhatTheyChange) {
   EXPECT_EQ(demo["specimen"]["porosity"], base["specimen"]["porosity"]);
 }
 
+TEST(Scene, ElasticSpeedupIsCheckedAndOnlyForTheUcs) {
+  const json ucs = Scene::resolved_json(source("data/scenes/ucs_rock_pb.json"));
+  EXPECT_EQ(Scene::from_json(ucs, "u.json").loading().elastic_speedup, 1.0);  // one speed unless asked
+  json fast = ucs;
+  fast["loading"]["elastic_speedup"] = 4;
+  fast["loading"]["speedup_until_utilisation"] = 0.4;
+  const Scene quick = Scene::from_json(fast, "u.json");
+  EXPECT_EQ(quick.loading().elastic_speedup, 4.0);
+  EXPECT_EQ(quick.loading().speedup_until_utilisation, 0.4);
+  EXPECT_NE(quick.fingerprint(), Scene::from_json(ucs, "u.json").fingerprint());
+  json bad = fast;
+  bad["loading"]["elastic_speedup"] = 0.5;
+  EXPECT_NE(error_of([&] { Scene::from_json(bad, "u.json"); })
+                .find("u.json: loading: elastic_speedup must lie in [1, 20] (1: one platen speed throughout)"),
+            std::string::npos);
+  bad = fast;
+  bad["loading"]["platen_velocity_m_s"] = 1;
+  bad["loading"]["elastic_speedup"] = 15;
+  EXPECT_NE(error_of([&] { Scene::from_json(bad, "u.json"); })
+                .find("u.json: loading: elastic_speedup x platen_velocity_m_s must be at most 10 m/s"),
+            std::string::npos);
+  bad = fast;
+  bad["loading"]["speedup_until_utilisation"] = 1;
+  EXPECT_NE(error_of([&] { Scene::from_json(bad, "u.json"); })
+                .find("u.json: loading: speedup_until_utilisation must lie in (0, 1)"),
+            std::string::npos);
+  json disc = Scene::resolved_json(source("data/scenes/brazilian_rock_pb.json"));
+  disc["loading"]["elastic_speedup"] = 2;
+  EXPECT_NE(error_of([&] { Scene::from_json(disc, "b.json"); })
+                .find("b.json: loading: elastic_speedup: only the ucs test uses it (this scene's test is brazilian)"),
+            std::string::npos);
+}
+
 TEST(Scene, AggregateFillAndPlatenStartAreCheckedChoices) {
   json shipped = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
   EXPECT_EQ(Scene::from_json(shipped, "c.json").aggregates()->fill, demcal::dem::AggregateFill::count);  // as Su et al.

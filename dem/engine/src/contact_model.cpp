@@ -1,5 +1,7 @@
 #include "demcal/dem/contact_model.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
@@ -7,6 +9,8 @@
 namespace demcal::dem {
 
 void ContactModel::make_force_free(PairBlock&, std::size_t, double) const {}
+
+double ContactModel::max_bond_utilisation(const ConstPairBlock&, const Bodies&) const { return NAN; }
 
 bool ContactModel::install_bond(PairBlock&, std::size_t, const PairInfo&, double, Rng&) const { return false; }
 

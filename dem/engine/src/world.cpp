@@ -395,6 +395,17 @@ double World::kinetic_energy() const {
   return energy;
 }
 
+double World::max_bond_utilisation() const {
+  double most = NAN;
+  for (std::size_t m = 0; m < models_.size(); ++m) {
+    const auto index = static_cast<std::uint8_t>(m);
+    if (pairs_.begin(index) == pairs_.end(index)) continue;
+    const double u = models_[m]->max_bond_utilisation(pairs_.block(index), bodies);
+    if (!std::isnan(u)) most = std::isnan(most) ? u : std::max(most, u);
+  }
+  return most;
+}
+
 std::size_t World::touching_pairs() const {
   std::size_t count = 0;
   for (PairFlags f : pairs_.flags) count += (f & kTouching) != 0;

@@ -302,7 +302,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
                   "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start", "local_damping",
-                  "confining_stresses_MPa"},
+                  "confining_stresses_MPa", "elastic_speedup", "speedup_until_utilisation"},
               where);
     LoadingSpec& s = scene.loading_;
     s.platen_start = choice_field(l, "platen_start", {"vessel_faces", "outermost_disks"}, 0, where) == 0
@@ -329,6 +329,16 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     if (!(s.record_strain > 0 && s.record_strain < s.strain_limit))
       throw Error(where + ": record_strain must lie in (0, strain_limit)");
     s.confining_stresses_pa = confining_stresses(l, scene.test_, where);
+    s.elastic_speedup = number_field(l, "elastic_speedup", s.elastic_speedup, where);
+    s.speedup_until_utilisation = number_field(l, "speedup_until_utilisation", s.speedup_until_utilisation, where);
+    if (!(s.elastic_speedup >= 1 && s.elastic_speedup <= 20))
+      throw Error(where + ": elastic_speedup must lie in [1, 20] (1: one platen speed throughout)");
+    if (!(s.elastic_speedup * s.platen_velocity_m_s <= 10))
+      throw Error(where + ": elastic_speedup x platen_velocity_m_s must be at most 10 m/s");
+    if (!(s.speedup_until_utilisation > 0 && s.speedup_until_utilisation < 1))
+      throw Error(where + ": speedup_until_utilisation must lie in (0, 1)");
+    if (s.elastic_speedup != 1 && scene.test_ != "ucs")
+      throw Error(where + ": elastic_speedup: only the ucs test uses it (this scene's test is " + scene.test_ + ")");
   }
   if (scene.test_ == "biaxial" && scene.loading_.confining_stresses_pa.empty())
     throw Error(origin + ": loading.confining_stresses_MPa: missing (the biaxial test's confining stresses, MPa, e.g. [1, 2, 4, 8])");

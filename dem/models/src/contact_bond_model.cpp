@@ -82,6 +82,23 @@ class ContactBondModel : public LinearBase {
     });
   }
 
+  // The break test's tension -F_n and shear |F_s| of each intact bond
+  // against its strengths (forces), F_n from the disks' present overlap (the
+  // test itself took it before the last move: near enough for a switch).
+  double max_bond_utilisation(const ConstPairBlock& c, const Bodies& b) const override {
+    double most = 0;
+    for (std::size_t k = 0; k < c.size; ++k) {
+      if (!(c.flags[k] & kBonded)) continue;
+      const std::size_t i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+      const double dx = b.x[j] - b.x[i], dy = b.y[j] - b.y[i];
+      const double overlap = b.radius[i] + b.radius[j] - std::sqrt(dx * dx + dy * dy);
+      const double* s = c.column.row(k);
+      const double fn = s[kNormalStiffness] * (overlap - s[kReferenceOverlap]);
+      most = std::max({most, utilisation(-fn, s[kNormalStrength]), utilisation(std::abs(s[kShearForce]), s[kShearStrength])});
+    }
+    return most;
+  }
+
  private:
   // Bonded: the normal spring carries tension from the glued overlap and the
   // shear force grows without limit; in tension past the strength both drop

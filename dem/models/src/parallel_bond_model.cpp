@@ -102,6 +102,20 @@ class ParallelBondModel : public LinearBase {
     rotational_nm_rad = shear * arm_m * arm_m + c.column[kBondKn][k] * c.column[kBondInertia][k];
   }
 
+  // The break test's sigma = -F_n / A + |M| R_b / I and tau = |F_s| / A of
+  // each intact bond against its strengths.
+  double max_bond_utilisation(const ConstPairBlock& c, const Bodies&) const override {
+    double most = 0;
+    for (std::size_t k = 0; k < c.size; ++k) {
+      if (!(c.flags[k] & kBonded)) continue;
+      const double* s = c.column.row(k);
+      const double sigma = -s[kBondFn] / s[kBondArea] + std::abs(s[kBondM]) * s[kBondRadius] / s[kBondInertia];
+      const double tau = std::abs(s[kBondFs]) / s[kBondArea];
+      most = std::max({most, utilisation(sigma, s[kTensileStrength]), utilisation(tau, s[kShearStrength])});
+    }
+    return most;
+  }
+
   double stiffness_estimate(double radius_m, double thickness_m) const override {
     const double rb = lambda_ * radius_m;
     const double bond_kn = bond_modulus_pa_ / (2.0 * radius_m) * 2.0 * rb * thickness_m;

@@ -88,6 +88,14 @@ class ContactModel {
   // Normal force the block's pair k carries at `overlap_m` (for the
   // equilibrium measure of material genesis), N.
   virtual double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const = 0;
+  // How close the block's most loaded intact bond is to breaking: the largest
+  // ratio, over its bonded pairs, of what the model's break test compares
+  // (a stress or a force) to the bond's strength, at the state of the last
+  // step (below 1 for every bond that held). 0 when no bond is intact; NaN
+  // for a model that has no bonds or does not report it. A UCS whose platens
+  // run faster while the specimen is elastic slows them on it
+  // (loading.elastic_speedup).
+  virtual double max_bond_utilisation(const ConstPairBlock& c, const Bodies& b) const;
   // The stiffer spring (normal or shear) of a contact between two disks of
   // radius r, for a disk that has no neighbour yet (time step bound).
   virtual double stiffness_estimate(double radius_m, double thickness_m) const = 0;

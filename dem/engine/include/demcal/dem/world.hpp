@@ -150,6 +150,10 @@ class World {
   double kinetic_energy() const;
   // Pairs whose disks touch now.
   std::size_t touching_pairs() const;
+  // The largest ContactModel::max_bond_utilisation over the models that
+  // report one (how close the most loaded bond is to breaking); NaN when no
+  // model with disk pairs reports one.
+  double max_bond_utilisation() const;
 
  private:
   void rebuild();

@@ -76,6 +76,14 @@ struct LoadingSpec {
   double bond_gap_tolerance_m = 0;     // 0: 1 % of the smallest radius
   double density_scaling_dt_s = 0;     // > 0: density scaling to this time step (stated in the result)
   double local_damping = 0.7;          // alpha of the local non-viscous damping (PFC's default for quasi-static tests)
+  // UCS only: the platens start at elastic_speedup x platen_velocity_m_s
+  // and slow in proportion as the most loaded bond takes up its strength,
+  // reaching platen_velocity_m_s when it carries speedup_until_utilisation
+  // of it or a bond breaks: fewer steps while the specimen is elastic, and
+  // the constant speed well before the window E and nu are taken over
+  // (scripts/speedup_check.py, docs/benchmarks.md).
+  double elastic_speedup = 1;          // 1: one speed throughout
+  double speedup_until_utilisation = 0.5;
   // Where the platens of a packed prism start: at the faces of the vessel it
   // was packed in, touching every disk that touched the vessel, force-free as
   // they lie (PFC: the vessel's walls become the platens); or at the
