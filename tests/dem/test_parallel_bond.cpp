@@ -122,7 +122,9 @@ TEST(ParallelBond, UtilisationIsTheBreakTestsStressOverItsStrength) {
   while (pulled.breaks().empty() && steps < 5000) {
     imposed_step(pulled, v, 0, 0);
     ++steps;
-    if (pulled.breaks().empty()) ASSERT_LT(pulled.max_bond_utilisation(), 1.0);  // every bond that held
+    if (pulled.breaks().empty()) {
+      ASSERT_LT(pulled.max_bond_utilisation(), 1.0);  // every bond that held
+    }
   }
   ASSERT_EQ(pulled.breaks().size(), 1u);
   EXPECT_EQ(pulled.max_bond_utilisation(), 0.0);  // no bond left intact

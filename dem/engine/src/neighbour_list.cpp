@@ -103,8 +103,8 @@ void World::build_disk_pairs(ContactSet& fresh) {
   std::vector<std::vector<Found>>& found_by_thread = scratch.found_by_thread;
   found_by_thread.resize(static_cast<std::size_t>(team));
   for (auto& list : found_by_thread) list.clear();  // a smaller team than asked leaves some unfilled
-  std::vector<std::array<std::uint8_t, 2>> unassigned(static_cast<std::size_t>(team), {0, 0});
-  std::vector<std::uint8_t> any_unassigned(static_cast<std::size_t>(team), 0);
+  std::vector<std::array<std::uint8_t, 3>>& unassigned = scratch.unassigned;
+  unassigned.assign(static_cast<std::size_t>(team), {0, 0, 0});
   const std::uint32_t* id = bodies.id.data();
   const std::uint8_t* group = bodies.group.data();
   const double skin = skin_m_;
@@ -134,8 +134,7 @@ void World::build_disk_pairs(ContactSet& fresh) {
               // and model_for reports them after the search.
               const std::uint8_t m = table_[group[lo]][group[hi]];
               if (m == kNoModel) {
-                unassigned[t] = {group[lo], group[hi]};
-                any_unassigned[t] = 1;
+                unassigned[t] = {1, group[lo], group[hi]};
                 continue;
               }
               found.push_back({pair_key(m, id[lo], id[hi]), lo, hi});
@@ -145,7 +144,7 @@ void World::build_disk_pairs(ContactSet& fresh) {
       }
   }
   for (std::size_t t = 0; t < found_by_thread.size(); ++t)
-    if (any_unassigned[t]) model_for(unassigned[t][0], unassigned[t][1]);  // throws
+    if (unassigned[t][0]) model_for(unassigned[t][1], unassigned[t][2]);  // throws
   // A bond holds its pair in the list however far the disks have moved apart.
   std::vector<Found>& bonded = found_by_thread[0];
   for (std::size_t k = 0; k < pairs_.size(); ++k) {

@@ -42,6 +42,11 @@ struct PairResult {
 // The bits of StepContext::direct.
 constexpr std::uint8_t kAddToI = 1, kAddToJ = 2, kAddToBoth = 3;
 
+// Whether pair k's contribution goes to StepContext::pair_results for the
+// world to sum: always without `direct`, else unless one thread adds it to
+// both of its disks.
+inline bool stores_result(const std::uint8_t* direct, std::size_t k) { return !direct || direct[k] != kAddToBoth; }
+
 // Adds one pair's contribution to the disks' sums, as the serial loop does,
 // to those of its disks that `direct` names.
 inline void add_pair_where(double* __restrict fx_sum, double* __restrict fy_sum, double* __restrict moment_sum,
@@ -88,7 +93,7 @@ inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __res
     const double overlap = r[i] + r[j] - distance;
     if (skip(k, -overlap)) {
       if constexpr (kKeepResults)
-        if (!direct || direct[k] != kAddToBoth) results[k] = PairResult{0.0, 0.0, 0.0, 0.0};
+        if (stores_result(direct, k)) results[k] = PairResult{0.0, 0.0, 0.0, 0.0};
       continue;
     }
     Geometry g;
@@ -111,7 +116,7 @@ inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __res
     const double moment_j = -g.arm_j * f.fs + f.moment;
     if constexpr (kKeepResults) {
       const PairResult r{fx, fy, moment_i, moment_j};
-      if (!direct || direct[k] != kAddToBoth) results[k] = r;
+      if (stores_result(direct, k)) results[k] = r;
       if (direct) add_pair_where(fx_sum, fy_sum, moment_sum, i, j, r, direct[k]);
     } else {
       fx_sum[j] += fx;

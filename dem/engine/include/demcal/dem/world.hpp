@@ -210,13 +210,15 @@ class World {
   // The neighbour-list build's working arrays, kept from one build to the
   // next so a rebuild allocates (and the kernel zeroes) nothing new once the
   // list has reached its size (neighbour_list.cpp).
-  using FoundPair = detail::FoundPair;
   struct ListScratch {
     std::vector<std::uint32_t> cell_of, cell_start, order, bucket_start, bucket_next;
     std::vector<double> x, y, radius;
     std::vector<std::int32_t> clump;
-    std::vector<std::vector<FoundPair>> found_by_thread;
-    std::vector<FoundPair> found;
+    std::vector<std::vector<detail::FoundPair>> found_by_thread;
+    std::vector<detail::FoundPair> found;
+    // Per search thread: {1, group, group} of a pair no model is assigned to
+    // (reported after the threads, which must not throw), or all 0.
+    std::vector<std::array<std::uint8_t, 3>> unassigned;
     ContactSet pairs, wall_pairs;  // the next build's sets: the last but one's storage
   };
   ListScratch list_scratch_;
