@@ -72,11 +72,14 @@ def main():
     parser.add_argument("--speedup", type=float, default=4.0, help="loading.elastic_speedup f")
     parser.add_argument("--until", type=float, default=0.5, help="loading.speedup_until_utilisation u")
     parser.add_argument("--seeds", type=int, default=5)
-    parser.add_argument("--finer", type=float, default=2.0, help="the second resolution: radii divided by this")
+    parser.add_argument("--finer", type=float, default=2.0,
+                        help="the second resolution: radii divided by this (0: the scene's resolution only)")
     parser.add_argument("--threads", type=int, default=0, help="per run (0: all cores)")
     args = parser.parse_args()
     if not 2 <= args.seeds <= 10:
         sys.exit("speedup_check: --seeds must lie in [2, 10]")
+    if args.finer and args.finer <= 1:
+        sys.exit("speedup_check: --finer must be above 1 (or 0 for the scene's resolution only)")
     binary = os.path.abspath(os.path.join(args.build, "bin", "demcal-dem"))
     cache = os.path.abspath(os.path.join(args.build, "cache"))
     base = os.path.abspath(args.scene)
@@ -84,7 +87,7 @@ def main():
           f"{machine()}; commit {commit()}", flush=True)
     passed = True
     with tempfile.TemporaryDirectory() as work:
-        for factor in (1.0, args.finer):
+        for factor in (1.0, args.finer) if args.finer else (1.0,):
             scenes = {}
             for name, loading in (("constant", {}),
                                   ("faster", {"elastic_speedup": args.speedup,

@@ -156,8 +156,8 @@ inline void add_to_disks(Bodies& b, const std::int32_t* __restrict ci, const std
 // Asks for the cache lines of the block's pair k's state row ahead of its
 // use. The law reads and writes a batch's rows only after the batch's
 // geometry, so without this the rows of a specimen too large for the caches
-// arrive one miss at a time once the law starts (47k disks: 0.82x the time
-// with it). One row at a time, spread over add_batch's loop: a burst of a
+// arrive one miss at a time once the law starts (47k disks: 0.73-0.82x the
+// time with it). One row at a time, spread over add_batch's loop: a burst of a
 // whole batch's lines at once cost 2-3 % where the rows sit in the caches.
 // Only for a block whose state exceeds kPrefetchAboveBytes (a core's
 // second-level cache here): below it the requests cost time (1.06x on the
