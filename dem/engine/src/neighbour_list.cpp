@@ -113,33 +113,40 @@ void World::build_disk_pairs(ContactSet& fresh) {
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
     const long size = omp_get_num_threads();
     std::vector<Found>& found = found_by_thread[t];
-    const long offsets[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};  // half stencil
+    // The half stencil as two runs of cells, each contiguous in the cell
+    // order: this cell and its right neighbour, then the three cells above.
     for (long cy = ncy * static_cast<long>(t) / size; cy < ncy * (static_cast<long>(t) + 1) / size; ++cy)
       for (long cx = 0; cx < ncx; ++cx) {
         const long c = cy * ncx + cx;
-        for (const auto& o : offsets) {
-          const long nx = cx + o[0], ny = cy + o[1];
-          if (nx < 0 || nx >= ncx || ny >= ncy) continue;
-          const long d = ny * ncx + nx;
-          for (std::uint32_t a = start[static_cast<std::size_t>(c)]; a < start[static_cast<std::size_t>(c) + 1]; ++a) {
-            const std::uint32_t b0 = (d == c) ? a + 1 : start[static_cast<std::size_t>(d)];
-            for (std::uint32_t b = b0; b < start[static_cast<std::size_t>(d) + 1]; ++b) {
-              if (clumps[a] >= 0 && clumps[a] == clumps[b]) continue;  // inside one rigid clump
-              const double dx = xs[b] - xs[a], dy = ys[b] - ys[a];
-              const double reach = rs[a] + rs[b] + skin;
-              if (dx * dx + dy * dy >= reach * reach) continue;
-              const std::uint32_t i = order[a], j = order[b];
-              const std::uint32_t lo = id[i] < id[j] ? i : j, hi = id[i] < id[j] ? j : i;
-              // No throwing inside the threads: the pair's groups are kept
-              // and model_for reports them after the search.
-              const std::uint8_t m = table_[group[lo]][group[hi]];
-              if (m == kNoModel) {
-                unassigned[t] = {1, group[lo], group[hi]};
-                continue;
-              }
-              found.push_back({pair_key(m, id[lo], id[hi]), lo, hi});
+        const std::uint32_t own_end = start[static_cast<std::size_t>(c) + 1];
+        const std::uint32_t row_end = start[static_cast<std::size_t>(cx + 1 < ncx ? c + 2 : c + 1)];
+        std::uint32_t above_begin = 0, above_end = 0;
+        if (cy + 1 < ncy) {
+          const long d = c + ncx;
+          above_begin = start[static_cast<std::size_t>(cx > 0 ? d - 1 : d)];
+          above_end = start[static_cast<std::size_t>(cx + 1 < ncx ? d + 2 : d + 1)];
+        }
+        for (std::uint32_t a = start[static_cast<std::size_t>(c)]; a < own_end; ++a) {
+          const double xa = xs[a], ya = ys[a], ra = rs[a];
+          const std::int32_t ca = clumps[a];
+          auto consider = [&](std::uint32_t b) {
+            if (ca >= 0 && ca == clumps[b]) return;  // inside one rigid clump
+            const double dx = xs[b] - xa, dy = ys[b] - ya;
+            const double reach = ra + rs[b] + skin;
+            if (dx * dx + dy * dy >= reach * reach) return;
+            const std::uint32_t i = order[a], j = order[b];
+            const std::uint32_t lo = id[i] < id[j] ? i : j, hi = id[i] < id[j] ? j : i;
+            // No throwing inside the threads: the pair's groups are kept
+            // and model_for reports them after the search.
+            const std::uint8_t m = table_[group[lo]][group[hi]];
+            if (m == kNoModel) {
+              unassigned[t] = {1, group[lo], group[hi]};
+              return;
             }
-          }
+            found.push_back({pair_key(m, id[lo], id[hi]), lo, hi});
+          };
+          for (std::uint32_t b = a + 1; b < row_end; ++b) consider(b);
+          for (std::uint32_t b = above_begin; b < above_end; ++b) consider(b);
         }
       }
   }
