@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <set>
+#include <utility>
 #include <string>
 #include <tuple>
 
@@ -161,6 +162,39 @@ TEST(ContactSet, AssignBlocksMatchesAddingPairByPair) {
   for (std::size_t k = 0; k < 5; ++k)
     for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(assigned.state(k, c), 0.0) << k << " " << c;
   EXPECT_THROW(assigned.assign_blocks({0, 0, 0, 1}), demcal::Error);
+}
+
+// The state is stored column by column, each column as long as the block's
+// capacity: adding pairs one by one regrows every column, and a copy between
+// sets of other capacities takes each column of the pair.
+TEST(ContactSet, StateKeepsEveryColumnAsTheBlockGrows) {
+  ContactSet grown, copied;
+  grown.set_layout({3, 4});
+  constexpr int kPairs = 40;  // past capacities 16 and 32
+  auto value = [](int k, std::size_t c) { return 100.0 * k + static_cast<double>(c) + 0.5; };
+  for (int k = 0; k < 3; ++k) grown.add(k, k + 1, 0);
+  for (int k = 0; k < kPairs; ++k) {
+    const std::size_t at = grown.add(k, k + 2, 1);
+    for (std::size_t c = 0; c < 4; ++c) {
+      EXPECT_EQ(grown.state(at, c), 0.0) << k << " " << c;  // a new pair starts at zero
+      grown.state(at, c) = value(k, c);
+    }
+  }
+  const ConstPairBlock block = std::as_const(grown).block(1);
+  ASSERT_EQ(block.size, static_cast<std::size_t>(kPairs));
+  for (int k = 0; k < kPairs; ++k)
+    for (std::size_t c = 0; c < 4; ++c) {
+      EXPECT_EQ(grown.state(3 + static_cast<std::size_t>(k), c), value(k, c)) << k << " " << c;
+      EXPECT_EQ(block.column[c][static_cast<std::size_t>(k)], value(k, c)) << k << " " << c;
+      EXPECT_EQ(block.column(c, static_cast<std::size_t>(k)), value(k, c)) << k << " " << c;
+    }
+  copied.set_layout({3, 4});
+  copied.assign_blocks({0, kPairs});
+  for (int k = 0; k < kPairs; ++k)
+    copied.copy_state(static_cast<std::size_t>(kPairs - 1 - k), grown, 3 + static_cast<std::size_t>(k));
+  for (int k = 0; k < kPairs; ++k)
+    for (std::size_t c = 0; c < 4; ++c)
+      EXPECT_EQ(copied.state(static_cast<std::size_t>(kPairs - 1 - k), c), value(k, c)) << k << " " << c;
 }
 
 TEST(ContactModels, RegistryNamesModelsAndRejectsBadParameters) {

@@ -51,7 +51,7 @@ void reference_parallel_bond(PairBlock& c, Bodies& b, const StepContext& step) {
       [&](std::size_t k, const Geometry& g) {
         PairForce f = linear_force(c, k, g, dt);
         if (!(c.flags[k] & kBonded)) return f;
-        double* const s = c.column.row(k);
+        const PairState<double> s = c.column.pair(k);
         const double area = s[kPbArea], inertia = s[kPbInertia];
         s[kPbFn] -= s[kPbKn] * area * g.vn * dt;
         s[kPbFs] -= s[kPbKs] * area * g.vs * dt;
@@ -78,7 +78,7 @@ void reference_contact_bond(PairBlock& c, Bodies& b, const StepContext& step) {
       c, b, step,
       [&](std::size_t k, const Geometry& g) {
         if (!(c.flags[k] & kBonded)) return linear_force(c, k, g, dt);
-        double* const s = c.column.row(k);
+        const PairState<double> s = c.column.pair(k);
         PairForce f;
         f.fn = s[kNormalStiffness] * (g.overlap - s[kReferenceOverlap]);
         s[kShearForce] -= s[kShearStiffness] * g.vs * dt;
@@ -149,7 +149,7 @@ Case random_case(std::uint64_t seed, std::size_t columns, const std::string& mod
   }
   PairBlock block = c.pairs.block(0);
   for (std::size_t k = 0; k < kPairs; ++k) {
-    double* s = block.column.row(k);
+    const PairState<double> s = block.column.pair(k);
     s[kNormalStiffness] = rng.uniform(1e6, 1e8);
     s[kShearStiffness] = s[kNormalStiffness] / rng.uniform(1, 3);
     s[kFriction] = rng.uniform(0, 1);
@@ -231,8 +231,9 @@ Counts check(const std::string& model_name, const nlohmann::json& parameters, st
     const ConstPairBlock before = base.pairs.block(0);
     for (std::size_t k = 0; k < kPairs; ++k) {
       EXPECT_EQ(batched_block.flags[k], pairwise_block.flags[k]) << model_name << " pair " << k;
-      EXPECT_EQ(std::memcmp(batched_block.column.row(k), pairwise_block.column.row(k), columns * sizeof(double)), 0)
-          << model_name << " pair " << k << " seed " << seed;
+      for (std::size_t col = 0; col < columns; ++col)
+        EXPECT_EQ(std::memcmp(&batched_block.column[col][k], &pairwise_block.column[col][k], sizeof(double)), 0)
+            << model_name << " pair " << k << " column " << col << " seed " << seed;
       if (!(before.flags[k] & kBonded) && !(pairwise_block.flags[k] & kTouching)) ++counts.skipped;
       if (form == kToDisks && (pairwise_block.flags[k] & kTouching)) ++counts.touching;
     }

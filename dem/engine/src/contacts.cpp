@@ -28,7 +28,7 @@ void ContactSet::clear() {
   model.clear();
   flags.clear();
   for (ModelBlock& b : blocks_) {
-    b.begin = b.count = 0;
+    b.begin = b.count = b.capacity = 0;
     b.state.clear();
   }
 }
@@ -47,7 +47,7 @@ void ContactSet::assign_blocks(const std::vector<std::size_t>& pairs_per_model) 
   std::size_t total = 0;
   for (std::size_t m = 0; m < pairs_per_model.size(); ++m) {
     ModelBlock& block = blocks_[m];
-    block.count = pairs_per_model[m];
+    block.count = block.capacity = pairs_per_model[m];
     block.begin = block.count ? total : 0;  // as add() leaves an empty block
     block.state.assign(block.count * block.columns, 0.0);
     model.insert(model.end(), block.count, static_cast<std::uint8_t>(m));
@@ -64,8 +64,17 @@ std::size_t ContactSet::add(std::int32_t a, std::int32_t b, std::uint8_t model_i
   if (!model.empty() && model.back() > model_index) throw Error("contact set: pairs must be added in model order");
   ModelBlock& block = blocks_[model_index];
   if (block.count == 0) block.begin = i.size();
+  if (block.count == block.capacity) {
+    // Each column grows in place of the old one, twice as long.
+    const std::size_t capacity = std::max<std::size_t>(16, 2 * block.capacity);
+    std::vector<double> grown(capacity * block.columns, 0.0);
+    for (std::size_t c = 0; c < block.columns; ++c)
+      std::copy_n(block.state.begin() + static_cast<std::ptrdiff_t>(c * block.capacity), block.count,
+                  grown.begin() + static_cast<std::ptrdiff_t>(c * capacity));
+    block.state.swap(grown);
+    block.capacity = capacity;
+  }
   ++block.count;
-  block.state.resize(block.state.size() + block.columns, 0.0);
   i.push_back(a);
   j.push_back(b);
   model.push_back(model_index);
@@ -77,8 +86,9 @@ void ContactSet::copy_state(std::size_t to, const ContactSet& other, std::size_t
   flags[to] = other.flags[from];
   const ModelBlock& source = other.blocks_[other.model[from]];
   ModelBlock& target = blocks_[model[to]];
-  const double* row = source.state.data() + (from - source.begin) * source.columns;
-  std::copy(row, row + target.columns, target.state.data() + (to - target.begin) * target.columns);
+  const double* in = source.state.data() + (from - source.begin);
+  double* out = target.state.data() + (to - target.begin);
+  for (std::size_t c = 0; c < target.columns; ++c) out[c * target.capacity] = in[c * source.capacity];
 }
 
 std::size_t ContactSet::begin(std::uint8_t m) const { return m < blocks_.size() ? blocks_[m].begin : 0; }
@@ -89,12 +99,12 @@ std::size_t ContactSet::end(std::uint8_t m) const {
 
 double ContactSet::state(std::size_t k, std::size_t c) const {
   const ModelBlock& b = blocks_[model[k]];
-  return b.state[(k - b.begin) * b.columns + c];
+  return b.state[c * b.capacity + (k - b.begin)];
 }
 
 double& ContactSet::state(std::size_t k, std::size_t c) {
   ModelBlock& b = blocks_[model[k]];
-  return b.state[(k - b.begin) * b.columns + c];
+  return b.state[c * b.capacity + (k - b.begin)];
 }
 
 namespace {
@@ -109,7 +119,8 @@ Block make_block(Set& set, Blocks& blocks, std::uint8_t m) {
   out.j = set.j.data() + b.begin;
   out.flags = set.flags.data() + b.begin;
   out.column.data = b.state.data();
-  out.column.stride = b.columns;
+  out.column.column_stride = b.capacity;
+  out.column.columns = b.columns;
   return out;
 }
 

@@ -92,7 +92,7 @@ class ContactBondModel : public LinearBase {
       const std::size_t i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
       const double dx = b.x[j] - b.x[i], dy = b.y[j] - b.y[i];
       const double overlap = b.radius[i] + b.radius[j] - std::sqrt(dx * dx + dy * dy);
-      const double* s = c.column.row(k);
+      const PairState<const double> s = c.column.pair(k);
       const double fn = s[kNormalStiffness] * (overlap - s[kReferenceOverlap]);
       most = std::max({most, utilisation(-fn, s[kNormalStrength]), utilisation(std::abs(s[kShearForce]), s[kShearStrength])});
     }
@@ -107,24 +107,22 @@ class ContactBondModel : public LinearBase {
   // linear law.
   static void bond_law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
                        ForceBatch& __restrict f, double dt) {
-    double* __restrict rows = c.column.row(from);
-    const std::size_t stride = c.column.stride;
+    const StateColumns<double> s = c.column.from(from);
     const PairFlags* __restrict flags = c.flags + from;
 #pragma omp simd
     for (std::size_t p = 0; p < n; ++p) {
-      double* const s = rows + p * stride;
       const bool bonded = (flags[p] & kBonded) != 0;
-      const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
+      const LinearLane lin = linear_lane(s, p, g.overlap[p], g.vs[p], dt);
       const bool skipped = (!bonded) & (!lin.touching);
-      const double bond_fn = s[kNormalStiffness] * (g.overlap[p] - s[kReferenceOverlap]);  // negative in tension
-      const double bond_fs = s[kShearForce] - s[kShearStiffness] * g.vs[p] * dt;
-      const bool tension = -bond_fn >= s[kNormalStrength];
-      const bool shear = (!tension) & (std::abs(bond_fs) >= s[kShearStrength]);
+      const double bond_fn = s(kNormalStiffness, p) * (g.overlap[p] - s(kReferenceOverlap, p));  // negative in tension
+      const double bond_fs = s(kShearForce, p) - s(kShearStiffness, p) * g.vs[p] * dt;
+      const bool tension = -bond_fn >= s(kNormalStrength, p);
+      const bool shear = (!tension) & (std::abs(bond_fs) >= s(kShearStrength, p));
       const bool released = tension | (shear & (bond_fn <= 0));
       const bool broke = bonded & (tension | shear);
       const double fn = select(bonded, select(released, 0.0, bond_fn), lin.fn);
       const double fs = select(bonded, select(released, 0.0, bond_fs), lin.fs);
-      s[kShearForce] = select(bonded, select(released, 0.0, bond_fs), select(skipped, 0.0, lin.fs));
+      s(kShearForce, p) = select(bonded, select(released, 0.0, bond_fs), select(skipped, 0.0, lin.fs));
       batch_force(f, p, g, skipped, fn, fs, 0.0);
       // Bonded and holding: touching while the disks overlap; broken in shear
       // and still pressed: touching; released: not.

@@ -43,10 +43,9 @@ class LinearModel : public LinearBase {
   static bool release_if_apart(const PairBlock& c, const Bodies& b, std::size_t from, std::size_t n,
                                const StepContext& step) {
     if (!batch_stands_apart(c, b, from, n)) return false;
-    const double* __restrict reference = c.column.row(from) + kReferenceOverlap;
-    const std::size_t stride = c.column.stride;
+    const double* __restrict reference = &c.column[kReferenceOverlap][from];
     unsigned gap = 0;
-    for (std::size_t p = 0; p < n; ++p) gap |= static_cast<unsigned>(!(reference[p * stride] >= 0));
+    for (std::size_t p = 0; p < n; ++p) gap |= static_cast<unsigned>(!(reference[p] >= 0));
     if (gap) return false;
     for (std::size_t p = 0; p < n; ++p) release(c, from + p);
     store_zero_results(step, from, n);
@@ -55,14 +54,12 @@ class LinearModel : public LinearBase {
 
   static void law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
                   ForceBatch& __restrict f, double dt) {
-    double* __restrict rows = c.column.row(from);
-    const std::size_t stride = c.column.stride;
+    const StateColumns<double> s = c.column.from(from);
     const PairFlags* __restrict flags = c.flags + from;
 #pragma omp simd
     for (std::size_t p = 0; p < n; ++p) {
-      double* const s = rows + p * stride;
-      const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
-      s[kShearForce] = select(!lin.touching, 0.0, lin.fs);
+      const LinearLane lin = linear_lane(s, p, g.overlap[p], g.vs[p], dt);
+      s(kShearForce, p) = select(!lin.touching, 0.0, lin.fs);
       batch_force(f, p, g, !lin.touching, lin.fn, lin.fs, 0.0);
       f.flags[p] = (flags[p] & ~static_cast<PairFlags>(kTouching)) |
                    (lin.touching ? static_cast<PairFlags>(kTouching) : 0u);

@@ -108,7 +108,7 @@ class ParallelBondModel : public LinearBase {
     double most = 0;
     for (std::size_t k = 0; k < c.size; ++k) {
       if (!(c.flags[k] & kBonded)) continue;
-      const double* s = c.column.row(k);
+      const PairState<const double> s = c.column.pair(k);
       const double sigma = -s[kBondFn] / s[kBondArea] + std::abs(s[kBondM]) * s[kBondRadius] / s[kBondInertia];
       const double tau = std::abs(s[kBondFs]) / s[kBondArea];
       most = std::max({most, utilisation(sigma, s[kTensileStrength]), utilisation(tau, s[kShearStrength])});
@@ -127,32 +127,30 @@ class ParallelBondModel : public LinearBase {
   // flags into `f`. Every condition is a select, so the loop vectorises.
   static void bond_law(const PairBlock& c, std::size_t from, std::size_t n, const GeometryBatch& __restrict g,
                        ForceBatch& __restrict f, double dt) {
-    double* __restrict rows = c.column.row(from);
-    const std::size_t stride = c.column.stride;
+    const StateColumns<double> s = c.column.from(from);
     const PairFlags* __restrict flags = c.flags + from;
 #pragma omp simd
     for (std::size_t p = 0; p < n; ++p) {
-      double* const s = rows + p * stride;
-      const LinearLane lin = linear_lane(s, g.overlap[p], g.vs[p], dt);
+      const LinearLane lin = linear_lane(s, p, g.overlap[p], g.vs[p], dt);
       const double fn = lin.fn, fs = lin.fs;
       const bool touching = lin.touching;
       const bool bonded = (flags[p] & kBonded) != 0;
       const bool skipped = (!bonded) & (!touching);
-      s[kShearForce] = select(skipped, 0.0, fs);
+      s(kShearForce, p) = select(skipped, 0.0, fs);
       // The bond's increments and its strength test (sigma and tau times A I
       // and A: no division).
-      const double area = s[kBondArea], inertia = s[kBondInertia];
-      const double bond_fn = s[kBondFn] - s[kBondKn] * area * g.vn[p] * dt;
-      const double bond_fs = s[kBondFs] - s[kBondKs] * area * g.vs[p] * dt;
-      const double bond_m = s[kBondM] - s[kBondKn] * inertia * g.relative_w[p] * dt;
-      const double sigma_ai = -bond_fn * inertia + std::abs(bond_m) * s[kBondRadius] * area;
+      const double area = s(kBondArea, p), inertia = s(kBondInertia, p);
+      const double bond_fn = s(kBondFn, p) - s(kBondKn, p) * area * g.vn[p] * dt;
+      const double bond_fs = s(kBondFs, p) - s(kBondKs, p) * area * g.vs[p] * dt;
+      const double bond_m = s(kBondM, p) - s(kBondKn, p) * inertia * g.relative_w[p] * dt;
+      const double sigma_ai = -bond_fn * inertia + std::abs(bond_m) * s(kBondRadius, p) * area;
       const double tau_a = std::abs(bond_fs);
-      const bool tension = sigma_ai >= s[kTensileStrength] * area * inertia;
-      const bool broke = bonded & (tension | (tau_a >= s[kShearStrength] * area));
+      const bool tension = sigma_ai >= s(kTensileStrength, p) * area * inertia;
+      const bool broke = bonded & (tension | (tau_a >= s(kShearStrength, p) * area));
       const bool intact = bonded & (!broke);
-      s[kBondFn] = select(intact, bond_fn, select(broke, 0.0, s[kBondFn]));
-      s[kBondFs] = select(intact, bond_fs, select(broke, 0.0, s[kBondFs]));
-      s[kBondM] = select(intact, bond_m, select(broke, 0.0, s[kBondM]));
+      s(kBondFn, p) = select(intact, bond_fn, select(broke, 0.0, s(kBondFn, p)));
+      s(kBondFs, p) = select(intact, bond_fs, select(broke, 0.0, s(kBondFs, p)));
+      s(kBondM, p) = select(intact, bond_m, select(broke, 0.0, s(kBondM, p)));
       const double fn_total = select(intact, fn + bond_fn, fn);
       const double fs_total = select(intact, fs + bond_fs, fs);
       const double moment = select(intact, bond_m, 0.0);

@@ -40,25 +40,39 @@ struct BreakEvent {
 // Most state columns one model may declare.
 constexpr std::size_t kMaxStateColumns = 48;
 
-// State column c of a block's pairs: pair k's value is base[k * stride].
+// State column c of a block's pairs: pair k's value is base[k].
 template <typename T>
 struct StateColumn {
   T* base = nullptr;
-  std::size_t stride = 0;
-  T& operator[](std::size_t k) const { return base[k * stride]; }
+  T& operator[](std::size_t k) const { return base[k]; }
 };
 
-// A model's state, one row per pair with its columns side by side (row k
-// holds stride values), so the force loop walks one array whatever the
-// number of columns: one pointer and one prefetch stream instead of one per
-// column, which is what kept the loop's pointers out of registers.
+// One pair's state: column c is s[c].
 template <typename T>
-struct StateRows {
+struct PairState {
+  T* base = nullptr;  // the pair's value in column 0
+  std::size_t column_stride = 0;
+  T& operator[](std::size_t c) const { return base[c * column_stride]; }
+};
+
+// A model's state, one array per column, the columns end to end: column c of
+// pair k is data[c * column_stride + k]. A batch loop over consecutive pairs
+// (pair_batch.hpp) then reads and writes each column as full vectors; with
+// the columns of a pair side by side, every lane was a load or store of its
+// own.
+template <typename T>
+struct StateColumns {
   T* data = nullptr;
-  std::size_t stride = 0;
-  StateColumn<T> operator[](std::size_t c) const { return {data + c, stride}; }
-  // Pair k's columns: row(k)[c] is column c.
-  T* row(std::size_t k) const { return data + k * stride; }
+  std::size_t column_stride = 0;  // values per column (at least the block's pairs)
+  std::size_t columns = 0;
+  StateColumn<T> operator[](std::size_t c) const { return {data + c * column_stride}; }
+  PairState<T> pair(std::size_t k) const { return {data + k, column_stride}; }
+  // Column c of pair k. A batch loop indexes one view made outside the loop:
+  // a struct made inside an `omp simd` loop becomes an array per lane and
+  // stops the loop from vectorising.
+  T& operator()(std::size_t c, std::size_t k) const { return data[c * column_stride + k]; }
+  // The pairs from `from` on, as pairs 0, 1, ...
+  StateColumns from(std::size_t first) const { return {data + first, column_stride, columns}; }
 };
 
 // One model's pairs seen with local indices 0..size-1: what a model's force
@@ -70,7 +84,7 @@ struct BasicPairBlock {
   const std::int32_t* i = nullptr;
   const std::int32_t* j = nullptr;
   Flag* flags = nullptr;
-  StateRows<T> column;
+  StateColumns<T> column;
 
   // Pairs [from, to) of this block as a block of their own (local index 0 is
   // pair `from`): how threads share one model's pairs.
@@ -80,7 +94,7 @@ struct BasicPairBlock {
     part.i = i + from;
     part.j = j + from;
     part.flags = flags + from;
-    if (part.column.data) part.column.data += from * column.stride;
+    if (part.column.data) part.column.data += from;
     return part;
   }
 };
@@ -123,7 +137,8 @@ class ContactSet {
   struct ModelBlock {
     std::size_t begin = 0, count = 0;
     std::size_t columns = 0;
-    std::vector<double> state;  // count rows of `columns` values
+    std::size_t capacity = 0;   // values per column: column c of pair k is state[c * capacity + k]
+    std::vector<double> state;  // `columns` columns of `capacity` values
   };
   std::vector<ModelBlock> blocks_;
 };

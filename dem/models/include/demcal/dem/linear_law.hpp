@@ -54,7 +54,7 @@ inline bool skip_apart(const PairBlock& c, std::size_t k, double gap) {
 // the law selects with max and min instead (the same values; a zero shear
 // force is now always +0, where a capped one could be -0).
 inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry& g, double dt) {
-  double* const s = c.column.row(k);
+  const PairState<double> s = c.column.pair(k);
   const double overlap = g.overlap - s[kReferenceOverlap];
   const bool touching = overlap > 0;
   // max(0, overlap) is +0 for a pair apart (also at overlap -0).
@@ -72,22 +72,23 @@ inline PairForce linear_force(const PairBlock& c, std::size_t k, const Geometry&
   return f;
 }
 
-// The linear law for one lane of a batch loop (pair_batch.hpp): linear_force's
-// arithmetic, term for term, with selects for its max and min and without its
-// stores, so a loop of it vectorises. The caller stores the shear force and
-// the flags.
+// The linear law for lane p of a batch loop (pair_batch.hpp), `s` the batch's
+// state: linear_force's arithmetic, term for term, with selects for its max
+// and min and without its stores, so a loop of it vectorises. The caller
+// stores the shear force and the flags.
 struct LinearLane {
   double fn, fs;  // N
   bool touching;  // past the reference overlap
 };
 
-inline LinearLane linear_lane(const double* s, double overlap_m, double vs_m_s, double dt) {
-  const double overlap = overlap_m - s[kReferenceOverlap];
+inline LinearLane linear_lane(const StateColumns<double>& s, std::size_t p, double overlap_m, double vs_m_s,
+                              double dt) {
+  const double overlap = overlap_m - s(kReferenceOverlap, p);
   LinearLane l;
   l.touching = overlap > 0;
-  l.fn = s[kNormalStiffness] * select(0.0 < overlap, overlap, 0.0);               // std::max(0.0, overlap)
-  const double limit = s[kFriction] * l.fn;
-  const double trial = s[kShearForce] - s[kShearStiffness] * vs_m_s * dt;
+  l.fn = s(kNormalStiffness, p) * select(0.0 < overlap, overlap, 0.0);           // std::max(0.0, overlap)
+  const double limit = s(kFriction, p) * l.fn;
+  const double trial = s(kShearForce, p) - s(kShearStiffness, p) * vs_m_s * dt;
   const double capped_below = select(trial < -limit, -limit, trial);              // std::max(trial, -limit)
   l.fs = select(limit < capped_below, limit, capped_below) + 0.0;                 // std::min(.., limit)
   return l;
