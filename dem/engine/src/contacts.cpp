@@ -65,13 +65,19 @@ std::size_t ContactSet::add(std::int32_t a, std::int32_t b, std::uint8_t model_i
   ModelBlock& block = blocks_[model_index];
   if (block.count == 0) block.begin = i.size();
   if (block.count == block.capacity) {
-    // Each column grows in place of the old one, twice as long.
+    // Every column twice as long, in the same vector (whose storage a
+    // cleared set keeps, so a rebuild's wall pairs allocate nothing new once
+    // warm): the columns move up from the last one down, each to at or beyond
+    // where it was (so the copies may overlap), and the new ends are zeroed.
     const std::size_t capacity = std::max<std::size_t>(16, 2 * block.capacity);
-    std::vector<double> grown(capacity * block.columns, 0.0);
-    for (std::size_t c = 0; c < block.columns; ++c)
-      std::copy_n(block.state.begin() + static_cast<std::ptrdiff_t>(c * block.capacity), block.count,
-                  grown.begin() + static_cast<std::ptrdiff_t>(c * capacity));
-    block.state.swap(grown);
+    block.state.resize(capacity * block.columns, 0.0);
+    double* const state = block.state.data();
+    for (std::size_t c = block.columns; c-- > 0;) {
+      double* const column = state + c * capacity;
+      if (c > 0) std::copy_backward(state + c * block.capacity, state + c * block.capacity + block.count,
+                                    column + block.count);  // column 0 stays where it is
+      std::fill(column + block.count, column + capacity, 0.0);
+    }
     block.capacity = capacity;
   }
   ++block.count;
