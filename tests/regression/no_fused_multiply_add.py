@@ -5,8 +5,9 @@
 
 A fused multiply-add rounds once where the source rounds twice, so a DEM step compiled with one gives other last
 bits, and a run other numbers, than the portable build (and than the stored golden numbers). The build asks for
-none (-ffp-contract=off, and -mno-fma -mno-avx512f with DEMCAL_NATIVE), but GCC's vectoriser has emitted
-vfmaddsub under -ffp-contract=off before; this reads the machine code itself (objdump, binutils).
+none (-ffp-contract=off, and -mno-fma -mno-avx512f with DEMCAL_NATIVE, AVX-512 for the parallel bond's file
+alone), but GCC's vectoriser has emitted vfmaddsub under -ffp-contract=off before (AVX-512's own fused forms in
+the Hertz and JKR loops when they were tried with it); this reads the machine code itself (objdump, binutils).
 """
 import re
 import subprocess
