@@ -21,7 +21,7 @@ BIN_DIR = ""  # the executables under test (the study layer asks them about scen
 
 # What depends on the machine's speed, not on the physics.
 VOLATILE = {"wall_s", "test_wall_s", "particle_steps_per_s", "dem_wall_s", "elapsed_s", "wall_time_s",
-            "threads"}  # threads: how the run was spread over the machine, never what it gives
+            "threads", "thread_cuts"}  # threads, thread_cuts: how the run was spread over the machine, never what it gives
 
 
 def strip(value):

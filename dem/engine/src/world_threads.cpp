@@ -11,31 +11,59 @@
 // meet) gets nothing in the first phase: its pairs' contributions are
 // stored, and in the second phase it sums them in pair order with the serial
 // loop's signs. Every sum thus gets the same terms in the same order whatever
-// the number of threads. The break logs, joined model by model and part by
-// part, are in pair order.
+// the number of threads, and wherever the parts are cut. The break logs,
+// joined model by model and part by part, are in pair order.
+//
+// The parts start equal; every thread_balance_every_steps steps the cuts move
+// towards the threads' measured speeds (thread_balance.hpp), so a slower core
+// gets fewer pairs and disks.
 #include <algorithm>
+#include <stdexcept>
 
 #include <omp.h>
 
 #include "demcal/dem/pair_batch.hpp"
+#include "demcal/dem/thread_balance.hpp"
 #include "demcal/dem/world.hpp"
 #include "disk_integration.hpp"
 
 namespace demcal::dem {
 
+namespace {
+// Where fraction cuts[t] of `count` items falls (the last cut at `count`).
+std::size_t cut_index(std::size_t count, const std::vector<double>& cuts, std::size_t t) {
+  if (t + 1 >= cuts.size()) return count;
+  return std::min(count, static_cast<std::size_t>(static_cast<double>(count) * cuts[t]));
+}
+}  // namespace
+
+void World::set_thread_cuts(std::vector<double> cuts) {
+  bool increasing = cuts.size() >= 3 && cuts.front() == 0.0 && cuts.back() == 1.0;
+  for (std::size_t t = 1; t < cuts.size() && increasing; ++t) increasing = cuts[t] > cuts[t - 1];
+  if (!increasing) throw std::invalid_argument("set_thread_cuts: team + 1 increasing fractions from 0 to 1 expected");
+  partition_.cuts = std::move(cuts);
+  if (built_ && static_cast<std::size_t>(threads_in_use_) + 1 == partition_.cuts.size()) build_thread_partition();
+}
+
 void World::build_thread_partition() {
   ThreadPartition& tp = partition_;
   const std::size_t n = bodies.size(), pairs = pairs_.size();
   const std::size_t team = static_cast<std::size_t>(threads_in_use_);
-  // Each model's block cut into `team` parts of equal pair counts; range t is
-  // part t of every block, so a range covers one region of the specimen
-  // whatever the models (pairs are sorted by model, then by their disks).
+  // Each model's block cut into `team` parts at the same fractions (equal at
+  // first); range t is part t of every block, so a range covers one region of
+  // the specimen whatever the models (pairs are sorted by model, then by their
+  // disks).
   const std::size_t models = run_models_.size();
+  if (tp.cuts.size() != team + 1) tp.cuts = equal_cuts(team);
+  if (tp.busy.size() != team) {
+    tp.busy.assign(team, {});
+    tp.window_steps = 0;
+  }
   tp.team = team;
   tp.range_start.resize(models * (team + 1));
   for (std::size_t p = 0; p < models; ++p) {
     const std::size_t begin = pairs_.begin(run_models_[p]), size = pairs_.end(run_models_[p]) - begin;
-    for (std::size_t t = 0; t <= team; ++t) tp.range_start[p * (team + 1) + t] = begin + size * t / team;
+    for (std::size_t t = 0; t <= team; ++t) tp.range_start[p * (team + 1) + t] = begin + cut_index(size, tp.cuts, t);
   }
 
   // A disk is shared when its pairs lie in more than one range.
@@ -100,14 +128,19 @@ void World::step_in_threads() {
     // A smaller team than asked takes every size-th range each.
     const std::size_t size = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t me = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t my_first = n * me / size, my_last = n * (me + 1) / size;
+    // This thread's disks: the same fractions as its pairs (a smaller team
+    // than asked: equal parts).
+    const bool whole_team = size == team;
+    const std::size_t my_first = whole_team ? cut_index(n, tp.cuts, me) : n * me / size;
+    const std::size_t my_last = whole_team ? cut_index(n, tp.cuts, me + 1) : n * (me + 1) / size;
     // 0. The sums start from zero, as the serial loop's cleared sums.
     std::fill(fx + my_first, fx + my_last, 0.0);
     std::fill(fy + my_first, fy + my_last, 0.0);
     std::fill(moment + my_first, moment + my_last, 0.0);
 #pragma omp barrier
     // 1. This thread's ranges, model by model: every contribution stored, and
-    // added directly to the disks that are not shared.
+    // added directly to the disks that are not shared. Timed for the cuts.
+    const double started_s = omp_get_wtime();
     for (std::size_t t = me; t < team; t += size) {
       for (std::size_t p = 0; p < models; ++p) {
         const std::uint8_t m = run_models_[p];
@@ -121,6 +154,7 @@ void World::step_in_threads() {
         models_[m]->disk_forces(run, bodies, context);
       }
     }
+    if (whole_team) tp.busy[me].s += omp_get_wtime() - started_s;
 #pragma omp barrier
     // 2. The shared disks, each summing its pairs in pair order (x - y is
     // x + (-y) to the bit, so the side only selects a term).
@@ -157,6 +191,17 @@ void World::step_in_threads() {
   }
   integrate_clumps(max_move2);
   max_disk_move2_ = max_move2;
+
+  // The cuts follow the threads' speeds over the last window (a smaller team
+  // than asked leaves times at 0, and the cuts where they are).
+  const std::uint32_t every = settings_.thread_balance_every_steps;
+  if (every > 0 && ++tp.window_steps >= every) {
+    busy_s_.resize(team);
+    for (std::size_t t = 0; t < team; ++t) busy_s_[t] = tp.busy[t].s;
+    if (rebalance_cuts(tp.cuts, busy_s_)) build_thread_partition();
+    for (auto& b : tp.busy) b.s = 0;
+    tp.window_steps = 0;
+  }
 }
 
 }  // namespace demcal::dem

@@ -274,6 +274,7 @@ void record_run_timing(const World& world, const RunOptions& options, std::chron
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
   result.threads = world.threads_in_use();
+  if (world.threads_in_use() > 1) result.thread_cuts = world.thread_cuts();
   result.density_scaling_dt_s = world.settings().density_scaling_dt_s;
   snapshot(world, options, result.curve.size(), true);
   result.wall_s = std::chrono::duration<double>(now - start).count();

@@ -23,6 +23,7 @@ nlohmann::json result_json(const TestResult& r, const std::map<std::string, doub
   out["wall_s"] = r.wall_s;
   out["test_wall_s"] = r.test_wall_s;
   out["threads"] = r.threads;
+  if (!r.thread_cuts.empty()) out["thread_cuts"] = r.thread_cuts;
   out["particle_steps_per_s"] =
       r.test_wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.test_wall_s : 0.0;
   return out;

@@ -46,6 +46,11 @@ struct WorldSettings {
   // a 2-core machine, docs/benchmarks.md: 2 threads took 1.07x the time of one
   // at 590 disks, 0.84x at 973, 0.67x at 2,366, whole process).
   std::size_t min_disks_per_thread = 500;
+  // Every this many steps a threaded run moves the cuts between its threads'
+  // parts towards the threads' measured speeds (thread_balance.hpp); 0 keeps
+  // the parts where they are (equal, or as set_thread_cuts put them).
+  // Results do not depend on it.
+  std::uint32_t thread_balance_every_steps = 256;
 };
 
 namespace detail {
@@ -136,6 +141,13 @@ class World {
   double skin_m() const { return skin_m_; }
   // Threads the force and integration loops use now (settings, disk count).
   int threads_in_use() const { return threads_in_use_; }
+  // Where the threads' parts of the pairs (and of the disks) begin and end,
+  // as fractions (thread_balance.hpp); empty before a threaded build.
+  // set_thread_cuts takes team + 1 increasing fractions from 0 to 1; they
+  // apply at once on a team of that size, else from the build that makes
+  // one (with thread_balance_every_steps 0 they then stay).
+  const std::vector<double>& thread_cuts() const { return partition_.cuts; }
+  void set_thread_cuts(std::vector<double> cuts);
   const WorldSettings& settings() const { return settings_; }
   WorldSettings& settings() { return settings_; }
 
@@ -205,8 +217,15 @@ class World {
     std::vector<std::uint32_t> incidence_start;   // shared disk s's entries are [start[s], start[s + 1])
     std::vector<std::uint32_t> incidence;         // pair index * 2, + 1 where the disk is the pair's j
     std::vector<std::vector<BreakEvent>> log;     // per (model position p, range t) at p * team + t, in pair order
+    std::vector<double> cuts;                     // range t: the fractions [cuts[t], cuts[t + 1]) of each block
+    struct alignas(64) Busy {                     // a cache line per thread: no false sharing
+      double s = 0;
+    };
+    std::vector<Busy> busy;                       // per thread: time in its ranges since the cuts last moved
+    std::uint32_t window_steps = 0;
   };
   ThreadPartition partition_;
+  std::vector<double> busy_s_;  // the threads' times handed to rebalance_cuts
   // The neighbour-list build's working arrays, kept from one build to the
   // next so a rebuild allocates (and the kernel zeroes) nothing new once the
   // list has reached its size (neighbour_list.cpp).

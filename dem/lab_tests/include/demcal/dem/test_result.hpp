@@ -34,6 +34,7 @@ struct TestResult {
   double wall_s = 0;           // whole run, packing or cache load included
   double test_wall_s = 0;      // the loading alone (for particle-steps per second)
   int threads = 1;             // threads the run's force loop used at its end
+  std::vector<double> thread_cuts;  // where its threads' parts of the pairs were at its end (thread_balance.hpp)
   double porosity = 0;
   double dt_s = 0;
   double density_scaling_dt_s = 0;  // > 0 when masses were scaled (quasi-static run)
