@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "../common/load_until_breaks.hpp"
+#include "../common/same_bits.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -61,24 +62,6 @@ TEST(ThreadBalance, NoPartFallsBelowAQuarterOfAnEqualShare) {
   EXPECT_NEAR(cuts[4] - cuts[3], 0.1875, 0.01);
 }
 
-namespace {
-
-void expect_same_bits(const World& a, const World& b) {
-  ASSERT_EQ(a.bodies.size(), b.bodies.size());
-  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
-    ASSERT_EQ(a.bodies.x[k], b.bodies.x[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.y[k], b.bodies.y[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.vx[k], b.bodies.vx[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.w[k], b.bodies.w[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.fx[k], b.bodies.fx[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.moment[k], b.bodies.moment[k]) << "disk " << k;
-  }
-  ASSERT_EQ(a.breaks().size(), b.breaks().size());
-  for (std::size_t e = 0; e < a.breaks().size(); ++e) EXPECT_EQ(a.breaks()[e].time_s, b.breaks()[e].time_s);
-  for (std::size_t w = 0; w < a.walls.size(); ++w) EXPECT_EQ(a.walls[w].fy, b.walls[w].fy) << "wall " << w;
-}
-
-}  // namespace
 
 TEST(ThreadBalance, UnequalAndMovingCutsKeepTheSerialBits) {
   Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json");
@@ -108,7 +91,7 @@ TEST(ThreadBalance, UnequalAndMovingCutsKeepTheSerialBits) {
     if (!c.cuts.empty()) {
       EXPECT_EQ(threaded.thread_cuts(), c.cuts);  // held: balancing off
     }
-    expect_same_bits(serial, threaded);
+    test::expect_same_bits(serial, threaded);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "../common/load_until_breaks.hpp"
+#include "../common/same_bits.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -11,32 +12,6 @@
 using namespace demcal;
 using namespace demcal::dem;
 
-namespace {
-
-void expect_same_bits(const World& a, const World& b) {
-  ASSERT_EQ(a.bodies.size(), b.bodies.size());
-  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
-    ASSERT_EQ(a.bodies.x[k], b.bodies.x[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.y[k], b.bodies.y[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.vx[k], b.bodies.vx[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.vy[k], b.bodies.vy[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.w[k], b.bodies.w[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.fx[k], b.bodies.fx[k]) << "disk " << k;
-    ASSERT_EQ(a.bodies.moment[k], b.bodies.moment[k]) << "disk " << k;
-  }
-  ASSERT_EQ(a.walls.size(), b.walls.size());
-  for (std::size_t w = 0; w < a.walls.size(); ++w) EXPECT_EQ(a.walls[w].fy, b.walls[w].fy) << "wall " << w;
-  ASSERT_EQ(a.breaks().size(), b.breaks().size());
-  for (std::size_t e = 0; e < a.breaks().size(); ++e) {
-    EXPECT_EQ(a.breaks()[e].time_s, b.breaks()[e].time_s) << "break " << e;
-    EXPECT_EQ(a.breaks()[e].x_m, b.breaks()[e].x_m) << "break " << e;
-    EXPECT_EQ(a.breaks()[e].mode, b.breaks()[e].mode) << "break " << e;
-  }
-  EXPECT_EQ(a.rebuilds(), b.rebuilds());
-  EXPECT_EQ(a.dt_s(), b.dt_s());
-}
-
-}  // namespace
 
 TEST(Threads, OneRunOnSeveralThreadsGivesTheSameBitsAsOnOne) {
   // Contact bonds, parallel bonds, and a concrete whose aggregates are clumps.
@@ -63,7 +38,7 @@ TEST(Threads, OneRunOnSeveralThreadsGivesTheSameBitsAsOnOne) {
       }
       threaded.run(serial.steps_done());
       SCOPED_TRACE(std::string(file) + ", " + std::to_string(threads) + " threads");
-      expect_same_bits(serial, threaded);
+      test::expect_same_bits(serial, threaded);
     }
   }
 }
