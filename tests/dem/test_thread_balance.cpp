@@ -62,7 +62,6 @@ TEST(ThreadBalance, NoPartFallsBelowAQuarterOfAnEqualShare) {
   EXPECT_NEAR(cuts[4] - cuts[3], 0.1875, 0.01);
 }
 
-
 TEST(ThreadBalance, UnequalAndMovingCutsKeepTheSerialBits) {
   Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json");
   const auto parameters = scene.resolve({});
