@@ -47,6 +47,9 @@ bool valid_name(const std::string& name) {
 }  // namespace
 
 double Parameter::from_symmetric(double coded) const {
+  // A point meant to lie on a bound lies on it exactly (mid - half can miss by rounding).
+  if (coded == -1.0) return low;
+  if (coded == 1.0) return high;
   if (log_scale) {
     double mid = 0.5 * (std::log(low) + std::log(high));
     double half = 0.5 * (std::log(high) - std::log(low));

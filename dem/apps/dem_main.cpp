@@ -13,6 +13,7 @@
 
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
+#include "demcal/core/executable_dir.hpp"
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
   log::set_program("demcal-dem");
   CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (its lab test): one run, a resumable batch over a design, the merge of shards, or a description of the scene.", "demcal-dem"};
   app.require_subcommand(1);
-  std::string scene_path, out, curve, cache_dir = "build/cache";
+  std::string scene_path, out, curve, cache_dir = default_cache_dir();
   std::vector<std::string> sets;
   std::uint64_t seed = 1;
   bool quiet = false;
@@ -129,7 +130,9 @@ int main(int argc, char** argv) {
   batch->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
   std::string shard;
   batch->add_option("--shard", shard, "I/N: run only every N-th point, starting at the I-th (job arrays; join with merge)");
-  batch->add_flag("--quiet", quiet, "no progress on stderr");
+  batch->add_flag("--move-aside", batch_options.move_aside,
+                  "OUT holds another scene's results: move them into OUT_STEM.moved-K/ first (else refused)");
+  batch->add_flag("--quiet", quiet, "no progress on stderr (failed points are still reported)");
   std::string describe_scene, describe_space;
   bool describe_registries = false;
   CLI::App* describe = app.add_subcommand("describe", "print what a scene has (JSON): test, parameters, outputs, contacts");
@@ -259,6 +262,11 @@ int main(int argc, char** argv) {
     if (!curve.empty()) write_curves(scene, curves, curve);
     // Without --out, stdout is where the result goes, --quiet or not.
     if (out.empty() || !quiet) std::cout << summary.dump(2) << "\n";
-    return summary.at("status") == "ok" ? 0 : 4;
-  });
+    if (summary.at("status") != "ok") {
+      log::error("the run failed: " + summary.value("reason", std::string("no reason recorded")) +
+                 (out.empty() ? "" : " (recorded in " + out + ")"));
+      return 4;
+    }
+    return 0;
+  }, "4 the run failed, a batch point failed (each reason on stderr and stored with the point) or a merge lacks points");
 }

@@ -12,10 +12,12 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/parameter_space.hpp"
+#include "demcal/dem/scene_set.hpp"
 #include "demcal/doe/design_kinds.hpp"
 #include "demcal/doe/factorial.hpp"
 #include "demcal/doe/natural_units.hpp"
 #include "demcal/doe/orthogonal_array.hpp"
+#include "demcal/doe/physical_range.hpp"
 #include "demcal/doe/properties.hpp"
 #include "demcal/doe/response_surface.hpp"
 #include "demcal/doe/space_filling.hpp"
@@ -27,6 +29,7 @@ using namespace demcal;
 struct Arguments {
   std::string kind;
   std::string space_path;
+  std::string scene_path;
   int factors = 0;
   std::string out;
   std::uint64_t seed = 1;
@@ -134,6 +137,22 @@ doe::Design build(const Arguments& a, int factors, const ParameterSpace* space) 
   throw Error("design kind \"" + a.kind + "\" has no generator");  // design_kinds() lists one without a branch here
 }
 
+// Nothing is written when a design point leaves a parameter's physical range:
+// every such parameter is named (one line each) with the fix.
+void refuse_unphysical(const Table& table, const ParameterSpace& space,
+                       const std::map<std::string, doe::PhysicalBounds>& scene_bounds, const Arguments& a) {
+  const std::vector<std::string> problems = doe::physical_range_problems(table, space, scene_bounds);
+  if (problems.empty()) return;
+  std::string message = a.space_path + ": the " + a.kind + " design leaves the physical range of " +
+                        std::to_string(problems.size()) + " parameter(s):";
+  for (const std::string& p : problems) message += "\n  " + p;
+  message += a.kind == "ccd" && a.type == "circumscribed"
+                 ? "\n  fix: --type inscribed or --type faced (axial points inside the bounds), or bounds farther from "
+                   "the physical limit"
+                 : "\n  fix: bounds inside the physical range";
+  throw Error(message);
+}
+
 int run(const Arguments& a, const CLI::App& app) {
   if (a.kind.empty()) throw Error("give a design kind (demcal-doe --list-kinds lists them)");
   if (a.out.empty()) throw Error("--out is required (FILE.csv or FILE.h5)");
@@ -161,10 +180,19 @@ int run(const Arguments& a, const CLI::App& app) {
                 (kind.max_factors > 0 ? ".." + std::to_string(kind.max_factors) : " or more") + " factors (got " +
                 std::to_string(factors) + ")");
 
+  if (!a.scene_path.empty() && !space) throw Error("--scene checks a design in natural units: give --space too");
+  std::map<std::string, doe::PhysicalBounds> scene_bounds;
+  if (!a.scene_path.empty()) {
+    const dem::SceneSet scene = dem::SceneSet::load(a.scene_path);
+    scene.check_space(*space, a.space_path);
+    for (const auto& [name, p] : scene.parameters()) scene_bounds[name] = {p.low, p.high};
+  }
+
   doe::Design design = build(a, factors, space.get());
   design.settings["seed"] = std::to_string(a.seed);
   if (space) doe::name_factors(design, *space);
   Table table = doe::design_table(design, space.get());
+  if (space) refuse_unphysical(table, *space, scene_bounds, a);
   if (space) table.attributes()["space"] = a.space_path;
   table.write(a.out, "/design");
   log::info("wrote " + std::to_string(design.runs()) + " runs of " + design.description + " to " + a.out);
@@ -186,6 +214,8 @@ int main(int argc, char** argv) {
   app.add_option("kind", a.kind, "design kind: oa, fullfact, fracfact, pb, ccd, bbd, lhs, sobol");
   app.add_flag("--list-kinds", list_kinds, "print the design kinds, their options and factor limits (JSON) and exit");
   app.add_option("--space", a.space_path, "parameter space JSON: factor names, bounds and levels (natural units)");
+  app.add_option("--scene", a.scene_path,
+                 "scene JSON: refuse a design that leaves the scene's physical bounds of a parameter (needs --space)");
   app.add_option("--factors", a.factors, "number of factors (columns x1..xN in coded units)");
   app.add_option("--out", a.out, "output design: .csv for people, .h5 for the pipeline");
   app.add_option("--seed", a.seed, "seed for randomised designs (lhs, sobol)")->capture_default_str();

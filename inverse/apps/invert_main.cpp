@@ -9,6 +9,7 @@
 
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
+#include "demcal/core/executable_dir.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/jobs/dem_model.hpp"
 #include "demcal/inverse/inversion.hpp"
@@ -27,7 +28,7 @@ constexpr int kNotMet = 4;
 struct Arguments {
   std::vector<std::string> models, targets, sets;
   std::string space, algorithm = "ga", objective = "sum-rel", out, history;
-  std::string dem_scene, dem_work, cache = "build/cache";
+  std::string dem_scene, dem_work, cache = default_cache_dir();
   int dem_seeds = 1, jobs = 1;
   bool polish = false, quiet = false;
   int restarts = 1, samples = 5000, attainable_samples = 2000;
@@ -151,8 +152,7 @@ int main(int argc, char** argv) {
       "  demcal-invert --model M1.json [--model M2.json ...] --target NAME=VALUE [--target ...] [--space S.json]\n"
       "  demcal-invert --dem-scene SCENE.json --space S.json --target NAME=VALUE ... [--dem-seeds K] [--jobs J]\n"
       "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel|minimise] [--polish]\n"
-      "                [--restarts R] [--seed S] --out SOLUTION.json\n"
-      "Exit codes: 0 solved, 2 bad input, 3 a target outside what the domain can reach, 4 targets attainable but not met.",
+      "                [--restarts R] [--seed S] --out SOLUTION.json",
       "demcal-invert"};
   app.add_option("--model", a.models, "saved model (demcal-fit); repeat for several");
   app.add_option("--dem-scene", a.dem_scene, "DEM in the loop: every evaluation is a DEM run of this scene (needs --space)");
@@ -196,5 +196,5 @@ int main(int argc, char** argv) {
     if (a.targets.empty()) throw Error("--target NAME=VALUE is required");
     if (a.out.empty()) throw Error("--out is required");
     return run(a, app);
-  });
+  }, "3 a target outside what the domain can reach; 4 targets attainable but not met");
 }

@@ -17,6 +17,7 @@
 
 #include "demcal/core/atomic_file.hpp"
 #include "demcal/core/cli_main.hpp"
+#include "demcal/core/executable_dir.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/parameter_space.hpp"
@@ -33,7 +34,7 @@ using namespace demcal;
 using nlohmann::json;
 
 struct Arguments {
-  std::string solution, scene, space, out, csv, md, work, cache = "build/cache";
+  std::string solution, scene, space, out, csv, md, work, cache = default_cache_dir();
   std::vector<std::string> sets;
   int seeds = 5, max_seeds = 20, first_seed = 1, jobs = 2, finer_seeds = 5;
   double tolerance = 0.05;

@@ -12,6 +12,7 @@
 #include "demcal/core/log.hpp"
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/lab_test.hpp"
+#include "demcal/jobs/points_owner.hpp"
 #include "worker_pool.hpp"
 
 namespace demcal::jobs {
@@ -105,8 +106,17 @@ std::vector<PointSpec> batch_points(const SceneSet& scene, const BatchOptions& o
   design_columns = design_parameter_columns(scene, design, options.design_path);
   const std::string points_dir = options.out_path + ".points";
   if (make_folder) {
+    if (options.move_aside) {
+      try {
+        claim_result_files(scene, options);
+      } catch (const Error&) {
+        log::info("moved the results of another scene to " + move_results_aside(options));
+      }
+    }
+    claim_result_files(scene, options);  // before the folder is made or anything written
     ::mkdir(points_dir.c_str(), 0755);
     if (!file_exists(points_dir)) throw Error(points_dir + ": cannot create the folder of point results");
+    claim_result_files(scene, options);
   }
   std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir, scene.fingerprint(),
                                              options.first_seed);
@@ -161,6 +171,7 @@ std::vector<json> run_points(const SceneSet& scene, const std::vector<PointSpec>
           result = failed_point(points[i], worker_end_reason(status));
           store_point(points[i], result);
         }
+        report_failed_point(points[i], result);
         if (on_done) on_done(i, result);
         if (progress) progress->advance(1, result.value("particles", 0.0) * result.value("steps", 0.0));
       });

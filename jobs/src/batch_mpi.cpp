@@ -280,6 +280,7 @@ BatchSummary run_batch_mpi(const BatchOptions& options, const MpiSession& mpi) {
                    result = failed_point(s.points[i], "unreadable result from a worker rank");
                  }
                  store_point(s.points[i], result);
+                 report_failed_point(s.points[i], result);
                  known[i] = result;
                  have[i] = true;
                  write_outputs();

@@ -179,6 +179,12 @@ void store_point(const PointSpec& point, const json& result) {
   write_file_atomically(point.file, result.dump() + "\n");
 }
 
+void report_failed_point(const PointSpec& point, const json& result) {
+  if (result.value("status", std::string()) == "ok") return;
+  log::warn("run " + std::to_string(point.run) + " seed " + std::to_string(point.seed) + " failed: " +
+            result.value("reason", std::string("no reason recorded")));
+}
+
 void write_point_outputs(const std::vector<json>& results, const std::vector<std::string>& design_columns,
                          const OutputFiles& files) {
   std::set<std::string> macro_names;

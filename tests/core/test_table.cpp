@@ -132,3 +132,37 @@ TEST(Table, StatusColumnOfBatchResponsesIsReadAsText) {
   EXPECT_EQ(back.statuses(), t.statuses());
   EXPECT_EQ(back.column("Ec_GPa"), t.column("Ec_GPa"));
 }
+
+// What a spreadsheet saves: a UTF-8 byte-order mark before the first name is
+// read past; ';' between fields with decimal commas (a locale that writes
+// 1,5) is read as such; UTF-16 is refused naming the cause.
+TEST(Table, CsvSavedByASpreadsheetIsReadOrRefusedWithTheCause) {
+  const std::string path = temp_path("excel.csv");
+  write_text(path, "\xEF\xBB\xBFrun,a,b\n1,2.5,3\n2,4,-1e-3\n");
+  Table bom = Table::read_csv(path);
+  EXPECT_EQ(bom.names(), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(bom.run_ids(), (std::vector<int>{1, 2}));
+  EXPECT_EQ(bom.column("a")[0], 2.5);
+
+  write_text(path, "\xEF\xBB\xBFrun;Ec_GPa;mu\r\n1;16,5;0,5\r\n2;20;1\r\n");
+  Table semicolons = Table::read_csv(path);
+  EXPECT_EQ(semicolons.names(), (std::vector<std::string>{"Ec_GPa", "mu"}));
+  EXPECT_EQ(semicolons.column("Ec_GPa"), (std::vector<double>{16.5, 20.0}));
+  EXPECT_EQ(semicolons.column("mu"), (std::vector<double>{0.5, 1.0}));
+
+  write_text(path, "run;a\n1;2;3\n");
+  try {
+    Table::read_csv(path);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":2: 3 fields, the header has 2 (fields separated by ';', as in the header)");
+  }
+
+  write_text(path, std::string("\xFF\xFEr\0u\0n\0", 8));
+  try {
+    Table::read_csv(path);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("saved as UTF-16"), std::string::npos) << e.what();
+  }
+}

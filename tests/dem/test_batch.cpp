@@ -244,3 +244,73 @@ TEST(DemcalDemBatch, ATestListRunsEveryTestPerPointAndResumes) {
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_EQ(point_files(out + ".points"), first);
 }
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct BatchRun {
+  int code;
+  std::string err;
+};
+
+BatchRun batch_into(const std::string& scene, const std::string& design, const std::string& out,
+                    const std::string& extra = "") {
+  const std::string err = temp("batch_into.err");
+  const int status = std::system((kBin + " batch --scene " + scene + " --design " + design + " --out " + out +
+                                  " --cache " + temp("cache") + " --quiet " + extra + " 2>" + err)
+                                     .c_str());
+  return {WEXITSTATUS(status), read_text(err)};
+}
+
+}  // namespace
+
+// A batch into an OUT that holds another scene's results is refused before
+// anything is written, naming the stored scene; --move-aside moves the old
+// results into OUT_STEM.moved-1/ (never deletes them) and runs.
+TEST(DemcalDemBatch, AnotherScenesResultsAreRefusedOrMovedAsideNeverOverwritten) {
+  const std::string out = temp("owned.h5"), design = temp("owned_design.csv"), other = temp("other_scene.json");
+  std::ofstream(design) << "run,pb_sigma_c_MPa\n1,9\n";
+  std::string text = read_text(kScene);
+  text.replace(text.find("\"ucs_small\""), 11, "\"ucs_other\"");
+  std::ofstream(other) << text;
+
+  ASSERT_EQ(batch_into(kScene, design, out).code, 0);
+  const std::string first = point_files(out + ".points").at("run1_seed1.json");
+  EXPECT_NE(read_text(out + ".points/scene.owner").find("\"ucs_small\""), std::string::npos);
+
+  const BatchRun refused = batch_into(other, design, out);
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_NE(refused.err.find("holds the results of another scene (scene \"ucs_small\" from " + kScene + ")"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("--move-aside"), std::string::npos) << refused.err;
+  EXPECT_EQ(point_files(out + ".points").at("run1_seed1.json"), first);  // untouched
+
+  const BatchRun moved = batch_into(other, design, out, "--move-aside");
+  ASSERT_EQ(moved.code, 0) << moved.err;
+  const std::string aside = temp("owned.moved-1");
+  EXPECT_EQ(point_files(aside + "/owned.h5.points").at("run1_seed1.json"), first);
+  EXPECT_TRUE(std::ifstream(aside + "/owned.h5").good());
+  EXPECT_NE(read_text(out + ".points/scene.owner").find("\"ucs_other\""), std::string::npos);
+  EXPECT_EQ(batch_into(other, design, out).code, 0);  // its own results: resumes
+}
+
+// A failed point says so on stderr as it happens, with its reason, even with
+// --quiet; the batch goes on and exits 4.
+TEST(DemcalDemBatch, AFailedPointsReasonIsPrintedAsItHappens) {
+  const std::string design = temp("failing_design.csv"), out = temp("failing.h5");
+  std::ofstream(design) << "run,pb_sigma_c_MPa,Ec_GPa\n1,10,16\n2,10,-5\n";
+  const BatchRun r = batch_into(kScene, design, out);
+  EXPECT_EQ(r.code, 4);
+  EXPECT_NE(r.err.find("demcal-dem: warning: run 2 seed 1 failed: parameter Ec_GPa = -5 lies outside [0.1, 500]"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("run 1 seed 1"), std::string::npos) << r.err;
+}

@@ -114,3 +114,18 @@ TEST(DemcalDem, BadInputIsOneLineAndNonZero) {
     EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
   }
 }
+
+// A run that fails says why on stderr, --quiet and --out or not, and exits 4
+// (the reason is in the result file too).
+TEST(DemcalDem, AFailedRunSaysWhyOnStderr) {
+  const std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/external_fake.json";
+  const std::string out = temp("failed_run.json");
+  Result r = run("run --scene " + scene + " --set mode=1 --out " + out);
+  EXPECT_EQ(r.code, 4);
+  EXPECT_EQ(r.err.rfind("demcal-dem: error: the run failed: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("(recorded in " + out + ")"), std::string::npos) << r.err;
+  nlohmann::json result;
+  std::ifstream(out) >> result;
+  EXPECT_EQ(result.at("status"), "failed");
+  EXPECT_NE(r.err.find(result.at("reason").get<std::string>()), std::string::npos) << r.err;
+}

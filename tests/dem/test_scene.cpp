@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 
@@ -16,6 +17,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/parameter_space.hpp"
+#include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/describe.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -293,4 +295,47 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   json registries = describe_registries();
   EXPECT_EQ(registries["tests"], json({"ucs", "brazilian", "biaxial", "external", "heap", "wave_strip"}));
   EXPECT_EQ(registries["contact_models"], json({"linear", "parallel_bond", "contact_bond", "flat_joint", "hertz_mindlin", "jkr"}));
+}
+
+// Each output says what values it can take (a target outside is refused
+// before any run): [low, high], null for an open end.
+TEST(LabTests, DescribeGivesEachOutputItsPhysicalRange) {
+  json d = describe_scene(Scene::load(source("tests/data/ucs_small.json")));
+  EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["range"], json::parse("[0, null]"));
+  EXPECT_EQ(d["outputs"]["nu"]["range"], json::parse("[-1, 1]"));
+  EXPECT_EQ(d["outputs"]["reached_strain_limit"]["range"], json::parse("[0, 1]"));
+  EXPECT_EQ(d["outputs"]["cracks_shear"]["range"], json::parse("[0, null]"));
+  json fake = describe_scene(Scene::load(source("tests/data/external_fake.json")));
+  EXPECT_EQ(fake["outputs"]["z"]["range"], json::parse("[null, null]"));  // an external output: any value by default
+  // An external scene may state its outputs' ranges.
+  json scene = json::parse(std::ifstream(source("tests/data/external_fake.json")));
+  scene["outputs"]["y_MPa"]["range"] = json::parse("[0, null]");
+  EXPECT_EQ(describe_scene(Scene::from_json(scene, source("tests/data/x.json")))["outputs"]["y_MPa"]["range"],
+            json::parse("[0, null]"));
+  scene["outputs"]["y_MPa"]["range"] = json::parse("[3, 1]");
+  EXPECT_NE(error_of([&] { Scene::from_json(scene, source("tests/data/x.json")); })
+                .find("outputs.y_MPa.range: low must be below high"),
+            std::string::npos);
+}
+
+// The registries list every contact model's parameter keys (the reference
+// pages are checked against them) and a key a model does not take is refused
+// naming the allowed ones.
+TEST(LabTests, RegistriesListEveryModelsParameterKeys) {
+  json registries = describe_registries();
+  for (const std::string& model : registries["contact_models"].get<std::vector<std::string>>())
+    EXPECT_FALSE(registries["contact_model_parameters"][model].empty()) << model;
+  EXPECT_EQ(registries["contact_model_parameters"]["linear"],
+            json({"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}));
+  const auto keys = registries["contact_model_parameters"]["jkr"].get<std::vector<std::string>>();
+  EXPECT_NE(std::find(keys.begin(), keys.end(), "work_of_adhesion_j_m2"), keys.end());
+  EXPECT_NE(std::find(keys.begin(), keys.end(), "rolling_friction_epsd"), keys.end());
+  EXPECT_EQ(registries["test_descriptions"].size(), registries["tests"].size());
+  const std::string e = error_of([] {
+    ContactModelRegistry::instance().create("linear", {{"modulus_pa", 1e9}, {"kn_ks", 1.0}, {"friction", 0.5}, {"fric", 1}},
+                                            "scene.json: contacts.disk-disk");
+  });
+  EXPECT_NE(e.find("scene.json: contacts.disk-disk: unknown parameter \"fric\" (allowed: modulus_pa, kn_ks"),
+            std::string::npos)
+      << e;
 }

@@ -5,6 +5,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -144,4 +145,56 @@ TEST(DemcalDoeCli, ListsEveryKindWithItsOptionsAndFactorLimits) {
   EXPECT_EQ(kinds["lhs"]["min_runs"], 2);
   EXPECT_EQ(run("lhs --factors 2 --runs 2" + out).code, 0);
   expect_one_line_error(run("lhs --factors 2 --runs 1" + out), "at least 2");
+}
+
+// A circumscribed CCD's axial points may leave the space's box, but not make a
+// modulus, a stiffness ratio or a friction negative: refused, every such
+// parameter named on its own line with the fix, and nothing written.
+TEST(DemcalDoe, RefusesADesignThatLeavesThePhysicalRange) {
+  const std::string out = temp("unphysical.csv");
+  std::remove(out.c_str());
+  const Result r = run("ccd --space " + data("spaces/su2021_bbd_E.json") + " --out " + out);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("demcal-doe: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("the ccd design leaves the physical range of 5 parameter(s)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\n  Ec_GPa = -3.78"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(a stress cannot be negative)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\n  kn_ks = "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("fix: --type inscribed or --type faced"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(out).good()) << "a refused design must write nothing";
+  // The fix named works, and axial points inside the box are fine.
+  EXPECT_EQ(run("ccd --space " + data("spaces/su2021_bbd_E.json") + " --type inscribed --out " + out).code, 0);
+  EXPECT_EQ(run("ccd --space " + data("spaces/su2021_ccd_sigma_u.json") + " --out " + out).code, 0);
+}
+
+// With --scene, a design is held to the scene's declared bounds too (here a
+// restitution coefficient above the heap scene's 1.0); without it, that
+// dimensionless parameter has no upper limit to check.
+TEST(DemcalDoe, SceneBoundsAreCheckedWhenASceneIsGiven) {
+  const std::string space = temp("restitution_space.json"), out = temp("restitution.csv");
+  std::ofstream(space) << R"({"parameters": [{"name": "e_pp", "unit": "1", "low": 0.2, "high": 0.9},
+                                             {"name": "mu_pp", "unit": "1", "low": 0.3, "high": 0.75}]})";
+  const std::string args = "ccd --space " + space + " --out " + out;
+  EXPECT_EQ(run(args).code, 0);
+  const Result r = run(args + " --scene " + data("scenes/heap_powder.json"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("e_pp = 1.04"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("above 1 (the scene's physical high)"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("mu_pp"), std::string::npos) << r.err;
+  expect_one_line_error(run("ccd --factors 2 --scene " + data("scenes/heap_powder.json") + " --out " + out),
+                        "--scene checks a design in natural units: give --space too");
+}
+
+// A point meant to lie on a bound lies on it exactly: mid - half misses
+// 0.1 by rounding (0.3 - 0.2 = 0.09999999999999998).
+TEST(DemcalDoe, PointsOnABoundLieOnItExactly) {
+  const std::string out = temp("faced.csv");
+  ASSERT_EQ(run("ccd --space " + data("spaces/he2019_powder.json") + " --type faced --out " + out).code, 0);
+  const demcal::Table t = demcal::Table::read(out);
+  const std::vector<double>& e = t.column("e_pp");
+  EXPECT_EQ(*std::min_element(e.begin(), e.end()), 0.1);
+  EXPECT_EQ(*std::max_element(e.begin(), e.end()), 0.5);
+  const std::vector<double>& mu = t.column("mu_pp");
+  EXPECT_EQ(*std::min_element(mu.begin(), mu.end()), 0.3);
+  EXPECT_EQ(*std::max_element(mu.begin(), mu.end()), 0.75);
 }

@@ -108,8 +108,8 @@ json.dump({"name": "external_small", "scene": f"{work}/quick.json", "space": f"{
            "surrogate": "quadratic", "inversion": {"algorithm": "ga", "objective": "sum-rel", "restarts": 2, "seed": 1},
            "verification": {"seeds": 2, "max_seeds": 2, "tolerance": 0.05}, "refinement": {"rounds": 0}},
           open(f"{work}/study.json", "w"))
-json.dump({"parameters": [{"name": "a_MPa", "low": 0.5, "high": 3, "unit": "MPa"},
-                          {"name": "b_MPa", "low": 0.5, "high": 3, "unit": "MPa"}], "fixed": {"mode": 0}},
+json.dump({"parameters": [{"name": "a_MPa", "low": 0.6, "high": 3, "unit": "MPa"},
+                          {"name": "b_MPa", "low": 0.6, "high": 3, "unit": "MPa"}], "fixed": {"mode": 0}},
           open(f"{work}/space.json", "w"))
 PY
 /usr/bin/python3 -m demcal_study plan "$work/study.json" "$work/study" > /dev/null

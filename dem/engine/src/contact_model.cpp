@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
 
 namespace demcal::dem {
 
@@ -14,25 +15,36 @@ double ContactModel::max_bond_utilisation(const ConstPairBlock&, const Bodies&) 
 
 bool ContactModel::install_bond(PairBlock&, std::size_t, const PairInfo&, double, Rng&) const { return false; }
 
-void ContactModelRegistry::add(const std::string& name, ContactModelFactory factory) {
-  for (const auto& entry : factories_)
-    if (entry.first == name) throw Error("contact model \"" + name + "\" is registered twice");
-  factories_.emplace_back(name, std::move(factory));
+void ContactModelRegistry::add(const std::string& name, std::vector<std::string> parameter_keys,
+                               ContactModelFactory factory) {
+  for (const Entry& entry : entries_)
+    if (entry.name == name) throw Error("contact model \"" + name + "\" is registered twice");
+  entries_.push_back({name, std::move(parameter_keys), std::move(factory)});
+}
+
+const ContactModelRegistry::Entry& ContactModelRegistry::find(const std::string& name, const std::string& where) const {
+  for (const Entry& entry : entries_)
+    if (entry.name == name) return entry;
+  std::string list;
+  for (const Entry& entry : entries_) list += (list.empty() ? "" : ", ") + entry.name;
+  throw Error(where + ": unknown contact model \"" + name + "\" (known: " + list + ")");
 }
 
 std::unique_ptr<ContactModel> ContactModelRegistry::create(const std::string& name, const nlohmann::json& parameters,
                                                            const std::string& where) const {
-  for (const auto& entry : factories_)
-    if (entry.first == name) return entry.second(parameters, where);
-  std::string list;
-  for (const auto& entry : factories_) list += (list.empty() ? "" : ", ") + entry.first;
-  throw Error(where + ": unknown contact model \"" + name + "\" (known: " + list + ")");
+  const Entry& entry = find(name, where);
+  require_known_fields(parameters, entry.parameter_keys, where, "parameter");
+  return entry.factory(parameters, where);
 }
 
 std::vector<std::string> ContactModelRegistry::names() const {
   std::vector<std::string> out;
-  for (const auto& entry : factories_) out.push_back(entry.first);
+  for (const Entry& entry : entries_) out.push_back(entry.name);
   return out;
+}
+
+const std::vector<std::string>& ContactModelRegistry::parameter_keys(const std::string& name) const {
+  return find(name, "contact model").parameter_keys;
 }
 
 }  // namespace demcal::dem

@@ -234,30 +234,35 @@ class BiaxialTest : public LabTest {
     for (std::size_t k = 0; k < confinements.size(); ++k) {
       const std::string n = std::to_string(k + 1), at = " at confinement " + n + " (" +
                                                          format_double(confinements[k] / 1e6) + " MPa)";
-      out.push_back({"q_peak_MPa_" + n, "MPa", "peak deviatoric stress sigma_1 - sigma_3" + at});
-      out.push_back({"sigma_1_peak_MPa_" + n, "MPa", "axial stress at the peak" + at});
+      out.push_back({"q_peak_MPa_" + n, "MPa", "peak deviatoric stress sigma_1 - sigma_3" + at, true, kNonNegative});
+      out.push_back({"sigma_1_peak_MPa_" + n, "MPa", "axial stress at the peak" + at, true, kNonNegative});
       out.push_back({"sigma_3_peak_MPa_" + n, "MPa",
-                     "confining stress the side walls measured at the peak (the servo's, not the nominal one)" + at});
-      out.push_back({"E_GPa_" + n, "GPa", "tangent d q / d eps_ax where q first reaches half its peak" + at});
-      out.push_back({"nu_" + n, "1", "tangent d eps_lat / d eps_ax over the same window as E (side walls)" + at});
-      out.push_back({"peak_strain_" + n, "1", "axial strain at the peak" + at});
-      out.push_back({"cracks_tension_" + n, "1", "bonds broken in tension" + at});
-      out.push_back({"cracks_shear_" + n, "1", "bonds broken in shear" + at});
-      out.push_back({"cracks_confining_" + n, "1", "bonds broken while the confinement was applied" + at});
+                     "confining stress the side walls measured at the peak (the servo's, not the nominal one)" + at, true, kNonNegative});
+      out.push_back({"E_GPa_" + n, "GPa", "tangent d q / d eps_ax where q first reaches half its peak" + at, true,
+                     kNonNegative});
+      out.push_back({"nu_" + n, "1", "tangent d eps_lat / d eps_ax over the same window as E (side walls)" + at,
+                     true, kPoissonRatio2D});
+      out.push_back({"peak_strain_" + n, "1", "axial strain at the peak" + at, true, kNonNegative});
+      out.push_back({"cracks_tension_" + n, "1", "bonds broken in tension" + at, true, kNonNegative});
+      out.push_back({"cracks_shear_" + n, "1", "bonds broken in shear" + at, true, kNonNegative});
+      out.push_back({"cracks_confining_" + n, "1", "bonds broken while the confinement was applied" + at, true, kNonNegative});
       out.push_back({"reached_strain_limit_" + n, "1",
-                     "1 when loading.strain_limit ended the test before the post-peak stop" + at, false});
+                     "1 when loading.strain_limit ended the test before the post-peak stop" + at, false, kFlag});
     }
     if (confinements.size() >= 2) {
       out.push_back({"c_MPa", "MPa", "Mohr-Coulomb cohesion sigma_c / (2 sqrt(N_phi)) of the least-squares line "
-                                     "sigma_1 = sigma_c + N_phi sigma_3 through the peaks"});
-      out.push_back({"phi_deg", "deg", "Mohr-Coulomb friction angle, asin((N_phi - 1) / (N_phi + 1))"});
-      out.push_back({"mc_sigma_c_MPa", "MPa", "the envelope's intercept sigma_c (its uniaxial strength)"});
-      out.push_back({"mc_r2", "1", "coefficient of determination of the envelope's line"});
+                                     "sigma_1 = sigma_c + N_phi sigma_3 through the peaks", true, kNonNegative});
+      out.push_back({"phi_deg", "deg", "Mohr-Coulomb friction angle, asin((N_phi - 1) / (N_phi + 1))", true,
+                     kAcuteAngleDeg});
+      out.push_back({"mc_sigma_c_MPa", "MPa", "the envelope's intercept sigma_c (its uniaxial strength)", true,
+                     kNonNegative});
+      out.push_back({"mc_r2", "1", "coefficient of determination of the envelope's line", true, kAtMostOne});
       out.push_back({"hb_m_i", "1", "Hoek-Brown m_i of intact rock: the slope of (sigma_1 - sigma_3)^2 on sigma_3 "
                                     "over sigma_c (Hoek & Brown 1997); missing when that line has no positive "
-                                    "intercept (ended_by says so)", false});
-      out.push_back({"hb_sigma_c_MPa", "MPa", "Hoek-Brown sigma_c: the square root of that line's intercept", false});
-      out.push_back({"hb_r2", "1", "coefficient of determination of the Hoek-Brown line", false});
+                                    "intercept (ended_by says so)", false, kNonNegative});
+      out.push_back({"hb_sigma_c_MPa", "MPa", "Hoek-Brown sigma_c: the square root of that line's intercept", false,
+                     kNonNegative});
+      out.push_back({"hb_r2", "1", "coefficient of determination of the Hoek-Brown line", false, kAtMostOne});
     }
     return out;
   }

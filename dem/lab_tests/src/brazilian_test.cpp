@@ -96,8 +96,8 @@ class BrazilianTest : public LabTest {
   int results_version() const override { return 1; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out = {
-        {"sigma_t_MPa", "MPa", "tensile strength 2 F_max / (pi D t)"},
-        {"peak_approach_over_D", "1", "platen approach at the peak force over the diameter"},
+        {"sigma_t_MPa", "MPa", "tensile strength 2 F_max / (pi D t)", true, kNonNegative},
+        {"peak_approach_over_D", "1", "platen approach at the peak force over the diameter", true, kNonNegative},
     };
     for (OutputSpec& o : platen_crack_outputs(scene)) out.push_back(o);
     return out;

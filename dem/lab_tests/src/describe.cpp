@@ -1,5 +1,7 @@
 #include "demcal/dem/describe.hpp"
 
+#include <cmath>
+
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/lab_test.hpp"
 
@@ -12,6 +14,9 @@ nlohmann::json output_json(const OutputSpec& o) {
   nlohmann::json item = {{"unit", o.unit}, {"description", o.description}, {"quantity", quantity_name(q)},
                          {"stress_like", is_stress_like(q)}, {"si_factor", si_factor_of_unit(o.unit, o.name)}};
   if (!o.always) item["optional"] = true;
+  // The values a target may take: [low, high], null for an open end.
+  const auto end = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  item["range"] = nlohmann::json::array({end(o.range.low), end(o.range.high)});
   return item;
 }
 
@@ -90,7 +95,16 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
 }
 
 nlohmann::json describe_registries() {
-  return {{"tests", LabTestRegistry::instance().names()}, {"contact_models", ContactModelRegistry::instance().names()}};
+  const ContactModelRegistry& models = ContactModelRegistry::instance();
+  nlohmann::json keys = nlohmann::json::object();
+  for (const std::string& name : models.names()) keys[name] = models.parameter_keys(name);
+  nlohmann::json tests = nlohmann::json::object();
+  for (const std::string& name : LabTestRegistry::instance().names())
+    tests[name] = LabTestRegistry::instance().find(name, "registry").description();
+  return {{"tests", LabTestRegistry::instance().names()},
+          {"contact_models", models.names()},
+          {"contact_model_parameters", keys},
+          {"test_descriptions", tests}};
 }
 
 }  // namespace demcal::dem

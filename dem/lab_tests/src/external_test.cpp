@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "demcal/core/atomic_file.hpp"
@@ -23,6 +24,24 @@ namespace {
 
 using json = nlohmann::json;
 namespace fs = std::filesystem;
+
+// An output's optional "range": [low, high], null for an open end (default: any value).
+OutputRange output_range(const json& output, const std::string& where) {
+  OutputRange range;
+  if (!output.contains("range")) return range;
+  const json& r = output.at("range");
+  const auto end = [&](std::size_t k, double open) {
+    if (r.at(k).is_null()) return open;
+    if (!r.at(k).is_number() || !std::isfinite(r.at(k).get<double>()))
+      throw Error(where + ".range: each end must be a number or null (open)");
+    return r.at(k).get<double>();
+  };
+  if (!r.is_array() || r.size() != 2) throw Error(where + ".range: must be [low, high] (null for an open end)");
+  range.low = end(0, -std::numeric_limits<double>::infinity());
+  range.high = end(1, std::numeric_limits<double>::infinity());
+  if (!(range.low < range.high)) throw Error(where + ".range: low must be below high");
+  return range;
+}
 
 const char* const kBuiltinPlaceholders[] = {"seed", "params_json", "out_json", "workdir", "scene_dir"};
 
@@ -130,14 +149,15 @@ ExternalSpec parse_external_spec(const json& root, const std::string& origin,
   for (auto it = root.at("outputs").begin(); it != root.at("outputs").end(); ++it) {
     const std::string where = origin + ": outputs." + it.key();
     if (!it.value().is_object()) throw Error(where + ": must be an object {\"unit\": ..., \"description\": ...}");
-    require_known_fields(it.value(), {"unit", "description"}, where);
+    require_known_fields(it.value(), {"unit", "description", "range"}, where);
     if (!it.value().contains("unit") || !it.value().at("unit").is_string())
       throw Error(where + ": missing \"unit\" (a string such as \"MPa\", or \"1\" for dimensionless)");
     const std::string unit = it.value().at("unit").get<std::string>();
     quantity_of_unit(unit, where + ".unit");  // a unit the study layer can read (stress-like or not)
     if (it.value().contains("description") && !it.value().at("description").is_string())
       throw Error(where + ": \"description\" must be a string");
-    spec.outputs.push_back({it.key(), unit, it.value().value("description", "reported by the external command")});
+    spec.outputs.push_back({it.key(), unit, it.value().value("description", "reported by the external command"), true,
+                            output_range(it.value(), where)});
   }
   return spec;
 }

@@ -376,13 +376,14 @@ class HeapTest : public LabTest {
   void check_scene(const Scene& scene) const override { HeapSpec::from_scene(scene, scene.resolve({})); }
   std::vector<OutputSpec> outputs(const Scene&) const override {
     return {{"aor_deg", "deg", "angle of repose, the mean of both flanks' least-squares lines between 10 and 90 % of the "
-                               "heap's height"},
-            {"aor_left_deg", "deg", "the left flank's angle"},
-            {"aor_right_deg", "deg", "the right flank's angle"},
-            {"heap_height_m", "m", "the settled heap's height above the base"},
+                               "heap's height", true, kAcuteAngleDeg},
+            {"aor_left_deg", "deg", "the left flank's angle", true, kAcuteAngleDeg},
+            {"aor_right_deg", "deg", "the right flank's angle", true, kAcuteAngleDeg},
+            {"heap_height_m", "m", "the settled heap's height above the base", true, kNonNegative},
             {"aor_fixed_base_deg", "deg", "the fixed-base method's angle, atan(heap_height_m / half of funnel.base_width_m); "
-                                          "the specimen's heap_covers_plate says whether the flanks reach the plate's edges"},
-            {"flow_time_s", "s", "time from opening the outlet until run.discharged_fraction of the particles left the funnel"}};
+                                          "the specimen's heap_covers_plate says whether the flanks reach the plate's edges", true, kAcuteAngleDeg},
+            {"flow_time_s", "s", "time from opening the outlet until run.discharged_fraction of the particles left the funnel", true,
+             kNonNegative}};
   }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
                  const RunOptions& options) const override {

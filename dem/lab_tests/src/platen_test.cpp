@@ -18,13 +18,15 @@ namespace demcal::dem {
 BoundaryRole platen_role() { return {"disk-platen", kPlatenGroup, "the specimen's disks against the loading platens"}; }
 
 std::vector<OutputSpec> platen_crack_outputs(const Scene& scene) {
-  std::vector<OutputSpec> out = {{"cracks_tension", "1", "bonds broken in tension"},
-                                 {"cracks_shear", "1", "bonds broken in shear"}};
+  std::vector<OutputSpec> out = {{"cracks_tension", "1", "bonds broken in tension", true, kNonNegative},
+                                 {"cracks_shear", "1", "bonds broken in shear", true, kNonNegative}};
   if (scene.aggregates()) {
-    out.push_back({"cracks_mortar_tension", "1", "bonds broken in tension in the mortar"});
-    out.push_back({"cracks_mortar_shear", "1", "bonds broken in shear in the mortar"});
-    out.push_back({"cracks_itz_tension", "1", "bonds broken in tension in the interfacial transition zone"});
-    out.push_back({"cracks_itz_shear", "1", "bonds broken in shear in the interfacial transition zone"});
+    out.push_back({"cracks_mortar_tension", "1", "bonds broken in tension in the mortar", true, kNonNegative});
+    out.push_back({"cracks_mortar_shear", "1", "bonds broken in shear in the mortar", true, kNonNegative});
+    out.push_back({"cracks_itz_tension", "1", "bonds broken in tension in the interfacial transition zone", true,
+                   kNonNegative});
+    out.push_back({"cracks_itz_shear", "1", "bonds broken in shear in the interfacial transition zone", true,
+                   kNonNegative});
   }
   return out;
 }

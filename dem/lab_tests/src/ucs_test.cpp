@@ -227,17 +227,18 @@ class UcsTest : public LabTest {
   int results_version() const override { return 3; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out = {
-        {"sigma_u_MPa", "MPa", "peak axial stress (platen force / (W t))"},
+        {"sigma_u_MPa", "MPa", "peak axial stress (platen force / (W t))", true, kNonNegative},
         {"E_GPa", "GPa", "tangent Young's modulus where the stress first reaches half the peak (least squares over "
-                         "a tenth of the points to the peak on each side)"},
-        {"E50_GPa", "GPa", "secant modulus at half the peak"},
+                         "a tenth of the points to the peak on each side)", true, kNonNegative},
+        {"E50_GPa", "GPa", "secant modulus at half the peak", true, kNonNegative},
         {"nu", "1", "tangent Poisson's ratio d eps_lat / d eps_ax over the same window as E, the lateral strain "
-                    "fitted to every disk of the middle three fifths of the height"},
+                    "fitted to every disk of the middle three fifths of the height", true, kPoissonRatio2D},
         {"nu50", "1", "secant Poisson's ratio eps_lat / eps_ax where the stress first reaches half the peak (the "
-                      "definition of Su et al. 2021), the lateral strain from the median edge disks of the middle third"},
-        {"peak_strain", "1", "axial strain at the peak"},
+                      "definition of Su et al. 2021), the lateral strain from the median edge disks of the middle third", true,
+         kPoissonRatio2D},
+        {"peak_strain", "1", "axial strain at the peak", true, kNonNegative},
         {"reached_strain_limit", "1", "1 when the test ended at loading.strain_limit before the post-peak stop",
-         false},
+         false, kFlag},
     };
     for (OutputSpec& o : platen_crack_outputs(scene)) out.push_back(o);
     return out;

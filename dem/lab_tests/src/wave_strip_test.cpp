@@ -550,21 +550,24 @@ class WaveStripTest : public LabTest {
       const std::string label = "T" + std::to_string(k);
       out.push_back({"recovery_time_s_" + label, "s",
                      "time after which the speed at " + label + " stays below run.recovery_fraction of the peak "
-                     "speed the pulse had at the point nearest the input (run.duration_s if it never does)"});
-      out.push_back({"recovered_" + label, "1", "1 when " + label + " fell quiet within run.duration_s, else 0"});
+                     "speed the pulse had at the point nearest the input (run.duration_s if it never does)", true, kNonNegative});
+      out.push_back({"recovered_" + label, "1", "1 when " + label + " fell quiet within run.duration_s, else 0", true, kFlag});
     }
-    out.push_back({"total_recovery_time_s", "s", "sum of the points' recovery times (Ma et al. 2022's fitness)"});
+    out.push_back({"total_recovery_time_s", "s", "sum of the points' recovery times (Ma et al. 2022's fitness)", true,
+                   kNonNegative});
     out.push_back({"reflection_coefficient", "1",
                    "reflected over incident particle velocity (signed peaks) at monitors.reflection_point: the P "
                    "wave's, or the S wave's for a pulse with no P part"});
     out.push_back({"wave_speed_p_m_s", "m/s", "P wave speed from the pulse's arrivals at T1, T2, ... (a P pulse only)",
-                   false});
-    out.push_back({"wave_speed_s_m_s", "m/s", "S wave speed from the arrivals (an S pulse only)", false});
+                   false, kNonNegative});
+    out.push_back({"wave_speed_s_m_s", "m/s", "S wave speed from the arrivals (an S pulse only)", false, kNonNegative});
     out.push_back({"energy_input_J", "J", "work of the input boundary's wave on the model"});
-    out.push_back({"energy_absorbed_J", "J", "work the dashpots took out of the model"});
-    out.push_back({"kinetic_energy_end_J", "J", "kinetic energy at the end of the run"});
-    out.push_back({"quiet_drift_m", "m", "largest move of a disk over the quiet period after the walls were replaced"});
-    out.push_back({"quiet_force_ratio", "1", "mean unbalanced-force ratio at the end of the quiet period"});
+    out.push_back({"energy_absorbed_J", "J", "work the dashpots took out of the model", true, kNonNegative});
+    out.push_back({"kinetic_energy_end_J", "J", "kinetic energy at the end of the run", true, kNonNegative});
+    out.push_back({"quiet_drift_m", "m", "largest move of a disk over the quiet period after the walls were replaced",
+                   true, kNonNegative});
+    out.push_back({"quiet_force_ratio", "1", "mean unbalanced-force ratio at the end of the quiet period", true,
+                   kNonNegative});
     return out;
   }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,

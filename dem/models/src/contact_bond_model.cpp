@@ -46,9 +46,6 @@ class ContactBondModel : public LinearBase {
         sigma_c_std_(non_negative_or(p, "tensile_strength_std_pa", 0.0, where)),
         tau_c_(non_negative(p, "shear_strength_pa", where)),
         tau_c_std_(non_negative_or(p, "shear_strength_std_pa", 0.0, where)) {
-    require_only(p, {"modulus_pa", "kn_ks", "friction", "tensile_strength_pa", "tensile_strength_std_pa",
-                     "shear_strength_pa", "shear_strength_std_pa"},
-                 where);
   }
   std::string name() const override { return "contact_bond"; }
 
@@ -141,7 +138,8 @@ class ContactBondModel : public LinearBase {
 }  // namespace
 
 void register_contact_bond_model(ContactModelRegistry& registry) {
-  registry.add("contact_bond", [](const nlohmann::json& p, const std::string& where) {
+  registry.add("contact_bond", {"modulus_pa", "kn_ks", "friction", "tensile_strength_pa", "tensile_strength_std_pa",
+                                 "shear_strength_pa", "shear_strength_std_pa"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<ContactBondModel>(p, where);
   });
 }

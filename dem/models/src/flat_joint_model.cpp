@@ -66,10 +66,6 @@ class FlatJointModel : public LinearBase {
         cohesion_std_(non_negative_or(p, "cohesion_std_pa", 0.0, where)),
         tan_phi_(std::tan(non_negative(p, "friction_angle_deg", where) * M_PI / 180.0)),
         joint_friction_(non_negative(p, "joint_friction", where)) {
-    require_only(p, {"modulus_pa", "kn_ks", "friction", "joint_modulus_pa", "joint_kn_ks", "radius_multiplier",
-                     "elements", "tensile_strength_pa", "tensile_strength_std_pa", "cohesion_pa", "cohesion_std_pa",
-                     "friction_angle_deg", "joint_friction"},
-                 where);
     const double n = p.contains("elements") ? positive(p, "elements", where) : 2.0;
     if (n != std::floor(n) || n > kMaxElements)
       throw Error(where + ": \"elements\" must be a whole number from 1 to " + std::to_string(kMaxElements));
@@ -216,7 +212,9 @@ class FlatJointModel : public LinearBase {
 }  // namespace
 
 void register_flat_joint_model(ContactModelRegistry& registry) {
-  registry.add("flat_joint", [](const nlohmann::json& p, const std::string& where) {
+  registry.add("flat_joint", {"modulus_pa", "kn_ks", "friction", "joint_modulus_pa", "joint_kn_ks",
+                               "radius_multiplier", "elements", "tensile_strength_pa", "tensile_strength_std_pa",
+                               "cohesion_pa", "cohesion_std_pa", "friction_angle_deg", "joint_friction"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<FlatJointModel>(p, where);
   });
 }

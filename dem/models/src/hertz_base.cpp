@@ -10,6 +10,14 @@
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
+
+std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra) {
+  std::vector<std::string> keys = {"shear_modulus_pa", "poisson",  "shear_modulus_2_pa",     "poisson_2",
+                                   "restitution",      "friction", "time_step_overlap_ratio"};
+  for (const char* key : RollingResistance::kParameters) keys.push_back(key);
+  for (const char* key : extra) keys.push_back(key);
+  return keys;
+}
 namespace {
 
 double poisson_of(const nlohmann::json& p, const std::string& key, const std::string& where) {

@@ -17,10 +17,6 @@ namespace {
 class HertzMindlinModel : public HertzBase {
  public:
   HertzMindlinModel(const nlohmann::json& p, const std::string& where) : HertzBase(p, where) {
-    require_only(p, {"shear_modulus_pa", "poisson", "shear_modulus_2_pa", "poisson_2", "restitution", "friction",
-                     "time_step_overlap_ratio", RollingResistance::kParameters[0], RollingResistance::kParameters[1],
-                     RollingResistance::kParameters[2], RollingResistance::kParameters[3]},
-                 where);
   }
   std::string name() const override { return "hertz_mindlin"; }
 
@@ -52,7 +48,7 @@ class HertzMindlinModel : public HertzBase {
 }  // namespace
 
 void register_hertz_mindlin_model(ContactModelRegistry& registry) {
-  registry.add("hertz_mindlin", [](const nlohmann::json& p, const std::string& where) {
+  registry.add("hertz_mindlin", hertz_parameter_keys({}), [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<HertzMindlinModel>(p, where);
   });
 }

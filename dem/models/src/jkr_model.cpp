@@ -31,11 +31,6 @@ class JkrModel : public HertzBase {
  public:
   JkrModel(const nlohmann::json& p, const std::string& where)
       : HertzBase(p, where), work_of_adhesion_j_m2_(non_negative(p, "work_of_adhesion_j_m2", where)) {
-    require_only(p, {"shear_modulus_pa", "poisson", "shear_modulus_2_pa", "poisson_2", "restitution", "friction",
-                     "work_of_adhesion_j_m2", "time_step_overlap_ratio", RollingResistance::kParameters[0],
-                     RollingResistance::kParameters[1], RollingResistance::kParameters[2],
-                     RollingResistance::kParameters[3]},
-                 where);
     adhesion_ = std::sqrt(2.0 * M_PI * work_of_adhesion_j_m2_ / e_eff_pa_);
   }
   std::string name() const override { return "jkr"; }
@@ -126,7 +121,7 @@ class JkrModel : public HertzBase {
 }  // namespace
 
 void register_jkr_model(ContactModelRegistry& registry) {
-  registry.add("jkr", [](const nlohmann::json& p, const std::string& where) {
+  registry.add("jkr", hertz_parameter_keys({"work_of_adhesion_j_m2"}), [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<JkrModel>(p, where);
   });
 }

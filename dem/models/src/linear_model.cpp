@@ -17,7 +17,6 @@ namespace {
 class LinearModel : public LinearBase {
  public:
   LinearModel(const nlohmann::json& p, const std::string& where) : LinearBase(p, where, true) {
-    require_only(p, {"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}, where);
   }
   std::string name() const override { return "linear"; }
 
@@ -72,7 +71,7 @@ class LinearModel : public LinearBase {
 }  // namespace
 
 void register_linear_model(ContactModelRegistry& registry) {
-  registry.add("linear", [](const nlohmann::json& p, const std::string& where) {
+  registry.add("linear", {"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<LinearModel>(p, where);
   });
 }

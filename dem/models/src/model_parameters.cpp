@@ -4,7 +4,6 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
-#include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 
 namespace demcal::dem {
@@ -35,10 +34,6 @@ double non_negative(const nlohmann::json& p, const std::string& key, const std::
 
 double non_negative_or(const nlohmann::json& p, const std::string& key, double fallback, const std::string& where) {
   return p.is_object() && p.contains(key) ? non_negative(p, key, where) : fallback;
-}
-
-void require_only(const nlohmann::json& p, std::initializer_list<const char*> keys, const std::string& where) {
-  require_known_fields(p, keys, where, "parameter");
 }
 
 }  // namespace demcal::dem

@@ -47,9 +47,6 @@ class ParallelBondModel : public LinearBase {
         sigma_c_std_(non_negative_or(p, "tensile_strength_std_pa", 0.0, where)),
         tau_c_(non_negative(p, "shear_strength_pa", where)),
         tau_c_std_(non_negative_or(p, "shear_strength_std_pa", 0.0, where)) {
-    require_only(p, {"modulus_pa", "kn_ks", "friction", "bond_modulus_pa", "bond_kn_ks", "radius_multiplier",
-                     "tensile_strength_pa", "tensile_strength_std_pa", "shear_strength_pa", "shear_strength_std_pa"},
-                 where);
   }
   std::string name() const override { return "parallel_bond"; }
 
@@ -169,7 +166,9 @@ class ParallelBondModel : public LinearBase {
 }  // namespace
 
 void register_parallel_bond_model(ContactModelRegistry& registry) {
-  registry.add("parallel_bond", [](const nlohmann::json& p, const std::string& where) {
+  registry.add("parallel_bond", {"modulus_pa", "kn_ks", "friction", "bond_modulus_pa", "bond_kn_ks",
+                                  "radius_multiplier", "tensile_strength_pa", "tensile_strength_std_pa",
+                                  "shear_strength_pa", "shear_strength_std_pa"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<ParallelBondModel>(p, where);
   });
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The shared shape of the stage executables (header-only; needs CLI11): parse with CLI11,
 // run, and turn every demcal::Error into one "program: error: ..." line and
-// exit code 2 (usage and input errors).
+// exit code 2 (usage and input errors); every program has --version and
+// lists its exit codes under --help.
 #include <CLI/CLI.hpp>
 
 #include <fstream>
@@ -12,13 +13,30 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/table.hpp"
+#include "demcal/core/version.hpp"
 
 namespace demcal::cli {
 
-inline int run_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+// "demcal-dem 0.1.0 (commit 1a2b3c4d5e6f)".
+inline std::string version_line(const std::string& program) {
+  return program + " " + version() + " (commit " + commit() + ")";
+}
+
+// `more_exit_codes`: the program's codes beyond 0, 1 and 2 ("4 a point failed ..."),
+// listed in --help with the common ones.
+inline int run_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body,
+                    const std::string& more_exit_codes = "") {
+  app.set_version_flag("--version", version_line(app.get_name()), "print the version and the commit built, then exit");
+  const std::string codes = "Exit codes: 0 done; 2 bad input or usage (one line naming the file and field); " +
+                            (more_exit_codes.empty() ? std::string() : more_exit_codes + "; ") +
+                            "1 an unexpected failure (a bug: please report it).";
+  app.footer(codes);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) sub->footer(codes);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << log::program() << ": error: " << e.what() << " (see --help)\n";

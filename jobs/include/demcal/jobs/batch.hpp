@@ -34,6 +34,9 @@ struct BatchOptions {
   int shard_index = 1;          // this shard, 1..shard_count
   int shard_count = 1;
   bool progress = true;
+  // OUT holds another scene's results: move them into OUT_STEM.moved-K/ and
+  // start afresh, instead of refusing (points_owner.hpp).
+  bool move_aside = false;
 };
 
 struct BatchSummary {

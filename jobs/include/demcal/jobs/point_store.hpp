@@ -50,6 +50,8 @@ bool stored_result(const PointSpec& point, nlohmann::json& out);
 nlohmann::json compute_point(const dem::SceneSet& scene, const PointSpec& point, const std::string& cache_dir);
 nlohmann::json failed_point(const PointSpec& point, const std::string& reason);
 void store_point(const PointSpec& point, const nlohmann::json& result);
+// Says on stderr, as it happens, that a point failed and why (nothing for a point that is ok).
+void report_failed_point(const PointSpec& point, const nlohmann::json& result);
 
 struct OutputFiles {
   std::string out_path;     // responses .h5

@@ -117,14 +117,25 @@ class ContactModelRegistry {
  public:
   // Holds the built-in models; defined by the models library (dem/models).
   static ContactModelRegistry& instance();
-  void add(const std::string& name, ContactModelFactory factory);
-  // Throws an Error naming the known models when `name` is unknown.
+  // `parameter_keys`: every key a scene may give the model (`describe
+  // --registries` lists them and the reference pages are checked against them).
+  void add(const std::string& name, std::vector<std::string> parameter_keys, ContactModelFactory factory);
+  // Throws an Error naming the known models when `name` is unknown, and one
+  // naming the allowed keys for a key the model does not take.
   std::unique_ptr<ContactModel> create(const std::string& name, const nlohmann::json& parameters,
                                        const std::string& where) const;
   std::vector<std::string> names() const;
+  // The keys `name` accepts; throws like create() for an unknown model.
+  const std::vector<std::string>& parameter_keys(const std::string& name) const;
 
  private:
-  std::vector<std::pair<std::string, ContactModelFactory>> factories_;
+  struct Entry {
+    std::string name;
+    std::vector<std::string> parameter_keys;
+    ContactModelFactory factory;
+  };
+  const Entry& find(const std::string& name, const std::string& where) const;
+  std::vector<Entry> entries_;
 };
 
 }  // namespace demcal::dem

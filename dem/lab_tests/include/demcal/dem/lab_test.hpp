@@ -4,6 +4,7 @@
 // contact roles of its boundaries, and runs a scene. A new test is one file
 // plus one line in register_builtin_tests (src/lab_test.cpp).
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -17,9 +18,24 @@ namespace demcal::dem {
 class Scene;
 
 // A macro value a test reports.
+// The values an output can take at all (a strength is never negative, a
+// Poisson's ratio of a 2D assembly lies in [-1, 1]): a target outside is
+// refused before any run. Infinite ends are open.
+struct OutputRange {
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+};
+inline constexpr OutputRange kAnyValue{};
+inline constexpr OutputRange kNonNegative{0.0, std::numeric_limits<double>::infinity()};
+inline constexpr OutputRange kFlag{0.0, 1.0};            // 1 or 0
+inline constexpr OutputRange kPoissonRatio2D{-1.0, 1.0};  // plane stress: -1 < nu < 1
+inline constexpr OutputRange kAcuteAngleDeg{0.0, 90.0};
+inline constexpr OutputRange kAtMostOne{-std::numeric_limits<double>::infinity(), 1.0};  // R^2
+
 struct OutputSpec {
   std::string name, unit, description;
   bool always = true;  // false: reported only in some runs (a flag such as reached_strain_limit)
+  OutputRange range = kAnyValue;
 };
 
 // A contact role of a test's boundary ("disk-platen"): it joins every group

@@ -24,6 +24,7 @@
 //                "restitution" (0 < e <= 1), "friction" (mu),
 //                rolling resistance (rolling_resistance.hpp, optional),
 //                "time_step_overlap_ratio" (default 0.01, see stiffness())}
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,10 @@ struct NormalForce {
   double repulsive_n = 0;  // its repulsive part, which friction and rolling resistance use, N
   double contact_radius_m = 0;
 };
+
+// The keys the Hertz family takes (the shared springs, dashpots, friction and
+// rolling resistance) followed by a model's own `extra` keys.
+std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra);
 
 class HertzBase : public ContactModel {
  public:

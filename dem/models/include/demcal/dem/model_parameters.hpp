@@ -1,7 +1,6 @@
 #pragma once
 // Reading a contact model's parameters from JSON with one-line errors that
 // name where the parameters came from.
-#include <initializer_list>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -12,6 +11,5 @@ double positive(const nlohmann::json& p, const std::string& key, const std::stri
 double non_negative(const nlohmann::json& p, const std::string& key, const std::string& where);
 // Returns `fallback` when the key is absent.
 double non_negative_or(const nlohmann::json& p, const std::string& key, double fallback, const std::string& where);
-void require_only(const nlohmann::json& p, std::initializer_list<const char*> keys, const std::string& where);
 
 }  // namespace demcal::dem
