@@ -1,16 +1,11 @@
-"""demcal's study layer: a study file (data/studies/) becomes a make plan whose every stage is a file target.
+"""demcal's study layer. What a user runs:
 
-    python -m demcal_study plan STUDY.json OUT_DIR     validate and write OUT_DIR/plan.mk with its stage configs
-    python -m demcal_study design CONFIG.json OUT.csv  a design in natural units, fixed values added
-    python -m demcal_study screen OUT_DIR              range analysis and ANOVA of the screening, with plots
-    python -m demcal_study stability OUT_DIR           other optimiser seeds, a target near the edge, too-small
-                                                       designs (each verified)
-    python -m demcal_study refine OUT_DIR              while verification fails: add its DEM runs to the data,
-                                                       refit, re-invert, re-verify (up to refinement.rounds)
-    python -m demcal_study report OUT_DIR              OUT_DIR/report.md and a self-contained report.html
-    python -m demcal_study calibrate --scene S --target NAME=VALUE ...   make calibrate (docs/calibration.md)
+    python -m demcal_study calibrate --scene S --target NAME=VALUE ...   make calibrate (docs/tutorial.md)
     python -m demcal_study export --solution S.json --scene S --to pfc|yade|liggghts   a calibrated set as input
-                                                       of the simulator a user runs (docs/external.md)
+                                                       of the simulator a user runs (docs/howto/own_simulator.md)
+
+A study file (data/studies/) becomes a make plan whose every stage is a file target; the stages are subcommands
+too (plan, design, split, score, candidates, screen, stability, refine, report), called by that plan, not by hand.
 
 Run from the source tree with PYTHONPATH=python; `make study STUDY=data/studies/NAME.json` (scripts/run_study.sh)
 plans, then runs make on the plan: design -> DEM responses -> models -> solution -> verification -> refinement ->

@@ -4,7 +4,7 @@
                                      [--space SP.json] [--fixed NAME=VALUE ...] [--tolerance 0.05] [--budget 80]
                                      [--name NAME] [--out-root build/calibrations]
 
-The strategy (docs/calibration.md):
+The strategy (docs/explanation/calibration_method.md):
 1. dimensionless form (calibration_problem.py): ratios of the stress-like parameters to a scale parameter against
    dimensionless targets; the scale factor that meets the scale target (E) is exact, so it costs no DEM run;
 2. a trust region on common specimen 1 (trust_region.py): a small space-filling design around the reference, then
@@ -18,6 +18,7 @@ The strategy (docs/calibration.md):
 Exit 0 met, 3 unreachable (the report says what the model reaches), 4 budget spent. Rerunning resumes: every
 decision is a function of the stored DEM results, and the batches repeat no finished point."""
 import csv
+import difflib
 import json
 import math
 import os
@@ -30,7 +31,7 @@ import numpy as np
 from . import calibrate_runs, commands, executables, kriging, outputs, trust_region
 from .calibrate_report import pct, report
 from .calibration_problem import Problem
-from .errors import StudyError, fail, load_json
+from .errors import Problems, StudyError, fail, load_json
 from .files import write_target
 
 INITIAL_RADIUS = 0.25    # coded units: +- a quarter of each coordinate's half-range (about a decade of a ratio)
@@ -41,7 +42,7 @@ SMALLEST_FIT_RADIUS = 0.125
 CRN_FRACTION = 1.0 / 3.0  # specimen 1 must meet the targets within this fraction of the tolerance
 # ... or within its measured noise, but never a noise allowance above this fraction: the first fits span the whole
 # initial box, so their scatter is partly curvature, and an allowance near the tolerance stopped searches at the
-# band's edge (wang2017_sandstone stopped at +5.5 % before this cap, docs/calibration_benchmark.md).
+# band's edge (wang2017_sandstone stopped at +5.5 % before this cap, docs/explanation/calibration_benchmark.md).
 NOISE_CAP_FRACTION = 0.5
 MAX_ROUNDS = 12
 FIRST_VERIFICATION_SEEDS = 5
@@ -49,6 +50,7 @@ MAX_VERIFICATION_SEEDS = 20
 CHECK_SEEDS = 4  # specimens of each check test at the solution
 CHECK_SHOWN = ("c_MPa", "phi_deg", "hb_m_i", "sigma_u_MPa", "sigma_t_MPa", "E_GPa", "nu")  # in the progress line
 EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
+EXIT_FAILED = 4  # the runs themselves failed: nothing says the targets are out of reach
 OFFSET_TRIM = 0.2  # share of the verified specimens cut from each end of the offset's mean (one of 5, 4 of 20)
 # Verifications of at least this many seeds measure the population's response well enough (a mean's SE of a few %
 # at a CV of 12 %) for the step between two of them to correct the model's slope along it (secant_update).
@@ -58,17 +60,27 @@ SECANT_MIN_SEEDS = 10
 SCALE_BOUND_SHARPNESS = 20.0
 
 
-def parse_assignments(items, what):
+def parse_assignments(items, what, problems=None):
+    """{name: value} of NAME=NUMBER items (each item may hold several, separated by spaces). A bad item or a name given
+    twice is a problem: noted in `problems` (and left out) when given, else raised."""
     out = {}
     for item in items or []:
         for part in item.split():
             name, sep, value = part.partition("=")
             try:
-                out[name] = float(value)
+                number = float(value)
             except ValueError:
                 sep = ""
             if not sep or not name:
-                fail(f"{what}: \"{part}\" is not NAME=NUMBER")
+                message = f"{what}: \"{part}\" is not NAME=NUMBER"
+            elif name in out:
+                message = f"{what}: {name} is given twice ({out[name]:g} and {number:g}): give it once"
+            else:
+                out[name] = number
+                continue
+            if problems is None:
+                fail(message)
+            problems.add(message)
     return out
 
 
@@ -82,7 +94,7 @@ def trimmed_mean(rows, cut_fraction):
 def disk_factor_for(half_width_pct, tolerance, seeds, on_seeds):
     """How many times its disks a specimen would need for a 95 % half-width of half_width_pct, measured on `seeds`
     seeds, to come down to the tolerance on `on_seeds` seeds: a specimen's scatter falls about as one over the square
-    root of its disks (docs/calibration.md, "Which disks measure nu": twice the disks took nu's CV from 11.6 to
+    root of its disks (docs/explanation/calibration_method.md, "Which disks measure nu": twice the disks took nu's CV from 11.6 to
     8.2 %), and a half-width is t(0.975, n - 1) times the scatter over sqrt(n)."""
     per_seed = half_width_pct * math.sqrt(seeds) / trust_region.t975(seeds - 1)
     on = per_seed * trust_region.t975(on_seeds - 1) / math.sqrt(on_seeds)
@@ -114,7 +126,7 @@ def secant_update(jacobian, earlier, later):
     max(0, 1 - noise variance / mismatch^2) (positive-part James-Stein), so only what the two means can tell apart
     from their noise changes the slope. On yineng_packsand the unshrunk update took a mismatch in sigma_u / E of
     -5.6 % with a noise SD of 2.8 % for the whole truth, and its correction moved sigma_u / E 2.7 times what it expected
-    (docs/calibration_benchmark.md)."""
+    (docs/explanation/calibration_benchmark.md)."""
     (c1, r1, *v1), (c2, r2, *v2) = earlier, later
     d = np.asarray(c2, float) - np.asarray(c1, float)
     dd = float(d @ d)
@@ -158,6 +170,9 @@ class Calibration:
         # Other tests run at the solution once it is verified (predictions, not targets): each must take every
         # parameter the calibration sets, or it would not be the same material.
         self.defaults = {name: q["value"] for name, q in description["parameters"].items()}
+        # What the report's final parameter set lists beside the solution: every parameter's unit and scene value.
+        self.scene_parameters = {name: {"value": q["value"], "unit": q.get("unit", "")}
+                                 for name, q in description["parameters"].items()}
         self.check_tests = list(config.get("check_tests", []))
         for path in self.check_tests:
             have = executables.describe(path)["parameters"]
@@ -336,7 +351,7 @@ class Calibration:
         radius = INITIAL_RADIUS
         best = self.best_point()
         if best is None:
-            return self.finish("failed", "no DEM point of the first design ran", EXIT_UNREACHABLE)
+            return self.finish("failed", "no DEM point of the first design ran", EXIT_FAILED)
         centre = np.array(best["u"])
         search = self.search_kriging if self.config.get("strategy") == "kriging" else self.search_trust_region
         centre, radius, best, converged, blocked = search(centre, best)
@@ -702,7 +717,8 @@ class Calibration:
                     "budget": self.budget, "wall_s": time.time() - self.started, "targets": p.targets,
                     "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=self.residual_labels()),
                     "bounded_scale": self.bounded_scale,
-                    "rounds": self.rounds, "verifications": self.verifications, "crn": getattr(self, "crn", None)}
+                    "rounds": self.rounds, "verifications": self.verifications, "crn": getattr(self, "crn", None),
+                    "scene_parameters": self.scene_parameters}
         if point is None and centre is not None:
             point = self.point_at(self.fit(centre, INITIAL_RADIUS), centre, np.zeros(len(p.modelled_outputs())))
         if point is not None:
@@ -759,43 +775,218 @@ class Calibration:
         return {n: {"lowest_error_pct": lo, "highest_error_pct": hi} for n, (lo, hi) in out.items()}
 
 
-def calibrate(args):
-    targets = parse_assignments(args.target, "--target")
-    if not targets:
-        fail("--target: give at least one NAME=VALUE (e.g. --target E_GPa=6.5)")
-    fixed = parse_assignments(args.fixed, "--fixed")
-    if not (0 < args.tolerance < 1):
-        fail(f"--tolerance: {args.tolerance} must lie in (0, 1)")
-    for path, what in ((args.scene, "--scene"), (args.space, "--space")):
-        if path and not os.path.exists(path):
-            fail(f"{what}: {path} does not exist")
-    tests = outputs.tests_per_point(args.scene)
-    if args.budget < 10 * tests:
-        fail(f"--budget: {args.budget} DEM runs cannot hold a design and a verification (at least 10"
-             + (f" points of {tests} tests: {10 * tests} test runs" if tests > 1 else "") + ")")
-    name = args.name or default_name(args.scene, targets) + ("_kriging" if args.strategy == "kriging" else "")
-    out = os.path.join(args.out_root, name)
-    config = {"scene": args.scene, "space": args.space, "targets": targets, "fixed": fixed,
-              "tolerance": args.tolerance, "budget": args.budget, "scale_parameter": args.scale_parameter}
+STRATEGIES = ("trust-region", "kriging")
+
+
+def number_option(value, what, problems, whole=False):
+    """An option's number (given as text on the command line, or as a number), or None with the problem noted."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        x = value
+    else:
+        try:
+            x = int(value) if whole else float(value)
+        except (TypeError, ValueError):
+            problems.add(f"{what}: \"{value}\" is not {'a whole number' if whole else 'a number'}")
+            return None
+    if not math.isfinite(x) or (whole and x != int(x)):
+        problems.add(f"{what}: {value} is not {'a whole number' if whole else 'a finite number'}")
+        return None
+    return int(x) if whole else float(x)
+
+
+def did_you_mean(name, names):
+    close = difflib.get_close_matches(name, list(names), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def range_text(low, high, unit):
+    """[low, high] of describe, either end null for none: "0 to 90 deg", "at least 0 MPa"."""
+    unit = "" if unit in (None, "", "1") else f" {unit}"
+    if low is not None and high is not None:
+        return f"{low:g} to {high:g}{unit}"
+    return f"at least {low:g}{unit}" if low is not None else f"at most {high:g}{unit}"
+
+
+def check_targets(targets, description, problems):
+    """The targets the scene's outputs can be held to: an output or a ratio A/B of two, a finite non-zero value, inside
+    the output's physical range where describe declares one ("range": [low, high], null for an open end; a ratio has
+    none). Returns those that pass; each other one is a problem."""
+    outs = description["outputs"]
+    good = {}
+    for name, value in targets.items():
+        known = problems.check(outputs.is_output, outs, name, "--target")
+        if known is None:
+            continue
+        if not known:
+            problems.add(f"--target: {name} is not an output of the scene, nor a ratio A/B of two"
+                         f"{did_you_mean(name, outs)} (outputs: {', '.join(sorted(outs))})")
+            continue
+        if problems.check(outputs.output_info, outs, name, "--target") is None:
+            continue
+        if not math.isfinite(value):
+            problems.add(f"--target: {name}: {value} is not a finite number")
+            continue
+        if value == 0:
+            problems.add(f"--target: {name}: 0 cannot be a target (its errors are relative to it)")
+            continue
+        declared = outs[name].get("range") if name in outs else None
+        if isinstance(declared, (list, tuple)) and len(declared) == 2:
+            low, high = declared
+            if (low is not None and value < low) or (high is not None and value > high):
+                problems.add(f"--target: {name}={value:g} lies outside its physical range, "
+                             f"{range_text(low, high, outs[name].get('unit'))}")
+                continue
+        good[name] = value
+    return good
+
+
+def check_fixed(fixed, description, problems):
+    """Fixed values: each a parameter of the scene, inside its physical bounds. Returns those that pass."""
+    params = description["parameters"]
+    good = {}
+    for name, value in fixed.items():
+        if name not in params:
+            problems.add(f"--fixed: {name} is not a parameter of the scene{did_you_mean(name, params)}")
+            continue
+        if not math.isfinite(value):
+            problems.add(f"--fixed: {name}: {value} is not a finite number")
+            continue
+        low, high = params[name].get("low"), params[name].get("high")
+        if (low is not None and value < low) or (high is not None and value > high):
+            problems.add(f"--fixed: {name}={value:g} lies outside the scene's physical bounds, "
+                         f"{range_text(low, high, params[name].get('unit'))}")
+            continue
+        good[name] = value
+    return good
+
+
+def holds_no_work(out):
+    """Whether a calibration folder holds no DEM result: only its settings (a command refused before this version
+    checked everything first, or stopped before its first run), which other settings may then replace."""
+    return not any(os.path.exists(os.path.join(out, name)) for name in ("rounds", "verify", "checks", "solution.json"))
+
+
+def checked_command(args):
+    """Every option of `calibrate` checked before anything is written: the scene (through demcal-dem describe), the
+    space, the targets, the fixed values, the budget, the tolerance, the checks and the strategy, and the folder it
+    would write. Returns (config, out folder, whether stored settings without any work are replaced); raises
+    StudyErrors with every problem found, one line each."""
+    problems = Problems()
+    if getattr(args, "unrecognized", None):
+        problems.add(f"calibrate: unrecognized arguments: {' '.join(args.unrecognized)}")
+    targets = parse_assignments(args.target, "--target", problems)
+    if not args.target:
+        problems.add("--target: give at least one NAME=VALUE (e.g. --target E_GPa=6.5)")
+    fixed = parse_assignments(args.fixed, "--fixed", problems)
+    tolerance = number_option(args.tolerance, "--tolerance", problems)
+    if tolerance is not None and not (0 < tolerance < 1):
+        problems.add(f"--tolerance: {tolerance} must lie in (0, 1)")
+        tolerance = None
+    budget = number_option(args.budget, "--budget", problems, whole=True)
+    if budget is not None and budget < 1:
+        problems.add(f"--budget: {budget} must be a positive number of DEM runs")
+        budget = None
+    strategy = args.strategy or "trust-region"
+    if strategy not in STRATEGIES:
+        problems.add(f"--strategy: {strategy} is not one of {', '.join(STRATEGIES)}")
+    check_resolution = None
     if args.check_resolution is not None:
-        if not args.check_resolution > 1:
-            fail(f"--check-resolution: {args.check_resolution} must be above 1 (the radii are divided by it)")
-        config["check_resolution"] = args.check_resolution
-    for path in args.check_test or []:
+        check_resolution = number_option(args.check_resolution, "--check-resolution", problems)
+        if check_resolution is not None and not check_resolution > 1:
+            problems.add(f"--check-resolution: {check_resolution:g} must be above 1 (the radii are divided by it)")
+    scene_ok = False
+    if not args.scene:
+        problems.add("--scene: give the scene to calibrate (--scene SCENE.json)")
+    elif not os.path.exists(args.scene):
+        problems.add(f"--scene: {args.scene} does not exist")
+    else:
+        scene_ok = True
+    space_ok = True
+    if args.space and not os.path.exists(args.space):
+        problems.add(f"--space: {args.space} does not exist")
+        space_ok = False
+    check_tests = list(args.check_test or [])
+    for path in check_tests:
         if not os.path.exists(path):
-            fail(f"--check-test: {path} does not exist")
-    if args.check_test:
-        config["check_tests"] = list(args.check_test)
-    if args.strategy != "trust-region":  # absent for the default, so calibrations stored before the option resume
-        config["strategy"] = args.strategy
+            problems.add(f"--check-test: {path} does not exist")
+
+    description = problems.check(executables.describe, args.scene) if scene_ok else None
+    tests = outputs.tests_described(description) if description else 1
+    coordinates = 0
+    if description:
+        good_targets = check_targets(targets, description, problems)
+        good_fixed = check_fixed(fixed, description, problems)
+        space = None
+        if args.space and space_ok:
+            space = problems.check(load_json, args.space, "parameter space")
+            # demcal-dem checks that the space narrows the scene, and names the field when it does not.
+            if space is not None and problems.check(executables.describe, args.scene, args.space) is None:
+                space = None
+                space_ok = False
+        if good_targets and space_ok:
+            problem = problems.check(Problem, description, good_targets, space=space, fixed=good_fixed,
+                                     scale_parameter=args.scale_parameter, where="calibrate")
+            coordinates = len(problem.coordinates) if problem is not None else 0
+        for path in check_tests:
+            if os.path.exists(path):
+                have = problems.check(executables.describe, path)
+                missing = sorted(set(description["parameters"]) - set(have["parameters"])) if have else []
+                if missing:
+                    problems.add(f"--check-test {path}: it lacks the calibrated scene's parameter(s) "
+                                 f"{', '.join(missing)}: it would not test the same material")
+    if budget is not None:
+        # A reference point, the first design (two points per coordinate) and a first verification on fresh seeds.
+        points = max(10, 1 + 2 * coordinates + FIRST_VERIFICATION_SEEDS)
+        if budget < points * tests:
+            problems.add(f"--budget: {budget} DEM runs cannot hold a design and a verification (at least {points}"
+                         + (f" points of {tests} tests: {points * tests} test runs" if tests > 1 else "") + ")")
+
+    config = {"scene": args.scene, "space": args.space, "targets": targets, "fixed": fixed,
+              "tolerance": tolerance, "budget": budget, "scale_parameter": args.scale_parameter}
+    if check_resolution is not None:
+        config["check_resolution"] = check_resolution
+    if check_tests:
+        config["check_tests"] = check_tests
+    if strategy != "trust-region":  # absent for the default, so calibrations stored before the option resume
+        config["strategy"] = strategy
+    out, replace = None, False
+    if targets and args.scene:
+        name = args.name or default_name(args.scene, targets) + ("_kriging" if strategy == "kriging" else "")
+        out = os.path.join(args.out_root, name)
+        stored = os.path.join(out, "calibration.json")
+        existing = os.path.abspath(out)
+        while not os.path.exists(existing) and os.path.dirname(existing) != existing:
+            existing = os.path.dirname(existing)  # the nearest folder that exists: the calibration is made in it
+        if os.path.exists(out) and not os.path.isdir(out):
+            problems.add(f"--out-root/--name: {out} exists and is not a folder")
+        elif not os.path.isdir(existing) or not os.access(existing, os.W_OK | os.X_OK):
+            problems.add(f"--out-root: cannot write {out} ({existing} is not a folder this user may write in)")
+        elif os.path.exists(stored) and not problems:
+            before = problems.check(load_json, stored, "calibration")
+            # A check after the calibration changes none of its decisions: it may be added to a finished one.
+            checks = ("check_resolution", "check_tests")
+            if before is not None and {k: v for k, v in before.items() if k not in checks} != {
+                    k: v for k, v in config.items() if k not in checks}:
+                if holds_no_work(out):
+                    replace = True
+                else:
+                    problems.add(f"{stored}: another calibration is stored here (different scene, targets or "
+                                 f"settings); remove {out} or give --name")
+    problems.raise_if_any()
+    return config, out, replace
+
+
+def calibrate(args):
+    config, out, replace = checked_command(args)
+    # Built before anything is written: the Problem and the descriptions it needs are those just checked.
+    calibration = Calibration(config, out, commands.from_environment(), quiet=args.quiet)
     stored = os.path.join(out, "calibration.json")
     if os.path.exists(stored):
         before = load_json(stored, "calibration")
-        # A check after the calibration changes none of its decisions: it may be added to a finished one.
-        checks = ("check_resolution", "check_tests")
-        if {k: v for k, v in before.items() if k not in checks} != {k: v for k, v in config.items() if k not in checks}:
-            fail(f"{stored}: another calibration is stored here (different scene, targets or settings); remove "
-                 f"{out} or give --name")
+        if replace:
+            calibration.say(f"{stored}: replacing settings under which no DEM point ran")
+            if os.path.exists(os.path.join(out, "wall_s.json")):  # the time of those settings, not of these
+                os.remove(os.path.join(out, "wall_s.json"))
         if before != config:
             write_target(stored, json.dumps(config, indent=1) + "\n")
     else:
@@ -803,7 +994,7 @@ def calibrate(args):
         write_target(stored, json.dumps(config, indent=1) + "\n")
     started = time.time()
     try:
-        code = Calibration(config, out, commands.from_environment(), quiet=args.quiet).run()
+        code = calibration.run()
     finally:
         # An invocation stopped by an error or an interrupt spent its time too: the resumed calibration counts it.
         # A failure to record it must not hide the error that stopped the calibration.

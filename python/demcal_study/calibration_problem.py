@@ -25,12 +25,13 @@ LOG_SPAN = 10.0  # a range wider than this (high / low) is coded on a log scale
 class Coordinate:
     """One varied coordinate: a dimensionless parameter, or a stress-like one as a ratio to the scale parameter."""
 
-    def __init__(self, name, low, high, reference, log_scale, ratio):
+    def __init__(self, name, low, high, reference, log_scale, ratio, unit="1"):
         if not (low < high):
             fail(f"{name}: low ({low:g}) must be below high ({high:g})")
         if log_scale and low <= 0:
             fail(f"{name}: a log-scale range needs a positive low (got {low:g})")
         self.name, self.low, self.high, self.log_scale, self.ratio = name, low, high, log_scale, ratio
+        self.unit = "1" if ratio else (unit or "1")  # a ratio of two stresses is a pure number
         self.reference = min(max(reference, low), high)
 
     def code(self, value):
@@ -45,9 +46,10 @@ class Coordinate:
         return self.low + 0.5 * (u + 1.0) * (self.high - self.low)
 
     def describe(self):
-        kind = "ratio to the scale parameter" if self.ratio else "dimensionless"
+        kind = ("ratio to the scale parameter" if self.ratio else "dimensionless" if self.unit == "1"
+                else f"value in {self.unit}")
         return {"name": self.name, "low": self.low, "high": self.high, "reference": self.reference,
-                "log_scale": self.log_scale, "kind": kind}
+                "log_scale": self.log_scale, "kind": kind, "unit": self.unit}
 
 
 def _positive_low(low, high):
@@ -151,7 +153,8 @@ class Problem:
             else:
                 low = _positive_low(low, high) if log_flag is None and high / max(low, 1e-300) > LOG_SPAN else low
             log_scale = log_flag if log_flag is not None else (low > 0 and high / low > LOG_SPAN)
-            self.coordinates.append(Coordinate(name, low, high, reference, log_scale, ratio))
+            self.coordinates.append(Coordinate(name, low, high, reference, log_scale, ratio,
+                                               unit=params[name].get("unit", "1") if name in params else "1"))
         if not self.coordinates and self.scale_target is None:
             fail(f"{where}: nothing to vary")
 

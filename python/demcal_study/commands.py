@@ -31,17 +31,23 @@ IN_MAKE = Tools(bin="$(BIN)", jobs="$(JOBS)", cache="$(CACHE)", python="$(PY)")
 
 def from_environment():
     """For the stages' own calls: plan.mk exports BIN, JOBS and CACHE to them; the defaults are the plan's."""
-    return Tools(bin=os.environ.get("BIN", "build/bin"), jobs=os.environ.get("JOBS", "2"),
-                 cache=os.environ.get("CACHE", "build/cache"), python=PYTHON)
+    bin_dir = os.environ.get("BIN", "build/bin")
+    # The cache sits beside the executables' folder (build/cache for build/bin), wherever the user stands.
+    return Tools(bin=bin_dir, jobs=os.environ.get("JOBS", "2"),
+                 cache=os.environ.get("CACHE", os.path.join(os.path.dirname(os.path.abspath(bin_dir)), "cache")),
+                 python=PYTHON)
 
 
 # The options of a design a study may give (study file: screening.design, surfaces[].design).
 DESIGN_OPTIONS = ("center", "alpha", "runs", "criterion", "blank", "levels")
 
 
-def doe(tools, design, space, out):
-    """demcal-doe: `design` ({"kind": ..., options}) over the parameter space file `space`, natural units."""
+def doe(tools, design, space, out, scene=None):
+    """demcal-doe: `design` ({"kind": ..., options}) over the parameter space file `space`, natural units
+    (held to `scene`'s physical bounds when given)."""
     args = [tools.program("demcal-doe"), design["kind"], "--space", space, "--out", out, "--quiet"]
+    if scene:
+        args += ["--scene", scene]
     for key in DESIGN_OPTIONS:
         if key in design:
             args += [f"--{key}", str(design[key])]
@@ -120,7 +126,7 @@ def verify(tools, solution, scene, space, verification, work, out, md=None, csv=
 
 def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=None, fixed=None, scale_parameter=None,
               check_resolution=None, check_tests=()):
-    """python -m demcal_study calibrate: the trust-region calibration (docs/calibration.md) of a
+    """python -m demcal_study calibrate: the trust-region calibration (docs/explanation/calibration_method.md) of a
     "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget)."""
     args = stage(tools, "calibrate", "--scene", scene)
     for key, value in targets.items():

@@ -12,7 +12,9 @@ def design(config_path, out_csv):
     cfg = load_json(config_path, "design config")
     os.makedirs(os.path.dirname(out_csv) or ".", exist_ok=True)
     raw = out_csv + ".tmp.csv"
-    if subprocess.run(commands.doe(commands.from_environment(), cfg["design"], cfg["space"], raw)).returncode != 0:
+    # With the scene: a design that would leave a parameter's physical bounds is refused, naming the fix.
+    if subprocess.run(commands.doe(commands.from_environment(), cfg["design"], cfg["space"], raw,
+                                   scene=cfg.get("scene"))).returncode != 0:
         fail(f"demcal-doe failed for {config_path}")
     with open(raw) as f:
         rows = list(csv.reader(f))

@@ -2,7 +2,8 @@
 
     python -m demcal_study export --solution SOLUTION.json --scene S.json --to pfc|yade|liggghts [--out FILE]
 
-The solution is any of demcal's (demcal-invert, make calibrate, a study): its `x` over the scene's defaults. For our
+The solution is any of demcal's (demcal-invert, make calibrate, a study), or the parameters.json a report writes
+beside itself: its `x` (or parameters) over the scene's defaults. For our
 DEM, each contact role's model parameters are evaluated from the scene's bindings (what demcal-dem describe lists)
 and written under the other program's names, SI units; for an external scene, its own parameters under their own
 names (they are that program's already). What does not carry over is said in the file, never silently dropped:
@@ -68,23 +69,30 @@ def contact_roles(description):
 
 # -- PFC2D 7 (contact model assignment table) ------------------------------------------------------------------
 def pfc_lines(role, model, p):
-    cmat = f"contact cmat default model {{model}} method deformability emod {p['modulus_pa']:.10g} kratio {p['kn_ks']:.10g}"
+    if model not in ("linear", "parallel_bond", "flat_joint", "contact_bond"):
+        return [f"# {role}: model {model} has no PFC counterpart in this exporter"]
+    if "modulus_pa" in p:
+        cmat = (f"contact cmat default model {{model}} method deformability emod {p['modulus_pa']:.10g} "
+                f"kratio {p['kn_ks']:.10g}")
+    else:  # linear springs given as stiffnesses
+        cmat = f"contact cmat default model {{model}} property kn {p['kn_n_m']:.10g} ks {p['ks_n_m']:.10g}"
     notes = [f"# {k} = {v:.10g} Pa: PFC has no property for a strength's spread; draw per contact yourself"
              for k, v in sorted(p.items()) if k.endswith("_std_pa") and v > 0]
+    rmul = p.get("radius_multiplier", 1.0)
     if model == "linear":
         cmd = cmat.format(model="linear") + f" property fric {p['friction']:.10g}"
     elif model == "parallel_bond":
         cmd = (cmat.format(model="linearpbond") +
                f" pb_deformability emod {p['bond_modulus_pa']:.10g} kratio {p['bond_kn_ks']:.10g}"
                f" property fric {p['friction']:.10g} pb_ten {p['tensile_strength_pa']:.10g}"
-               f" pb_coh {p['shear_strength_pa']:.10g} pb_fa 0")
+               f" pb_coh {p['shear_strength_pa']:.10g} pb_fa 0 pb_rmul {rmul:.10g}")
     elif model == "flat_joint":
         cmd = (f"contact cmat default model flatjoint method deformability emod {p['joint_modulus_pa']:.10g}"
                f" kratio {p['joint_kn_ks']:.10g} property fj_ten {p['tensile_strength_pa']:.10g}"
                f" fj_coh {p['cohesion_pa']:.10g} fj_fa {p['friction_angle_deg']:.10g}"
-               f" fj_fric {p['joint_friction']:.10g} fj_nr {int(p.get('elements', 2))}")
+               f" fj_fric {p['joint_friction']:.10g} fj_nr {int(p.get('elements', 2))} fj_rmul {rmul:.10g}")
         notes.append(f"# contacts that form later (unjoined) take the linear part: emod {p['modulus_pa']:.10g}, "
-                     f"krat {p['kn_ks']:.10g}, fric {p['friction']:.10g}")
+                     f"kratio {p['kn_ks']:.10g}, fric {p['friction']:.10g}")
     elif model == "contact_bond":
         cmd = cmat.format(model="linearcbond") + f" property fric {p['friction']:.10g}"
         # PFC multiplies cb_strength's stresses by the contact area 2 min(R) t, as our contact bond does.
@@ -92,8 +100,6 @@ def pfc_lines(role, model, p):
                      "forces cb_tenf and cb_shearf with the contact area 2 min(R) t, as demcal does:")
         notes.append(f"# it.command(\"contact method cb_strength tensile {p['tensile_strength_pa']:.10g} "
                      f"shear {p['shear_strength_pa']:.10g}\")")
-    else:
-        return [f"# {role}: model {model} has no PFC counterpart in this exporter"]
     return [f"# {role}: {model}"] + notes + [f"it.command(\"{cmd}\")"]
 
 
@@ -119,7 +125,8 @@ def yade_lines(role, model, p):
     else:
         return [f"# {role}: model {model} has no YADE counterpart in this exporter"]
     fields = {k: v for k, v in base.items() if v is not None}
-    lines.append(f"{role.replace('-', '_')} = dict(kind=\"{kind}\", " +
+    name = "".join(c if c.isalnum() else "_" for c in role)  # a Python name: "brazilian.disk-disk" -> brazilian_disk_disk
+    lines.append(f"{name} = dict(kind=\"{kind}\", " +
                  ", ".join(f"{k}={v!r}" for k, v in fields.items()) + ")")
     return lines
 
@@ -132,14 +139,18 @@ def liggghts_lines(role, model, p):
     if model != "linear":
         lines.append("# LIGGGHTS-PUBLIC has no bonds: only the contact's stiffness and friction carry over")
     # Hertz-Mindlin's ks / kn = 2 (1 - nu) / (2 - nu), so nu = (2 - 2 r) / (2 - r) with r = ks / kn.
+    if "modulus_pa" not in p:
+        return lines + ["# springs given as stiffnesses (kn_n_m, ks_n_m): no Young's modulus to carry over"]
     r = 1.0 / p["kn_ks"]
     nu = (2 - 2 * r) / (2 - r)
-    lines.append(f"fix m1 all property/global youngsModulus peratomtype {p['modulus_pa']:.10g}")
+    # Fix ids named after the role: several roles (a test list) must not redefine one another's fixes.
+    tag = "".join(c if c.isalnum() else "_" for c in role)
+    lines.append(f"fix m1_{tag} all property/global youngsModulus peratomtype {p['modulus_pa']:.10g}")
     if 0 <= nu < 0.5:
-        lines.append(f"fix m2 all property/global poissonsRatio peratomtype {nu:.10g}")
+        lines.append(f"fix m2_{tag} all property/global poissonsRatio peratomtype {nu:.10g}")
     else:
         lines.append(f"# kn/ks = {p['kn_ks']:.10g} has no Hertz-Mindlin Poisson's ratio in [0, 0.5): choose one")
-    lines.append(f"fix m4 all property/global coefficientFriction peratomtypepair 1 {p['friction']:.10g}")
+    lines.append(f"fix m4_{tag} all property/global coefficientFriction peratomtypepair 1 {p['friction']:.10g}")
     return lines
 
 
@@ -151,7 +162,7 @@ HEADERS = {
             "import itasca as it"],
     "yade": ["# YADE material properties (Python dicts: O.materials.append(CohFrictMat(**{k: v for k, v in d.items()",
              "# if k != 'kind'})) ). SI units. CAUTION: our DEM is 2D (disks, unit thickness), YADE 3D (spheres): the",
-             "# same numbers make another material; repeat the calibration in YADE (docs/external.md)."],
+             "# same numbers make another material; repeat the calibration in YADE (docs/howto/own_simulator.md)."],
     "liggghts": ["# LIGGGHTS fix property/global lines (one atom type). SI units. CAUTION: our DEM is 2D with linear",
                  "# springs, LIGGGHTS 3D Hertz-Mindlin: the same numbers make another material; repeat the calibration."],
 }
@@ -182,10 +193,25 @@ def export_text(description, solution, to, where="export"):
     return "\n".join(lines) + "\n"
 
 
-def export(args):
-    solution = load_json(args.solution, "solution")
+def as_solution(solution, where):
+    """A solution's `x`, from any of demcal's solutions or from a report's parameters.json ({"parameters": {name:
+    {"value", "unit", ...}}})."""
+    if isinstance(solution, dict) and "x" not in solution and isinstance(solution.get("parameters"), dict):
+        x = {}
+        for name, entry in solution["parameters"].items():
+            value = entry.get("value") if isinstance(entry, dict) else entry
+            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+                fail(f"{where}: parameters.{name}: value must be a finite number")
+            x[name] = float(value)
+        return {"x": x}
     if not isinstance(solution, dict) or not isinstance(solution.get("x"), dict):
-        fail(f"{args.solution}: x: missing (the calibrated parameters, as demcal-invert and make calibrate write them)")
+        fail(f"{where}: x: missing (the calibrated parameters, as demcal-invert and make calibrate write them, or a "
+             "report's parameters.json)")
+    return solution
+
+
+def export(args):
+    solution = as_solution(load_json(args.solution, "solution"), args.solution)
     text = export_text(executables.describe(args.scene), solution, args.to, where=args.solution)
     if args.out:
         os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)

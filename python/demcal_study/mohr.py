@@ -93,29 +93,31 @@ def mohr_png(label, points, out_png):
 
 
 def _mean_sd(values):
+    from .report_text import num
     if not values:
         return "-"
     m = sum(values) / len(values)
     if len(values) < 2:
-        return f"{m:.4g}"
+        return num(m)
     sd = math.sqrt(sum((v - m) ** 2 for v in values) / (len(values) - 1))
-    return f"{m:.4g} (SD {sd:.2g})"
+    return f"{num(m)} (SD {num(sd)})"
 
 
 def mohr_section(runs_csv, out_dir, heading="##", png_prefix="mohr"):
     """The report's Markdown for every biaxial series among the runs: a table of the mean peaks, the envelope of
     the means beside the mean of the per-run envelopes, and the figure (mohr_LABEL.png in out_dir)."""
     import os
+    from .report_text import md, num
     means, envelope = series_means(runs_csv)
     lines = []
     for label, points in sorted(means.items()):
-        lines += [f"{heading} Mohr circles{' of ' + label if label else ''}", "",
+        lines += [f"{heading} Mohr circles{' of ' + md(label) if label else ''}", "",
                   "| confinement | mean sigma_3 MPa | mean sigma_1 MPa | runs |", "|---|---|---|---|"]
-        lines += [f"| {k} | {s3:.4g} | {s1:.4g} | {n} |" for k, s3, s1, n in points]
+        lines += [f"| {k} | {num(s3)} | {num(s1)} | {n} |" for k, s3, s1, n in points]
         line = envelope_line(points)
         per_run = envelope[label]
         lines += ["", "Envelope through the mean peaks: " +
-                  (f"c {line[2]:.4g} MPa, phi {line[3]:.2f} deg" if line else "none (no positive slope)") +
+                  (f"c {num(line[2])} MPa, phi {num(line[3])} deg" if line else "none (no positive slope)") +
                   f"; per run (mean, SD): c_MPa {_mean_sd(per_run['c_MPa'])}, phi_deg {_mean_sd(per_run['phi_deg'])}"
                   + (f", Hoek-Brown m_i {_mean_sd(per_run['hb_m_i'])}" if per_run["hb_m_i"] else "") + ".", ""]
         png = f"{png_prefix}{'_' + label if label else ''}.png"

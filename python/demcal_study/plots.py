@@ -4,6 +4,9 @@ figure, else why not (the report then leaves the figure out)."""
 import csv
 
 
+NO_CURVES = "(no curves stored)"  # curves_png's answer when no run stored a curve: a report then leaves the section out
+
+
 def pyplot():
     import matplotlib
     matplotlib.use("Agg")
@@ -19,7 +22,7 @@ def curve_sets(group):
         if key.startswith("curve_") and key.endswith("axial_strain"):
             prefix = key[len("curve_"):-len("axial_strain")]
             stress = "curve_" + prefix + "stress_MPa"
-            if stress in group:
+            if stress in group and len(group[key]) > 0 and len(group[stress]) > 0:  # an external run may store none
                 out[prefix.rstrip(".")] = (group[key][:], group[stress][:])
     return out
 
@@ -42,6 +45,12 @@ def pieces(strain, stress):
 def curves_png(runs_h5, out_png):
     try:
         import h5py
+    except ImportError as e:
+        return f"(no curve plot: {e})"
+    with h5py.File(runs_h5, "r") as f:
+        if "points" not in f or not any(curve_sets(f["points"][name]) for name in f["points"]):
+            return NO_CURVES
+    try:
         plt = pyplot()
     except ImportError as e:
         return f"(no curve plot: {e})"
@@ -50,7 +59,7 @@ def curves_png(runs_h5, out_png):
         deviatoric = {label for name in f["points"] for label in runs[name] if confined(f["points"][name], label)}
     labels = sorted({label for sets in runs.values() for label in sets})
     if not labels:
-        return "(no curves stored)"
+        return NO_CURVES
     fig, axes = plt.subplots(1, len(labels), figsize=(6 * len(labels), 4), squeeze=False)
     for ax, label in zip(axes[0], labels):
         for name, sets in runs.items():

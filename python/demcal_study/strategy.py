@@ -1,6 +1,6 @@
 """The shapes a study file takes, read from its fields: surrogates fitted on designs (the default), the DEM in the
 loop ("strategy": "dem_in_the_loop", a `factors` list instead of surfaces), the trust region of `make calibrate`
-("strategy": "trust_region": targets, a budget, optionally a space; docs/calibration.md), or a screening alone (a
+("strategy": "trust_region": targets, a budget, optionally a space; docs/explanation/calibration_method.md), or a screening alone (a
 `screening` and no surfaces: its range analysis and ANOVA are the result)."""
 
 # Fields that mean nothing without an inversion, so a screening alone refuses them.

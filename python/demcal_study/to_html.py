@@ -25,6 +25,7 @@ def inline_images(md, base):
 
 
 def to_html(md, base):
-    body = markdown.markdown(inline_images(md, base), extensions=["tables"])
+    # fenced_code: the final parameter set is one ```text block, copyable as it stands.
+    body = markdown.markdown(inline_images(md, base), extensions=["tables", "fenced_code"])
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>demcal report</title><style>{STYLE}</style>"
             f"</head><body>\n{body}\n</body></html>\n")

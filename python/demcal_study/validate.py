@@ -119,7 +119,7 @@ def check_strategy_fields(study, where):
         for key in strategy.NOT_TRUST_REGION:
             if key in study:
                 fail(f"{where}: \"{key}\" does not apply to strategy trust_region (it chooses its own designs; "
-                     "docs/calibration.md)")
+                     "docs/explanation/calibration_method.md)")
         return
     if strategy.screening_only(study):
         for key in strategy.CALIBRATION_ONLY:

@@ -1,4 +1,5 @@
 """Shared by the study layer's tests: the package on sys.path, the source tree, the built executables."""
+import json
 import os
 import subprocess
 import sys
@@ -24,3 +25,27 @@ def run_study_layer(args, bin_dir="", cwd=REPO):
     env = dict(os.environ, PYTHONPATH=PYTHON_DIR, BIN=bin_dir or os.path.join(REPO, "no-executables-needed"))
     return subprocess.run([sys.executable, "-m", "demcal_study"] + args, cwd=cwd, env=env,
                           capture_output=True, text=True)
+
+
+def fake_describing_bin(folder, description, fail_on=None):
+    """A BIN folder whose demcal-dem only answers `describe` with `description` (for the checks a command makes
+    before it runs anything: no build needed); with `fail_on` {path: message}, describing that scene or space fails
+    as the real one does (exit 2, one line)."""
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "description.json"), "w") as f:
+        json.dump({"description": description, "fail_on": fail_on or {}}, f)
+    program = os.path.join(folder, "demcal-dem")
+    with open(program, "w") as f:
+        f.write(f"""#!{sys.executable}
+import json, os, sys
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "description.json")) as f:
+    stored = json.load(f)
+if sys.argv[1:2] != ["describe"]:
+    sys.exit("demcal-dem: error: only describe is faked here")
+for path, message in stored["fail_on"].items():
+    if path in sys.argv:
+        sys.exit("demcal-dem: error: " + message)
+print(json.dumps(stored["description"]))
+""")
+    os.chmod(program, 0o755)
+    return folder

@@ -175,7 +175,9 @@ def test_check_tests_run_at_the_verified_solution_on_fresh_seeds_apart_from_the_
     assert solution["dem_runs"] == fake["points"] + fake["seeds"]  # the check's runs are not in the budget
     report(out)
     md = open(os.path.join(out, "report.md")).read()
-    assert "## Check 1: `biaxial.json` at the solution (not a target)" in md and "| phi_deg | 40 | 1.5 | 4 |" in md
+    # The check's scene as every path of a report: relative to the report's folder.
+    shown = os.path.relpath(os.path.abspath("biaxial.json"), out)
+    assert f"## Check 1: `{shown}` at the solution (not a target)" in md and "| phi_deg | 40 | 1.5 | 4 |" in md
 
 
 def test_problem_codes_wide_ranges_on_a_log_scale_and_fixes_what_shapes_the_specimen():
@@ -268,8 +270,10 @@ def test_local_fit_recovers_a_linear_response_and_tells_noise_from_effects():
     (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa=6.5", "--tolerance", "2"], "--tolerance: 2.0"),
 ])
 def test_bad_command_lines_get_one_line_errors(args, message, tmp_path):
-    from conftest import run_study_layer
-    done = run_study_layer(["calibrate", "--out-root", str(tmp_path)] + args)
+    from conftest import fake_describing_bin, run_study_layer
+    # demcal-dem describes the scene before anything runs: a stand-in answers for it (no build needed).
+    done = run_study_layer(["calibrate", "--out-root", str(tmp_path)] + args,
+                           fake_describing_bin(str(tmp_path / "bin"), DESCRIPTION))
     assert done.returncode == 2, done.stderr
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and message in lines[0], done.stderr
@@ -325,7 +329,7 @@ def test_a_scale_beyond_the_bounds_at_the_first_solution_is_searched_on_with_the
     # E = Ec (0.4 + 0.4 / kn_ks) (0.5 + mu), nu as before: nu = 0.2 fixes kn_ks = e, so E / Ec = 0.547 (0.5 + mu).
     # The first solution keeps mu near its reference 0.5 and wants Ec = 70 / 0.547 = 128 GPa, above the bound
     # of 100 GPa; at mu = 0.78 the bound itself gives 70 GPa. That was called unreachable (ldb_granite,
-    # docs/calibration_benchmark.md) while the old global strategy met it.
+    # docs/explanation/calibration_benchmark.md) while the old global strategy met it.
     stiffer_with_friction(monkeypatch)
     code, solution, _ = run_calibration(tmp_path, bin_dir, {"E_GPa": 70.0, "nu": 0.2}, budget=80)
     assert code == calibrate.EXIT_MET, solution["why"]
@@ -340,7 +344,7 @@ def test_two_parameters_that_hold_the_scale_together_are_both_moved_to_free_it(f
     # As above, but two more stress-like parameters (a strength's two standard deviations, say) that no output
     # depends on stand at nearly the same ratio to Ec, and their bound (1e8 Pa) caps the scale near 2.5, Ec at
     # 50 GPa: E = 70 GPa needs both lowered together. On ldb_granite, with the slope over the hard minimum, the
-    # search stalled on the bounds of such a pair (docs/calibration_benchmark.md); this smooth stand-in meets the
+    # search stalled on the bounds of such a pair (docs/explanation/calibration_benchmark.md); this smooth stand-in meets the
     # target with the hard minimum too, so the test holds the case, not the stall.
     described = with_two_deviations(39.8e6, 40e6)
     monkeypatch.setattr(executables, "describe", lambda scene, space=None: described)
@@ -503,7 +507,7 @@ def test_a_point_computed_again_in_its_last_digits_reuses_the_stored_one(tmp_pat
 
 def test_the_offset_is_a_trimmed_mean_that_one_far_seed_does_not_move():
     # yineng_siltstone's second verification: nu of one seed at 2.7x the others moved a plain mean's correction by
-    # 14 % of the target (docs/calibration_benchmark.md).
+    # 14 % of the target (docs/explanation/calibration_benchmark.md).
     rng = np.random.default_rng(7)
     clean = rng.normal(0.0, 0.012, size=(19, 2))
     far = np.vstack([clean, [[0.0, 0.33]]])

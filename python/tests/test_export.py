@@ -24,7 +24,7 @@ def test_pfc_gets_the_bound_values_under_its_own_keywords():
     text = export.export_text(PB_SCENE, SOLUTION, "pfc")
     assert "import itasca as it" in text
     assert ('it.command("contact cmat default model linearpbond method deformability emod 2.05e+10 kratio 1.45 '
-            'pb_deformability emod 2.05e+10 kratio 1.45 property fric 0.8 pb_ten 12250000 pb_coh 30000000 pb_fa 0")'
+            'pb_deformability emod 2.05e+10 kratio 1.45 property fric 0.8 pb_ten 12250000 pb_coh 30000000 pb_fa 0 pb_rmul 1")'
             in text)
     assert "model linear method deformability emod 2.05e+10 kratio 1.45 property fric 0\")" in text
 
@@ -78,3 +78,30 @@ def test_bad_requests_say_what_is_wrong():
         export.export_text(PB_SCENE, SOLUTION, "edem")
     with pytest.raises(StudyError, match="x.Ec_Pa is not a parameter of ucs_rock_pb.json"):
         export.export_text(PB_SCENE, {"x": {"Ec_Pa": 1}}, "pfc")
+
+
+HERTZ_LIST = {
+    "scene": "rock_list.json", "test": "list",
+    "parameters": {"Ec_GPa": {"value": 16}, "kn_ks": {"value": 1.45}, "mu": {"value": 0.5}, "G_Pa": {"value": 3e7}},
+    "contacts": {
+        "ucs": {"disk-disk": {"model": "parallel_bond", "parameters": {
+            "modulus_pa": "Ec_GPa*1e9", "kn_ks": "kn_ks", "friction": "mu", "bond_modulus_pa": "Ec_GPa*1e9",
+            "bond_kn_ks": "kn_ks", "tensile_strength_pa": 1e7, "shear_strength_pa": 3e7, "radius_multiplier": 0.8}}},
+        "heap": {"particle-particle": {"model": "hertz_mindlin", "parameters": {
+            "shear_modulus_pa": "G_Pa", "poisson": 0.3, "restitution": 0.5, "friction": "mu"}},
+                 "disk-platen": {"model": "linear", "parameters": {"kn_n_m": 1e8, "ks_n_m": 5e7, "friction": 0.2}}}},
+}
+
+
+def test_every_exporter_takes_a_test_list_with_models_it_cannot_translate():
+    # A Hertz contact has no counterpart: said, not a traceback; stiffness-given springs go to PFC's kn and ks.
+    pfc = export.export_text(HERTZ_LIST, {"x": {}}, "pfc")
+    assert "# heap.particle-particle: model hertz_mindlin has no PFC counterpart in this exporter" in pfc
+    assert 'model linear property kn 100000000 ks 50000000 property fric 0.2")' in pfc
+    assert "pb_rmul 0.8" in pfc  # the bond radius multiplier carries over
+    yade = export.export_text(HERTZ_LIST, {"x": {}}, "yade")
+    compile(yade, "yade.py", "exec")  # labelled roles are Python names
+    assert "ucs_disk_disk = dict(" in yade
+    ligggghts = export.export_text(HERTZ_LIST, {"x": {}}, "liggghts")
+    ids = [l.split()[1] for l in ligggghts.splitlines() if l.startswith("fix ")]
+    assert len(ids) == len(set(ids)) and "m1_ucs_disk_disk" in ids  # no fix id defined twice

@@ -7,7 +7,7 @@ import sys
 
 params_path, out_path = sys.argv[1], sys.argv[2]
 request = json.load(open(params_path))
-args = ["lmp_auto", "-in", "in.uniaxial.template", "-var", "seed", str(request["seed"])]  # FILL IN: your executable
+args = ["liggghts", "-in", "in.uniaxial.template", "-var", "seed", str(request["seed"])]  # Debian's liggghts 3.8 (/usr/bin/liggghts)
 for name, value in request["parameters"].items():
     args += ["-var", name, repr(value)]
 done = subprocess.run(args, capture_output=True, text=True)
