@@ -56,9 +56,11 @@ void claim_result_files(const dem::SceneSet& scene, const BatchOptions& options)
     } catch (const json::exception&) {
       throw Error(path + ": not valid JSON (the record of which scene OUT belongs to); move OUT aside or repair it");
     }
-    const std::string name = stored.value("name", std::string());
-    if (name != scene.name())
-      throw Error(refusal(options, "scene \"" + name + "\" from " + stored.value("scene", std::string("?"))));
+    const std::string name = stored.value("name", std::string()), file = stored.value("scene", std::string("?"));
+    // A scene without a name of its own ("scene", or "tests" for a list) is told apart by its file.
+    const bool unnamed = name == "scene" || name == "tests";
+    if (name != scene.name() || (unnamed && normal(file) != normal(options.scene_path)))
+      throw Error(refusal(options, "scene \"" + name + "\" from " + file));
     return;
   }
   const std::string named = scene_named_in(options.out_path);

@@ -143,4 +143,8 @@ TEST(TwoDisks, DirectStiffnessIsTheSameForEveryPairWhateverTheRadii) {
                demcal::Error);
   EXPECT_THROW(ContactModelRegistry::instance().create("linear", {{"kn_n_m", 3e8}, {"friction", 0.5}}, "test"),
                demcal::Error);
+  // A shear stiffness beside the modulus form was dropped without a word.
+  EXPECT_THROW(ContactModelRegistry::instance().create(
+                   "linear", {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"ks_n_m", 1e8}, {"friction", 0.5}}, "test"),
+               demcal::Error);
 }

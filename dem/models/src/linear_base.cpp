@@ -19,6 +19,8 @@ LinearBase::LinearBase(const nlohmann::json& p, const std::string& where, bool d
     kn_ks_ = kn_n_m_ / ks_n_m_;
     return;
   }
+  if (direct_stiffness && p.contains("ks_n_m"))
+    throw Error(where + ": ks_n_m goes with kn_n_m (give both, or modulus_pa and kn_ks)");
   modulus_pa_ = positive(p, "modulus_pa", where);
   kn_ks_ = positive(p, "kn_ks", where);
 }
