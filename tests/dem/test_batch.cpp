@@ -300,6 +300,16 @@ TEST(DemcalDemBatch, AnotherScenesResultsAreRefusedOrMovedAsideNeverOverwritten)
   EXPECT_TRUE(std::ifstream(aside + "/owned.h5").good());
   EXPECT_NE(read_text(out + ".points/scene.owner").find("\"ucs_other\""), std::string::npos);
   EXPECT_EQ(batch_into(other, design, out).code, 0);  // its own results: resumes
+
+  // Scenes without a name of their own are told apart by their files.
+  const std::string unnamed_a = temp("unnamed_a.json"), unnamed_b = temp("unnamed_b.json"), shared = temp("unnamed.h5");
+  std::string plain = read_text(kScene);
+  plain.erase(plain.find("\"name\": \"ucs_small\","), 20);
+  std::ofstream(unnamed_a) << plain;
+  std::ofstream(unnamed_b) << plain;
+  ASSERT_EQ(batch_into(unnamed_a, design, shared).code, 0);
+  EXPECT_NE(batch_into(unnamed_b, design, shared).err.find("holds the results of another scene (scene \"scene\""),
+            std::string::npos);
 }
 
 // A failed point says so on stderr as it happens, with its reason, even with

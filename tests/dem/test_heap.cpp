@@ -183,13 +183,15 @@ TEST(HeapScene, ACohesiveHeapReportsItsWorkOfAdhesionAndCohesionNumber) {
 }
 
 TEST(HeapScene, SmoothDisksSpreadFlatterThanRoughClumps) {
-  // Disks at mu 0.3 leave a low mound (7 degrees when measured); clumps at mu
-  // 0.8 stand at about 34. (Disks at mu 0.05 run off the plate: no flank to fit.)
+  // Disks at mu 0.3 leave a low mound (7.0, 1.7 and 9.7 degrees over seeds
+  // 1-3); clumps at mu 0.8 stand at 16.6, 20.6 and 18.6 (at a time step too
+  // long for the tangential dashpots they stood at 34). (Disks at mu 0.05 run
+  // off the plate: no flank to fit.)
   const TestResult smooth = run(small_heap(0.3, 1.0));
   const TestResult rough = run(small_heap(0.8, 1.3));
   ASSERT_TRUE(smooth.ok) << smooth.reason;
   ASSERT_TRUE(rough.ok) << rough.reason;
-  EXPECT_LT(smooth.macro.at("aor_deg"), rough.macro.at("aor_deg") - 15.0);
+  EXPECT_LT(smooth.macro.at("aor_deg"), rough.macro.at("aor_deg") - 5.0);
   EXPECT_LT(smooth.macro.at("heap_height_m"), rough.macro.at("heap_height_m"));
   const TestResult runs_off = run(small_heap(0.05, 1.0));
   ASSERT_FALSE(runs_off.ok);

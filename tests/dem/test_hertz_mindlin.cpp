@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
@@ -78,6 +79,64 @@ TEST(HertzMindlin, HeadOnImpactReturnsTheSetRestitution) {
       const double rebound = world.bodies.vx[1] - world.bodies.vx[0];
       EXPECT_NEAR(rebound / speed, e, 0.01 * e) << "e " << e << ", speed " << speed;
       EXPECT_NEAR(world.bodies.vx[0] + world.bodies.vx[1], 0.0, 1e-12);  // momentum
+    }
+  }
+}
+
+// The heap scene's step returns the restitution it sets. An impact of a few
+// steps does not: at the default safety factor (0.8, dashpots counted) two
+// of data/scenes/heap_powder.json's particles set to 0.3 rebound at 0.33 at
+// 0.3 m/s (12 steps before the dashpots were counted: 0.284 for 0.3, 0.080
+// for 0.1). The scene's run.safety_factor gives particle-particle and
+// particle-wall impacts of 0.1-1 m/s within 3 % for e >= 0.3; e = 0.1 returns
+// 3-6 % low there and needs a smaller factor (docs/explanation/heap_test.md).
+TEST(HertzMindlin, TheHeapScenesStepReturnsTheSetRestitution) {
+  std::ifstream file(std::string(DEMCAL_SOURCE_DIR) + "/data/scenes/heap_powder.json");
+  const nlohmann::json scene = nlohmann::json::parse(file);
+  const double safety = scene.at("run").at("safety_factor"), rho = scene.at("particles").at("density_kg_m3");
+  const double r = 0.5 * (scene.at("particles").at("radius_min_m").get<double>() +
+                          scene.at("particles").at("radius_max_m").get<double>());
+  const double g = scene.at("parameters").at("shear_modulus_Pa").at("value");
+  const double nu = scene.at("contacts").at("particle-particle").at("parameters").at("poisson");
+  const double thickness = 2 * r;  // the scene's: a mean diameter
+  for (double e : {0.3, 0.5, 0.9}) {
+    for (double speed : {0.1, 0.3, 1.0}) {
+      WorldSettings settings;
+      settings.damping = 0.0;
+      settings.thickness_m = thickness;
+      settings.safety_factor = safety;
+      World pair(settings);
+      nlohmann::json p = {{"shear_modulus_pa", g}, {"poisson", nu}, {"restitution", e}, {"friction", 0.5}};
+      pair.assign(0, 0, pair.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test")));
+      pair.bodies.add_disk(0.0, 0.0, r, rho, thickness, 0);
+      pair.bodies.add_disk(2 * r + 1e-7, 0.0, r, rho, thickness, 0);
+      pair.bodies.vx[0] = speed / 2;
+      pair.bodies.vx[1] = -speed / 2;
+      run_until_apart(pair);
+      EXPECT_NEAR((pair.bodies.vx[1] - pair.bodies.vx[0]) / speed, e, 0.03 * e) << "particles, e " << e << ", " << speed
+                                                                                 << " m/s, dt " << pair.dt_s();
+      // Against the scene's steel walls.
+      World wall(settings);
+      p["shear_modulus_2_pa"] = 7.9e10;
+      p["poisson_2"] = 0.3;
+      wall.assign(0, 1, wall.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test")));
+      wall.bodies.add_disk(0.0, r + 1e-7, r, rho, thickness, 0);
+      wall.bodies.vy[0] = -speed;
+      Wall floor;
+      floor.x0 = -1;
+      floor.x1 = 1;
+      floor.group = 1;
+      floor.inward_ny = 1;
+      wall.walls.push_back(floor);
+      bool touched = false;
+      for (int s = 0; s < 1000000; ++s) {
+        wall.step();
+        if (wall.walls[0].fy != 0.0)
+          touched = true;
+        else if (touched)
+          break;
+      }
+      EXPECT_NEAR(wall.bodies.vy[0] / speed, e, 0.03 * e) << "wall, e " << e << ", " << speed << " m/s";
     }
   }
 }

@@ -109,14 +109,16 @@ TEST(NuGauge, FitsTheDisksOfTheMiddleThreeFifthsOfTheHeight) {
   // Disk centres every 5 mm up a 100 mm specimen whose bottom platen is at
   // y = -2 mm: the band [20, 80] mm above it holds those at 23, 28, ..., 78 mm.
   const double height_m = 0.1, bottom_m = kNuGaugeBottomFraction * height_m, top_m = kNuGaugeTopFraction * height_m;
-  std::vector<double> y;
-  for (int k = 0; k <= 20; ++k) y.push_back(-2e-3 + 1e-3 * (5 * k - 2));
+  Bodies b;
+  for (int k = 0; k <= 20; ++k) b.add_disk(0, -2e-3 + 1e-3 * (5 * k - 2), 1e-3, 2000, 1, 0);
   std::vector<std::size_t> expected;
   for (std::size_t k = 5; k <= 16; ++k) expected.push_back(k);
-  EXPECT_EQ(disks_in_band(y, -2e-3, bottom_m, top_m), expected);
-  // Centres on the band's ends count.
-  EXPECT_EQ(disks_in_band({bottom_m, top_m, 0.5 * bottom_m, 1.01 * top_m}, 0.0, bottom_m, top_m),
-            (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(disks_in_band(b, -2e-3, bottom_m, top_m), expected);
+  // Centres on the band's ends count; the band comes in the order of the disks' ids, not of their storage.
+  Bodies ends;
+  for (auto [y, id] : std::vector<std::pair<double, int>>{{top_m, 5}, {0.5 * bottom_m, 2}, {bottom_m, 3}, {1.01 * top_m, 0}})
+    ends.add_disk(0, y, 1e-3, 2000, 1, 0, id);
+  EXPECT_EQ(disks_in_band(ends, 0.0, bottom_m, top_m), (std::vector<std::size_t>{2, 0}));
   EXPECT_DOUBLE_EQ(kNuGaugeTopFraction - kNuGaugeBottomFraction, 0.6);
   EXPECT_DOUBLE_EQ(kNuGaugeBottomFraction, 1.0 - kNuGaugeTopFraction);  // symmetric about mid-height
 }

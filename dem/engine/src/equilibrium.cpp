@@ -33,12 +33,14 @@ double force_ratio(const World& world) {
   const double gx = world.settings().gravity_x_m_s2, gy = world.settings().gravity_y_m_s2;
   double unbalanced = 0;
   std::size_t free_bodies = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
+  // In the order of the bodies' ids: the bits do not depend on how they are stored.
+  for (std::size_t i : disks_by_id(b))
     if (b.clump[i] < 0) {
       unbalanced += std::hypot(b.fx[i] + b.mass[i] * gx, b.fy[i] + b.mass[i] * gy);
       ++free_bodies;
     }
-  for (const Clump& clump : world.clumps()) {
+  for (std::size_t c : clumps_by_id(world)) {
+    const Clump& clump = world.clumps()[c];
     double fx = clump.mass * gx, fy = clump.mass * gy;
     for (std::size_t i : clump.members) {
       fx += b.fx[i];

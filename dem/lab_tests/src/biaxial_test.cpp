@@ -146,7 +146,7 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
   for (std::size_t k = 0; k < confinements.size(); ++k) {
     const std::string n = std::to_string(k + 1);
     std::map<std::string, double> info;
-    World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &info, true);
+    World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &info, true, nullptr, &options);
     if (k == 0) series.specimen_info = info;
     RunOptions own = options;  // each specimen's snapshots in a folder of its own
     if (!options.vtk_dir.empty()) {

@@ -49,7 +49,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
   std::map<std::string, double> specimen_info;
   const std::pair<double, double> flats{cy - flat, cy + flat};
   World world = make_platen_world(scene, parameters, square, options.seed, &keep, &specimen_info, false,
-                                  on_flats ? &flats : nullptr);
+                                  on_flats ? &flats : nullptr, &options);
   const double t = square.thickness_m;
   const double gap0 = world.walls[1].y0 - world.walls[0].y0;
 

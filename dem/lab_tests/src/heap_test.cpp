@@ -17,6 +17,7 @@
 #include "demcal/dem/cohesion_number.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
+#include "demcal/dem/run_settings.hpp"
 #include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
@@ -126,7 +127,8 @@ HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, do
 
   const nlohmann::json& r = scene.section("run");
   require_known_fields(r, {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
-                           "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "note"},
+                           "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters",
+                           "safety_factor", "note"},
                        origin + ": run");
   number("run", r, "max_time_s", s.max_time_s, false);
   number("run", r, "fill_time_s", s.fill_time_s, false);
@@ -137,6 +139,7 @@ HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, do
   number("run", r, "local_damping", s.local_damping, false);
   number("run", r, "max_wall_s", s.max_wall_s, false);
   number("run", r, "bin_width_diameters", s.bin_width_diameters, false);
+  number("run", r, "safety_factor", s.safety_factor, false);
 
   s.powder.validate((origin + ": particles").c_str());
   const std::string fw = origin + ": funnel";
@@ -169,6 +172,7 @@ HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, do
   if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(rw + ".local_damping must lie in [0, 1)");
   if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
   if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
+  if (!(s.safety_factor > 0 && s.safety_factor <= 1)) throw Error(rw + ".safety_factor must lie in (0, 1]");
   return s;
 }
 
@@ -198,7 +202,9 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
   WorldSettings settings;
   settings.thickness_m = s.thickness_m;
   settings.damping = s.local_damping;
+  settings.safety_factor = s.safety_factor;
   settings.gravity_y_m_s2 = -kGravity_m_s2;
+  apply_run_options(settings, options);
   World world(settings);
   bind_contact_models(world, scene, parameters);
   world.walls = {segment("base", -half_base, 0, half_base, 0),
@@ -215,7 +221,7 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
   const double fill_top = ho + s.fill_height_m, half_fill = half_out + s.fill_height_m / tan_a;
   const std::vector<double> region = {-half_out, ho, half_out, ho, half_fill, fill_top, -half_fill, fill_top};
   const std::vector<PowderParticle> particles = place_powder(s.powder, region, options.seed);
-  add_powder(world, particles, s.powder, s.thickness_m, kPowderGroup);
+  add_powder(world, particles, s.powder, s.thickness_m, kPowderGroup, options.particle_order_seed);
   world.refresh();
 
   TestResult result;

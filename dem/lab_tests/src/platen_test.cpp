@@ -1,5 +1,7 @@
 #include "demcal/dem/platen_test.hpp"
 
+#include "demcal/dem/run_settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/concrete_specimen.hpp"
 #include "demcal/dem/equilibrium.hpp"
+#include "demcal/dem/run_settings.hpp"
 #include "demcal/dem/vtk_writer.hpp"
 
 #include <sys/stat.h>
@@ -33,16 +36,19 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene) {
 
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep,
-                        std::map<std::string, double>* info, bool side_walls, const std::pair<double, double>* faces_y) {
+                        std::map<std::string, double>* info, bool side_walls, const std::pair<double, double>* faces_y,
+                        const RunOptions* options) {
   WorldSettings settings;
   settings.thickness_m = specimen.thickness_m;
   settings.density_scaling_dt_s = scene.loading().density_scaling_dt_s;
   settings.damping = scene.loading().local_damping;
+  settings.safety_factor = scene.loading().safety_factor;
+  if (options) apply_run_options(settings, *options);
   World world(settings);
   bind_contact_models(world, scene, parameters);
   world.bodies.reserve(specimen.size());
   double bottom_y = INFINITY, top_y = -INFINITY, left_x = INFINITY, right_x = -INFINITY, r_min = INFINITY;
-  for (std::size_t i = 0; i < specimen.size(); ++i) {
+  for (const std::size_t i : particle_order(specimen.size(), options ? options->particle_order_seed : 0)) {
     if (keep && !(*keep)[i]) continue;
     world.bodies.add_disk(specimen.x[i], specimen.y[i], specimen.radius[i], specimen.density_kg_m3,
                           specimen.thickness_m, kSpecimenGroup, static_cast<std::int64_t>(i));
@@ -225,7 +231,7 @@ bool LoadingMonitor::record(const World& world, const CurvePoint& point, TestRes
     // and sqrt(k) times faster when every stiffness and strength is k times
     // larger), but at slow platens also one bond's break before the peak (a
     // contact bond's spring energy F^2 / 2k can throw an edge disk at
-    // F / sqrt(k m), about 15 m/s on the sandstone: docs/fidelity.md). Neither
+    // F / sqrt(k m), about 15 m/s on the sandstone: docs/explanation/fidelity.md). Neither
     // ends the test: it goes on to its own end (the stress falling past the
     // peak, the strain limit), so the peak is the specimen's. Energy the
     // platens never put in is a numerical instability, and fast disks with no

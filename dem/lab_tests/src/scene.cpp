@@ -302,7 +302,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
                   "bond_gap_tolerance_m", "density_scaling_dt_s", "platen_start", "local_damping",
-                  "confining_stresses_MPa", "elastic_speedup", "speedup_until_utilisation"},
+                  "confining_stresses_MPa", "elastic_speedup", "speedup_until_utilisation", "safety_factor"},
               where);
     LoadingSpec& s = scene.loading_;
     s.platen_start = choice_field(l, "platen_start", {"vessel_faces", "outermost_disks"}, 0, where) == 0
@@ -315,6 +315,8 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     s.max_wall_s = number_field(l, "max_wall_s", s.max_wall_s, where);
     s.bond_gap_tolerance_m = number_field(l, "bond_gap_tolerance_m", s.bond_gap_tolerance_m, where);
     s.density_scaling_dt_s = number_field(l, "density_scaling_dt_s", s.density_scaling_dt_s, where);
+    s.safety_factor = number_field(l, "safety_factor", s.safety_factor, where);
+    if (!(s.safety_factor > 0 && s.safety_factor <= 1)) throw Error(where + ": safety_factor must lie in (0, 1]");
     if (s.density_scaling_dt_s < 0) throw Error(where + ": density_scaling_dt_s must be >= 0");
     s.local_damping = number_field(l, "local_damping", s.local_damping, where);
     if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(where + ": local_damping must lie in [0, 1)");

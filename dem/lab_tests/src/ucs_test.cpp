@@ -70,13 +70,14 @@ LateralStrainFit::LateralStrainFit(const std::vector<double>& x, std::vector<std
   if (!(sxx_ > 0)) throw Error("a lateral strain fit needs disks at two or more x positions");
 }
 
-std::vector<std::size_t> disks_in_band(const std::vector<double>& y, double y0_m, double bottom_m, double top_m) {
-  std::vector<std::size_t> ids;
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    const double height = y[i] - y0_m;
-    if (height >= bottom_m && height <= top_m) ids.push_back(i);
+std::vector<std::size_t> disks_in_band(const Bodies& b, double y0_m, double bottom_m, double top_m) {
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const double height = b.y[i] - y0_m;
+    if (height >= bottom_m && height <= top_m) indices.push_back(i);
   }
-  return ids;
+  std::sort(indices.begin(), indices.end(), [&](std::size_t i, std::size_t j) { return b.id[i] < b.id[j]; });
+  return indices;
 }
 
 double LateralStrainFit::strain(const std::vector<double>& x) const {
@@ -100,7 +101,7 @@ std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& cu
   // Tangents at the half-peak point, E and nu over the same window: a
   // least-squares slope over its neighbours, a tenth of the points to the
   // peak on each side. A twentieth scattered nu over seeds by 12 % on a weak
-  // sandstone where a tenth gives 9 % (20 seeds, docs/calibration.md), and a
+  // sandstone where a tenth gives 9 % (20 seeds, docs/explanation/calibration_method.md), and a
   // line through points set evenly about one point of a parabola still has
   // its slope there.
   const std::size_t window = std::max<std::size_t>(2, peak / 10);
@@ -130,15 +131,19 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   Specimen specimen = cached_specimen(spec, options.cache_dir);
 
   std::map<std::string, double> specimen_info;
-  World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &specimen_info);
+  World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &specimen_info, false, nullptr,
+                                  &options);
   const double W = specimen.width_m, H0 = world.walls[1].y0 - world.walls[0].y0;
 
   // Lateral strain from the outermost disks of the middle third of the height.
-  double r_max = *std::max_element(specimen.radius.begin(), specimen.radius.end());
+  // The gauges hold the world's indices of those disks in the order of their
+  // ids, so their sums do not depend on the order the disks are stored in.
+  const Bodies& b = world.bodies;
+  const double r_max = *std::max_element(b.radius.begin(), b.radius.end());
   std::vector<std::size_t> left, right;
-  for (std::size_t i : disks_in_band(specimen.y, world.walls[0].y0, H0 / 3, 2 * H0 / 3)) {
-    if (specimen.x[i] - specimen.radius[i] < 2 * r_max) left.push_back(i);
-    if (specimen.x[i] + specimen.radius[i] > W - 2 * r_max) right.push_back(i);
+  for (std::size_t i : disks_in_band(b, world.walls[0].y0, H0 / 3, 2 * H0 / 3)) {
+    if (b.x[i] - b.radius[i] < 2 * r_max) left.push_back(i);
+    if (b.x[i] + b.radius[i] > W - 2 * r_max) right.push_back(i);
   }
   if (left.empty() || right.empty()) throw Error("specimen too small to measure lateral strain");
   const double width0 = mean_x(world.bodies, right) - mean_x(world.bodies, left);
@@ -148,8 +153,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   // nu's tangent comes from every disk of the middle three fifths
   // (LateralStrainFit): over E's short window the two edge gauges scattered
   // 1.5-2x more from seed to seed, and the middle third alone 1.4-1.5x more.
-  const LateralStrainFit bulk_gauge(world.bodies.x, disks_in_band(specimen.y, world.walls[0].y0,
-                                                                   kNuGaugeBottomFraction * H0,
+  const LateralStrainFit bulk_gauge(world.bodies.x, disks_in_band(b, world.walls[0].y0, kNuGaugeBottomFraction * H0,
                                                                    kNuGaugeTopFraction * H0));
   std::vector<double> bulk_lateral_strain;
 

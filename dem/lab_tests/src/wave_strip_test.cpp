@@ -211,14 +211,15 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   const double W = specimen.width_m, H = specimen.height_m;
 
   TestResult result;
-  World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &result.specimen_info, true);
+  World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &result.specimen_info, true, nullptr,
+                                  &options);
   for (Wall& w : world.walls) w.vx = w.vy = 0;  // the vessel holds still
   Bodies& b = world.bodies;
   result.particles = b.size();
   const double r_max = *std::max_element(b.radius.begin(), b.radius.end());
   const double t = specimen.thickness_m;
   double mass = 0;
-  for (double m : b.mass) mass += m;
+  for (std::size_t i : disks_by_id(b)) mass += b.mass[i];
   const double rho = mass / (W * H * t);  // the equivalent continuum's (bulk) density
   const double c_p = s.p_speed_m_s(rho), c_s = s.s_speed_m_s(rho);
   result.specimen_info["bulk_density_kg_m3"] = rho;
@@ -247,6 +248,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
 
   // The walls' load passes to their disks; fixed sides hold theirs.
   auto boundary = std::make_unique<BoundaryForces>();
+  const std::vector<std::size_t> by_id = disks_by_id(b);
   for (std::size_t side = 0; side < 4; ++side) {
     std::vector<double> fx, fy, moment;
     world.wall_forces_on_disks(fx, fy, moment, side);
@@ -258,7 +260,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     const std::vector<double> width_m = dashpot_widths(b, touching, side, side < 2 ? W : H, spec.width);
     std::size_t count = 0;
     double covered_m = 0;
-    for (std::size_t i = 0; i < b.size(); ++i) {
+    for (std::size_t i : by_id) {  // the boundary's sums then do not depend on the disks' storage order
       if (!touching[i]) continue;
       ++count;
       covered_m += 2 * b.radius[i];
@@ -299,7 +301,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     if (spec.type == BoundaryType::viscous || spec.type == BoundaryType::input) {
       // What the dashpots stand for: the coverage with 2R, exactly 1 with tributary lengths.
       double dashpot_m = 0;
-      for (double w : width_m) dashpot_m += w;
+      for (std::size_t i : by_id) dashpot_m += width_m[i];
       result.specimen_info["dashpot_coverage_" + name] = dashpot_m / (side < 2 ? W : H);
     }
     world.walls[side].active = false;
@@ -341,7 +343,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     m.x_m = f[0] * W;
     m.y_m = f[1] * H;
     m.distance_m = distance_from_input(m.x_m, m.y_m);
-    for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t i : disks_by_id(b))
       if (std::hypot(b.x[i] - m.x_m, b.y[i] - m.y_m) <= radius && !b.fixed[i]) m.disks.push_back(i);
     if (m.disks.empty())
       throw Error(origin + ": monitors: no free disk within " + format_double(radius) + " m of point " + m.label +
@@ -506,9 +508,9 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   result.macro["kinetic_energy_end_J"] = world.kinetic_energy();
   // The static loads (gravity, the walls' forces the boundaries keep) balance at rest; over the run their work
   // nearly cancels, and what is neither absorbed nor still moving is strain energy left in the strip or
-  // energy the contacts dissipated by friction (docs/wave_strip.md).
+  // energy the contacts dissipated by friction (docs/explanation/wave_strip.md).
   double gravity_work = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
+  for (std::size_t i : disks_by_id(b))
     gravity_work += b.mass[i] * (world.settings().gravity_x_m_s2 * (b.x[i] - x_start[i]) +
                                  world.settings().gravity_y_m_s2 * (b.y[i] - y_start[i]));
   const double applied_work = forces.applied_work_j() - work_before_input;

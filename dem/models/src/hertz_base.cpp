@@ -110,6 +110,11 @@ void HertzBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, 
   rotational_nm_rad = st * arm_m * arm_m + rolling_.spring_nm_rad(sn, radius);
 }
 
+double HertzBase::max_damping_ratio() const {
+  const double tangential = std::sqrt(3.0) * 0.5 * damping_;  // damping_ = 2 sqrt(5/6) |beta|
+  return std::max(tangential, rolling_.type == RollingResistance::Type::Epsd ? rolling_.damping : 0.0);
+}
+
 double HertzBase::normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const {
   if (overlap_m <= 0) return 0.0;
   const double radius = c.column[kRadiusEff][k];

@@ -4,7 +4,7 @@
 // whose least force is the classic pull-off -1.5 pi w R*. Codes that write
 // the same law with a surface energy gamma mean gamma = w / 2 (LAMMPS: pull-off
 // 3 pi gamma R); EDEM documents 1.5 pi gamma R* with that law, so its gamma is
-// our w or off by two: convert with care (docs/contact_models.md).
+// our w or off by two: convert with care (docs/explanation/contact_models.md).
 // Hysteresis: a pair's contact forms when the disks touch (delta >= 0) and
 // holds, pulling, until the separation at which the curve ends,
 // delta_c = -delta(a_c), a_c = (pi w R*^2 / (8 E*))^(1/3); friction and rolling

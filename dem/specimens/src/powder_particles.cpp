@@ -162,12 +162,22 @@ std::vector<PowderParticle> place_powder(const PowderSpec& spec, const std::vect
 }
 
 std::size_t add_powder(World& world, const std::vector<PowderParticle>& particles, const PowderSpec& spec,
-                       double thickness_m, std::uint8_t group) {
+                       double thickness_m, std::uint8_t group, std::uint64_t order_seed) {
+  // Particle k's first disk id: the disks before it in the particles' own order.
+  std::vector<std::int64_t> first_id(particles.size());
+  std::int64_t next_id = static_cast<std::int64_t>(world.bodies.size());
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    first_id[k] = next_id;
+    next_id += particles[k].clump ? 2 : 1;
+  }
   std::size_t added = 0;
-  for (const PowderParticle& p : particles) {
+  std::vector<std::size_t> order(particles.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  if (order_seed != 0) Rng(order_seed, 0x6f72646572 /* "order" */).shuffle(order);
+  for (const std::size_t k : order) {
+    const PowderParticle& p = particles[k];
     if (!p.clump) {
-      world.bodies.add_disk(p.x, p.y, p.radius, spec.density_kg_m3, thickness_m, group,
-                            static_cast<std::int64_t>(world.bodies.size()));
+      world.bodies.add_disk(p.x, p.y, p.radius, spec.density_kg_m3, thickness_m, group, first_id[k]);
       ++added;
       continue;
     }
@@ -176,7 +186,7 @@ std::size_t add_powder(World& world, const std::vector<PowderParticle>& particle
     for (int side : {-1, 1}) {
       members.push_back(world.bodies.add_disk(p.x + side * s * std::cos(p.angle_rad), p.y + side * s * std::sin(p.angle_rad),
                                               p.radius, spec.density_kg_m3, thickness_m, group,
-                                              static_cast<std::int64_t>(world.bodies.size())));
+                                              first_id[k] + (side < 0 ? 0 : 1)));
       ++added;
     }
     const double rho_t = spec.density_kg_m3 * thickness_m;

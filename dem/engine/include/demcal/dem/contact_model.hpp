@@ -104,6 +104,13 @@ class ContactModel {
   // models that act only in contact, JKR's delta_c for its largest pairs.
   // The neighbour list must keep such pairs, so its skin must exceed it.
   virtual double attachment_gap_m(double /*radius_max_m*/) const { return 0.0; }
+  // The largest damping ratio its dashpots give any mode of a pair it joins
+  // (normal, tangential, rolling): a dashpot's coefficient over the critical
+  // one for that mode's stiffness and effective mass. The time step shrinks
+  // by sqrt(1 + zeta^2) - zeta for it, the central-difference bound of a
+  // damped oscillator (Belytschko et al., Nonlinear Finite Elements, 6.6).
+  // 0 for a model without dashpots.
+  virtual double max_damping_ratio() const { return 0.0; }
   // True when the model's forces depend on the masses it was given in
   // PairInfo (a damping set for a coefficient of restitution): density
   // scaling, which raises masses later, is then refused.

@@ -251,4 +251,10 @@ class World {
   bool built_ = false;
 };
 
+// The disks' indices in the order of their ids, and the clumps' in the order
+// of their first members' ids: sums over bodies run in these orders, so their
+// bits do not depend on the order the bodies are stored in.
+std::vector<std::size_t> disks_by_id(const Bodies& bodies);
+std::vector<std::size_t> clumps_by_id(const World& world);
+
 }  // namespace demcal::dem

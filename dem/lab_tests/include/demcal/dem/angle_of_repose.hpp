@@ -1,6 +1,6 @@
 #pragma once
 // The angle of repose of a settled 2D heap, as DEM practice measures it
-// (docs/heap_test.md): the surface profile is the highest particle top
+// (docs/explanation/heap_test.md): the surface profile is the highest particle top
 // (y + r) in bins across the heap; each flank's points between 10 % and 90 %
 // of the heap's height (dropping the rounded apex and the run-out toe) get a
 // least-squares line, and the angle is atan |slope|, the mean of both flanks.

@@ -3,7 +3,7 @@
 // powder opens onto a raised base; the particles that run off the base fall
 // to a catch floor below it; once the heap has settled (kinetic energy below
 // a set share of the potential), its angle of repose is fitted to both flanks
-// (angle_of_repose.hpp). docs/heap_test.md says why a funnel and not a lifted
+// (angle_of_repose.hpp). docs/explanation/heap_test.md says why a funnel and not a lifted
 // cylinder, and how the geometry is chosen.
 //
 //   "particles": {"radius_min_m", "radius_max_m", "density_kg_m3", "thickness_m" (default: the mean diameter),
@@ -12,7 +12,8 @@
 //                 the base), "fill_height_m" (default 0.8 x height), "solids_fraction" (default 0.4),
 //                 "base_width_m", "domain_width_m" (the catch floor's width, default 3 x base)},
 //   "run":       {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
-//                 "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters"}
+//                 "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters",
+//                 "safety_factor" (the time step's share of the critical one, default 0.8)}
 //
 // Contact roles: "particle-particle" and "particle-wall" (base, funnel, gate, catch floor).
 #include <map>
@@ -33,6 +34,7 @@ struct HeapSpec {
   // run
   double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
   double discharged_fraction = 0.95, local_damping = 0, max_wall_s = 600, bin_width_diameters = 1.5;
+  double safety_factor = 0.8;
 
   double top_width_m() const;  // the funnel's width at its top
   // Reads the scene's sections with `parameters`; throws an Error naming the scene file and the field.

@@ -76,7 +76,7 @@ class LabTest {
   // tests' stay valid; enters the scene's fingerprint when nonzero.
   virtual int results_version() const { return 0; }
   // Whether every stress output scales by k when every stress-like parameter
-  // does (quasi-static bonded tests: docs/calibration.md). False for a test
+  // does (quasi-static bonded tests: docs/explanation/calibration_method.md). False for a test
   // that gravity or inertia drives (a heap), so no calibration assumes it.
   virtual bool exact_scaling() const { return true; }
   // What a run of `scene` reports (some outputs depend on the specimen, e.g.

@@ -47,10 +47,12 @@ std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);
 // carries its inward normal (for a stress servo).
 // `faces_y` (bottom, top), when given, places the platens there instead, the
 // disks crossing them touching with no force (a Brazilian disc's flats).
+// `options`, when given, sets the world's threads and the disks' order of entry
+// (run_settings.hpp).
 World make_platen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                         const Specimen& specimen, std::uint64_t seed, const std::vector<bool>* keep = nullptr,
                         std::map<std::string, double>* info = nullptr, bool side_walls = false,
-                        const std::pair<double, double>* faces_y = nullptr);
+                        const std::pair<double, double>* faces_y = nullptr, const RunOptions* options = nullptr);
 
 // Empty when the state is sane; otherwise why the run must stop as failed
 // (non-finite values, a disk faster than 1000 x the platen speed, a disk

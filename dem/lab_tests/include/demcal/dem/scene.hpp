@@ -76,6 +76,7 @@ struct LoadingSpec {
   double bond_gap_tolerance_m = 0;     // 0: 1 % of the smallest radius
   double density_scaling_dt_s = 0;     // > 0: density scaling to this time step (stated in the result)
   double local_damping = 0.7;          // alpha of the local non-viscous damping (PFC's default for quasi-static tests)
+  double safety_factor = 0.8;          // the time step's share of the critical one (dashpots counted)
   // UCS only: the platens start at elastic_speedup x platen_velocity_m_s
   // and slow in proportion as the most loaded bond takes up its strength,
   // reaching platen_velocity_m_s when it carries speedup_until_utilisation

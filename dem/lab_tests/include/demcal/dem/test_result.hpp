@@ -48,6 +48,14 @@ struct RunOptions {
   std::string vtk_dir;    // VTK snapshots (disks + bonds, breaks) when set
   int vtk_every = 25;     // a snapshot every this many curve points, plus the first and last
   std::string work_dir;   // the point's own folder: an external test's files (params, out, stdout, stderr)
+  // What a run must not depend on, set by the invariant tests (tests/invariants):
+  // the threads of its force loops (0: OpenMP's default), the disks per thread
+  // below which it uses fewer (0: the engine's default), and a seed that
+  // shuffles the order in which the particles enter the world, keeping their
+  // ids (0: the order they were made in).
+  int threads = 0;
+  std::size_t min_disks_per_thread = 0;
+  std::uint64_t particle_order_seed = 0;
 };
 
 }  // namespace demcal::dem

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "demcal/dem/bodies.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/test_result.hpp"
 
@@ -26,15 +27,16 @@ std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& cu
 // The band of the height whose disks nu's tangent fits, as fractions of the
 // height above the bottom platen: the middle three fifths. Over E's short
 // window the fit to the middle third scattered 1.4-1.5x more from seed to seed
-// (docs/calibration.md, "Which disks measure nu"); a fifth of the height is
+// (docs/explanation/calibration_method.md, "Which disks measure nu"); a fifth of the height is
 // left out at each platen, whose frictionless contacts let the end layers
 // spread more.
 inline constexpr double kNuGaugeBottomFraction = 0.2;
 inline constexpr double kNuGaugeTopFraction = 0.8;
 
 // The disks whose centres lie between bottom_m and top_m (inclusive), measured
-// from y0_m: a gauge band of the specimen.
-std::vector<std::size_t> disks_in_band(const std::vector<double>& y, double y0_m, double bottom_m, double top_m);
+// from y0_m: a gauge band of the specimen, as indices into `b` in the order of
+// the disks' ids (so a gauge's sums do not depend on how the disks are stored).
+std::vector<std::size_t> disks_in_band(const Bodies& b, double y0_m, double bottom_m, double top_m);
 
 // The lateral strain of a set of disks as the least-squares slope of their
 // x-displacement on their initial x: the strain a measurement region fits

@@ -8,7 +8,7 @@
 // |v| stays below a share of the peak the pulse had at the point nearest the
 // input), their sum, the reflection coefficient at a
 // point near the far side, the P (and S) wave speeds measured from the
-// arrivals, and the work the boundaries did. docs/wave_strip.md.
+// arrivals, and the work the boundaries did. docs/explanation/wave_strip.md.
 //
 //   "boundaries": {"left"|"right"|"bottom"|"top": {"type": "fixed"|"free"|"viscous"|"input",
 //                  "xi": number or expression, "eta": ...}}   (exactly one input side; free by default)

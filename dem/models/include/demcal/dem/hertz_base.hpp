@@ -8,7 +8,7 @@
 // contact law (as 2D codes do for Hertz and JKR), while its mass is the
 // disk's, per unit thickness as everywhere in the engine. So forces are a
 // sphere's while inertia is a disk's: the adhesion-to-weight ratio of a 2D
-// model depends on the thickness (docs/contact_models.md).
+// model depends on the thickness (docs/explanation/contact_models.md).
 //
 // With a = the contact radius (sqrt(R* delta) for Hertz):
 //   normal stiffness  S_n = 2 E* a,  tangential S_t = 8 G* a,
@@ -72,6 +72,13 @@ class HertzBase : public ContactModel {
   double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const override;
   double stiffness_estimate(double radius_m, double thickness_m) const override;
   bool depends_on_masses() const override { return true; }
+  // The dashpots are sized with the pair's reduced mass m* (m/2 for two equal
+  // disks, m against a wall), the normal mode's own mass: zeta_n =
+  // sqrt(5/6) |beta|. The tangential mode moves the disks' surfaces, which
+  // their spin makes three times lighter (m/6 for two equal disks: 1/m_t =
+  // 2/m + 2 r^2/I; m/3 against a wall), so its zeta is sqrt(3) times that:
+  // 1.58 |beta|. Rolling damping (type C) adds eta_r.
+  double max_damping_ratio() const override;
 
   double effective_modulus_pa() const { return e_eff_pa_; }
   double effective_shear_modulus_pa() const { return g_eff_pa_; }

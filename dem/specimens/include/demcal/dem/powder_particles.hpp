@@ -45,8 +45,10 @@ double particle_area_m2(double radius_m, double aspect_ratio, bool clump);
 double particle_polar_moment_m4(double radius_m, double aspect_ratio, bool clump);
 
 // Adds the particles to the world (material group `group`): a disk as a disk,
-// a clump as two member disks made one rigid body. Returns the number of disks added.
+// a clump as two member disks made one rigid body. Their disks' ids follow the
+// particles' order whatever order they enter in (`order_seed` shuffles it, 0
+// keeps it: results must not depend on it). Returns the number of disks added.
 std::size_t add_powder(World& world, const std::vector<PowderParticle>& particles, const PowderSpec& spec,
-                       double thickness_m, std::uint8_t group);
+                       double thickness_m, std::uint8_t group, std::uint64_t order_seed = 0);
 
 }  // namespace demcal::dem
