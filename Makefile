@@ -31,7 +31,7 @@ STUDY ?= data/studies/demo.json
 study: build
 	@scripts/run_study.sh $(STUDY) $(BUILD) $(JOBS)
 
-# One scene and its targets, no study file (docs/calibration.md); resumable, exit 0 met, 3 unreachable, 4 budget:
+# One scene and its targets, no study file (docs/explanation/calibration_method.md); resumable, exit 0 met, 3 unreachable, 4 budget:
 #   make calibrate SCENE=data/scenes/ucs_rock_cb.json TARGETS="sigma_u_MPa=48 E_GPa=6.5 nu=0.27"
 #                  [SPACE=...] [FIXED="R_min_m=0.00075 ..."] [TOLERANCE=0.05] [BUDGET=80] [NAME=...]
 #                  [STRATEGY=kriging] [CHECK_RESOLUTION=2] [CHECK_TESTS="data/scenes/biaxial_rock_fj.json"]
@@ -51,18 +51,18 @@ calibrate: build
 calibration-benchmark: build
 	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global) $(if $(KRIGING),--kriging)
 
-# The wave strip's viscous boundary calibrated in the loop by LHS-WCA, WCA, GA and SA (docs/wave_strip.md); about 30 min.
+# The wave strip's viscous boundary calibrated in the loop by LHS-WCA, WCA, GA and SA (docs/explanation/wave_strip.md); about 30 min.
 boundary-calibration: build
 	scripts/boundary_calibration_comparison.py --build $(BUILD) --jobs $(JOBS) $(if $(FIGURE),--figure $(FIGURE))
 
-# Our DEM at published PFC2D parameter sets (docs/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
+# Our DEM at published PFC2D parameter sets (docs/explanation/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
 fidelity-benchmark: build
 	scripts/fidelity_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(QUICK),--quick) $(if $(FIGURE),--figure $(FIGURE))
 
 bench: build
 	@scripts/bench.sh $(BUILD)
 
-# The whole chain on YADE's CPM concrete as an external simulator (docs/external.md); installs Debian's yade on demand.
+# The whole chain on YADE's CPM concrete as an external simulator (docs/howto/own_simulator.md); installs Debian's yade on demand.
 yade-study: build
 	/usr/bin/python3 -c "import sys; sys.path.insert(0, 'scripts'); import debian_package; debian_package.ensure('yade', 'yade', 'make yade-study')"
 	@scripts/run_study.sh data/studies/yade_cpm.json $(BUILD) $(JOBS)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cost of one DEM step against the particle count (issue 19, point 5).
+"""Cost of one DEM step against the particle count (the scale measurement of docs/benchmarks.md).
 
 The parallel-bonded UCS scene (data/scenes/ucs_rock_pb.json) on specimens of
 the same 1:2 shape from about 2,400 to 100,000 disks, each loaded over about

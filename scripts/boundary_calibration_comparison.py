@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The viscous boundary's coefficients calibrated with the DEM in the loop by four optimisers (issue 17's
+"""The viscous boundary's coefficients calibrated with the DEM in the loop by four optimisers (the
 convergence comparison, after Ma et al. 2022's Figure of LHS-WCA against WCA and GA).
 
 The problem: the four coefficients of data/spaces/ma2022_viscous_boundary.json on data/scenes/wave_strip.json (seed

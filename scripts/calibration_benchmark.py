@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The calibration benchmark (docs/calibration_benchmark.md): every target of data/benchmarks/calibration_targets.json
+"""The calibration benchmark (docs/explanation/calibration_benchmark.md): every target of data/benchmarks/calibration_targets.json
 calibrated with `make calibrate`'s command and the same settings, then, for the targets marked global_strategy, the
 old strategy (one global screening + Box-Behnken surface, data/studies/rock_response_surface.json with the target
 swapped in) side by side. It runs for hours: each target is resumable, finished ones are skipped, and --only runs a

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Resolution of the concrete UCS scene: the reference parameter set of Su et al. (2021) over
 several seeds at several mortar disk sizes (the 100 x 200 mm specimen and its aggregates stay
-the same), with the wall time of each run. Writes docs/concrete_resolution_study.csv and the table of
-docs/concrete_resolution_study.md (between its marker lines, with the date, commit and machine; the prose
+the same), with the wall time of each run. Writes docs/explanation/concrete_resolution_study.csv and the table of
+docs/explanation/concrete_resolution_study.md (between its marker lines, with the date, commit and machine; the prose
 around it stays).
 
     /usr/bin/python3 scripts/concrete_resolution_study.py [--build build] [--jobs 2] [--seeds 5]
@@ -25,7 +25,7 @@ parser.add_argument("--jobs", default="2")
 parser.add_argument("--seeds", type=int, default=5)
 parser.add_argument("--radii-mm", default="1.4,1.0,0.7,0.5", help="mean mortar radii to run")
 parser.add_argument("--fine-seeds", type=int, default=3, help="seeds for radii below 0.6 mm (slow)")
-parser.add_argument("--out", default="docs/concrete_resolution_study")
+parser.add_argument("--out", default="docs/explanation/concrete_resolution_study")
 args = parser.parse_args()
 write_block(args.out + ".md", SCRIPT, None)  # before hours of runs: refuse a doc it could not write into
 started = time.strftime("%Y-%m-%d")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The PFC fidelity benchmark (docs/fidelity.md): our DEM at the micro-parameters of published PFC2D runs, against
+"""The PFC fidelity benchmark (docs/explanation/fidelity.md): our DEM at the micro-parameters of published PFC2D runs, against
 what PFC2D gave there.
 
   l64            the 64 parameter sets of Su et al. 2021's L64 plan (data/literature/su2021_L64_orthogonal.csv)

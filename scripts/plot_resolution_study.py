@@ -3,7 +3,7 @@
 of sigma_u, E and nu, and the wall time per run, against the disk count (at
 0.02 m/s) and against the platen velocity (at about 5,000 disks).
 
-    /usr/bin/python3 scripts/plot_resolution_study.py [docs/resolution_study.csv] [docs/resolution_study.png]
+    /usr/bin/python3 scripts/plot_resolution_study.py [docs/explanation/resolution_study.csv] [docs/explanation/resolution_study.png]
 """
 import csv
 import sys
@@ -13,8 +13,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-source = sys.argv[1] if len(sys.argv) > 1 else "docs/resolution_study.csv"
-target = sys.argv[2] if len(sys.argv) > 2 else "docs/resolution_study.png"
+source = sys.argv[1] if len(sys.argv) > 1 else "docs/explanation/resolution_study.csv"
+target = sys.argv[2] if len(sys.argv) > 2 else "docs/explanation/resolution_study.png"
 rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(source))]
 by_size = sorted((r for r in rows if r["platen_velocity_m_s"] == 0.02), key=lambda r: r["disks"])
 mid = sorted({r["disks_planned"] for r in rows if r["platen_velocity_m_s"] != 0.02})

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Model no more than the test needs: macro values of the default parallel-bond
 UCS scene over 5 seeds against particle count and platen velocity, with the wall
-time of each run. Writes docs/resolution_study.csv and the measured table of docs/resolution_study.md (between its
+time of each run. Writes docs/explanation/resolution_study.csv and the measured table of docs/explanation/resolution_study.md (between its
 marker lines; the prose around them stays).
 
     /usr/bin/python3 scripts/resolution_study.py [--build build] [--jobs 2]
@@ -15,7 +15,7 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--build", default="build")
 parser.add_argument("--jobs", default="2")
 parser.add_argument("--seeds", type=int, default=5)
-parser.add_argument("--out", default="docs/resolution_study")
+parser.add_argument("--out", default="docs/explanation/resolution_study")
 args = parser.parse_args()
 
 # The doc must take the table before hours of runs are spent on it (a doc without its markers is not written over).

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """How much the UCS's tangents and secants scatter over seeds, recomputed from stored curves
-(docs/calibration.md, "Tangent or secant").
+(docs/explanation/calibration_method.md, "Tangent or secant").
 
 Reads the curves a batch stored (runs.h5: points/NAME/curve_axial_strain, curve_stress_MPa, curve_lateral_strain)
 and prints, per file, the mean and seed CV of E and nu as least-squares slopes over windows around the half-peak
@@ -9,7 +9,7 @@ since; a fifth; and the 30-70 % stretch of the peak stress) and as secants at ha
 strain, not the fit over the middle three fifths of the height that the DEM's own tangent nu uses, so nu's tangent rows here are those
 of the edge gauges.
 
-    /usr/bin/python3 scripts/slope_scatter.py build/calibration_benchmark/issue13_sandstone/verify/v01/runs/runs.h5
+    /usr/bin/python3 scripts/slope_scatter.py build/calibration_benchmark/user_sandstone/verify/v01/runs/runs.h5
 """
 import argparse
 import statistics

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""Faster platens while elastic (loading.elastic_speedup) against the constant-rate UCS (issue 19, point 4).
+"""Faster platens while elastic (loading.elastic_speedup) against the constant-rate UCS (docs/benchmarks.md).
 
 Runs a UCS scene over seeds 1..N at one platen speed and with the platens f times faster until the most loaded bond
 carries a share u of its strength, at the scene's resolution and at a finer one (--finer: disk radii divided by that
 factor), and prints per output: the constant-rate mean and seed standard deviation, the faster run's mean, the mean of
 the paired differences and that mean as a share of the seed deviation; then the steps and loading wall times. An
-output passes when its paired mean difference lies within the seed standard deviation (the issue's "within the seed
+output passes when its paired mean difference lies within the seed standard deviation (the goal "within the seed
 scatter"); a paired mean difference significant at 95 % (|t| at or above the Student value for N-1 degrees of
 freedom) is marked, since a shift far inside the scatter can still be systematic.
 """

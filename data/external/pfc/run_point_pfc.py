@@ -1,5 +1,5 @@
 # TEMPLATE, NOT RUN HERE (PFC is not available on this machine): a demcal external-test driver for PFC2D 7 or
-# later, run by PFC's embedded Python. Fill in the lines marked FILL IN; docs/external.md says how the scene calls it.
+# later, run by PFC's embedded Python. Fill in the lines marked FILL IN; docs/howto/own_simulator.md says how the scene calls it.
 #
 # demcal writes params.json ({"parameters": {...}, "seed": N}) and expects out.json; this script reads the one and
 # writes the other around your own PFC model (a restored specimen, your loading, your measurement).
