@@ -963,8 +963,10 @@ def checked_command(args):
             problems.add(f"--out-root: cannot write {out} ({existing} is not a folder this user may write in)")
         elif os.path.exists(stored) and not problems:
             before = problems.check(load_json, stored, "calibration")
-            # A check after the calibration changes none of its decisions: it may be added to a finished one.
-            checks = ("check_resolution", "check_tests")
+            # A check after the calibration changes none of its decisions: it may be added to a finished one. A
+            # larger budget continues it: the runs already made are found again (each DEM point is stored by its
+            # parameters and seed), so nothing is repeated.
+            checks = ("check_resolution", "check_tests", "budget")
             if before is not None and {k: v for k, v in before.items() if k not in checks} != {
                     k: v for k, v in config.items() if k not in checks}:
                 if holds_no_work(out):

@@ -67,6 +67,9 @@ def test_settings_stored_without_any_run_do_not_block_other_settings_but_stored_
     messages = problems_of(command(tmp_path, "--target", "E_GPa=7"))
     assert len(messages) == 1 and "another calibration is stored here" in messages[0]
     assert (folder / "rounds").is_dir()
+    # A larger budget is the same calibration, continued: accepted, and stored as the folder's budget.
+    assert calibrate.calibrate(command(tmp_path, *targets, "--budget", "120")) == calibrate.EXIT_MET
+    assert json.loads((folder / "calibration.json").read_text())["budget"] == 120
 
 
 def test_every_problem_of_a_command_is_one_line_and_nothing_is_written(tmp_path):

@@ -177,3 +177,72 @@ TEST(FlatJoint, ALockedInStressIsRefusedNamingTheField) {
               std::string::npos) << e.what();
   }
 }
+
+// A broken element presses where its faces overlap, and the overlap varies as
+// gap - theta u across it: so one element, fully broken in shear under a
+// press, still resists rotation, as the intact joint's -kn I theta while it is
+// pressed all across (before, a broken element pushed at its centre only and
+// the joint turned freely).
+TEST(FlatJoint, AFullyBrokenElementStillResistsRotationWhereItIsPressed) {
+  const double v = 1.0, w = 100.0;
+  World world = joined_pair(1, 1e12, 1e3);  // a cohesion that the first shear breaks
+  const int press = 200;
+  for (int s = 0; s < press; ++s) imposed_step(world, -v, 0, 0);
+  imposed_step(world, 0, v, 0);
+  ASSERT_EQ(world.breaks().size(), 1u);
+  ASSERT_FALSE(world.pairs().flags[0] & kBonded);
+  const double gap = world.pair_state(0, "element1_gap_m");
+  ASSERT_LT(gap, 0.0);
+  // The sliding shear force's own moment (F_s R on each disk) stays as it is while the disks roll on each other:
+  // the joint's couple is what the rotation adds to it.
+  imposed_step(world, 0, 0, 0);
+  const double before = world.bodies.moment[1];
+  // Turn it by less than the press: the faces stay pressed all across (|theta| R < |gap|).
+  for (int s = 1; s <= 20; ++s) {
+    imposed_step(world, 0, 0, w);
+    const double theta = world.pair_state(0, "joint_rotation_rad");
+    ASSERT_LT(std::abs(theta) * kRadius, -gap);
+    ASSERT_NEAR(world.bodies.moment[1] - before, -kKn * kInertia * theta, 1e-6 * kKn * kInertia * std::abs(theta)) << s;
+  }
+  // Turned further, only the pressed part carries: less than the full moment, more than none.
+  for (int s = 0; s < 2000; ++s) imposed_step(world, 0, 0, w);
+  const double theta = world.pair_state(0, "joint_rotation_rad");
+  ASSERT_GT(std::abs(theta) * kRadius, -gap);
+  const double couple = std::abs(world.bodies.moment[1] - before);
+  EXPECT_LT(couple, kKn * kInertia * std::abs(theta));
+  EXPECT_GT(couple, 0.1 * kKn * kInertia * (-gap / kRadius));
+}
+
+// One law for a fully broken joint: once its faces have parted it is a linear
+// contact (the modulus_pa, kn_ks and friction of pairs that meet later), at
+// once, not only after the neighbour list has dropped it (which depended on the skin).
+TEST(FlatJoint, AFullyBrokenJointWhoseFacesPartIsALinearContactAtOnce) {
+  const double v = 1.0;
+  World world = joined_pair(2, 1e7, 1e12);
+  int steps = 0;
+  while (world.breaks().size() < 2 && steps < 5000) {
+    imposed_step(world, v, 0, 0);
+    ++steps;
+  }
+  ASSERT_EQ(world.breaks().size(), 2u);
+  imposed_step(world, v, 0, 0);
+  EXPECT_EQ(world.pair_state(0, "joint"), 0.0);
+  // Pushed back past where they were joined: the linear contact's kn (E t for equal disks of t = 1) times the
+  // overlap, not the joint's kn_j A.
+  for (int s = 0; s < steps + 1 + 100; ++s) imposed_step(world, -v, 0, 0);
+  imposed_step(world, 0, 0, 0);
+  const double overlap = 2 * kRadius - (world.bodies.x[1] - world.bodies.x[0]);
+  ASSERT_GT(overlap, 0.0);
+  EXPECT_NEAR(world.bodies.fx[1], 1e9 * overlap, 1e-6 * 1e9 * overlap);
+}
+
+// A zero strength is none: the element holds at rest and breaks at its first tension.
+TEST(FlatJoint, AZeroStrengthBreaksAtTheFirstTensionNotAtRest) {
+  World world = joined_pair(2, 0.0, 0.0);
+  for (int s = 0; s < 10; ++s) imposed_step(world, 0, 0, 0);
+  EXPECT_TRUE(world.breaks().empty());
+  EXPECT_TRUE(world.pairs().flags[0] & kBonded);
+  imposed_step(world, 1.0, 0, 0);
+  imposed_step(world, 1.0, 0, 0);
+  EXPECT_EQ(world.breaks().size(), 2u);
+}

@@ -75,3 +75,85 @@ TEST(RollingResistance, WithoutItTheDiskRollsOn) {
   World world = rolling_disk(nlohmann::json::object(), v0);
   EXPECT_NEAR(distance_after(world, 0.1), v0 * 0.1, 0.01 * v0 * 0.1);
 }
+
+namespace {
+
+// Two equal disks pressed against each other between two walls (no gravity,
+// no sliding friction, so nothing but rolling resistance couples the spins):
+// disk 0 spins at w0, disk 1 is at rest.
+World pressed_pair(const nlohmann::json& rolling, double w0) {
+  WorldSettings settings;
+  settings.damping = 0;
+  settings.thickness_m = kThickness;
+  World world(settings);
+  nlohmann::json p = {{"shear_modulus_pa", kShearModulus}, {"poisson", kPoisson}, {"restitution", 0.5}, {"friction", 0.0}};
+  p.update(rolling);
+  const auto model = world.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test"));
+  world.assign(0, 0, model);
+  world.assign(0, 1, model);
+  const double overlap = 1e-3 * kRadius;
+  world.bodies.add_disk(kRadius - overlap, 0, kRadius, kDensity, kThickness, 0);
+  world.bodies.add_disk(3 * kRadius - 2 * overlap, 0, kRadius, kDensity, kThickness, 0);
+  world.bodies.fixed[0] = world.bodies.fixed[1] = 0;
+  Wall left, right;
+  left.x0 = left.x1 = 0;
+  left.y0 = -2 * kRadius;
+  left.y1 = 2 * kRadius;
+  left.inward_nx = 1;
+  right = left;
+  right.x0 = right.x1 = 4 * kRadius - 3 * overlap;
+  right.inward_nx = -1;
+  left.group = right.group = 1;
+  world.walls = {left, right};
+  world.bodies.w[0] = w0;
+  return world;
+}
+
+}  // namespace
+
+// Type A acts on each disk's own spin (EDEM's form): the spinning disk slows
+// at a constant rate and stops for good; the disk at rest next to it stays
+// exactly at rest. LIGGGHTS' relative form (kept as
+// rolling_friction_cdt_relative) drags the resting disk along instead.
+TEST(RollingResistance, TypeAActsOnEachDisksOwnSpinDiskAgainstDisk) {
+  const double w0 = 400.0, mu_r = 0.05;
+  World world = pressed_pair({{"rolling_friction_cdt", mu_r}}, w0);
+  std::vector<double> spin;
+  for (int k = 0; k < 4; ++k) {
+    world.run(100);
+    spin.push_back(world.bodies.w[0]);
+    ASSERT_EQ(world.bodies.w[1], 0.0) << "the resting disk was turned";
+  }
+  // A constant couple: equal drops in equal times while it spins.
+  ASSERT_GT(spin[3], 0.0) << "dt " << world.dt_s() << ", spins " << spin[0] << " " << spin[1] << " " << spin[2];
+  EXPECT_NEAR(spin[0] - spin[1], spin[2] - spin[3], 1e-6 * w0);
+  EXPECT_GT(spin[0] - spin[1], 0.0);
+  const double rate = (spin[0] - spin[1]) / (100 * world.dt_s());
+  world.run(static_cast<std::uint64_t>(2 * spin[3] / rate / world.dt_s()) + 10);
+  EXPECT_EQ(world.bodies.w[0], 0.0) << "stopped, it stays stopped";
+  world.run(1000);
+  EXPECT_EQ(world.bodies.w[0], 0.0);
+
+  World relative = pressed_pair({{"rolling_friction_cdt_relative", mu_r}}, w0);
+  relative.run(200);
+  EXPECT_GT(relative.bodies.w[1], 1e-4 * w0) << "the relative form drags the resting disk along";
+}
+
+// Static resistance: on a slope of tan(theta) = mu_r / 2 a disk held by type
+// A rolling friction stays where it was put; with the relative form's ramp
+// below its threshold it creeps down.
+TEST(RollingResistance, TypeAHoldsADiskStillOnASlopeTheRelativeFormLetsItCreep) {
+  const double mu_r = 0.05, theta = std::atan(0.5 * mu_r);
+  // How far the disk moves over steps 10,000 to 20,000, after it has settled on the slope's springs.
+  auto creep = [&](const nlohmann::json& rolling) {
+    World world = rolling_disk(rolling, 0.0);
+    world.settings().gravity_x_m_s2 = kGravity * std::sin(theta);
+    world.settings().gravity_y_m_s2 = -kGravity * std::cos(theta);
+    world.run(10000);
+    const double x0 = world.bodies.x[0];
+    world.run(10000);
+    return std::abs(world.bodies.x[0] - x0);
+  };
+  EXPECT_LT(creep({{"rolling_friction_cdt", mu_r}}), 1e-9 * kRadius);
+  EXPECT_GT(creep({{"rolling_friction_cdt_relative", mu_r}}), 1e-3 * kRadius);
+}

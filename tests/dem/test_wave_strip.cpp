@@ -263,3 +263,24 @@ TEST(WaveStrip, BadInputFailsInOneLineNamingTheField) {
   EXPECT_NE(run_error({{"boundaries", {{"top", {{"type", "fixed"}}}}}}).find("boundaries.top: no disk touches"),
             std::string::npos);
 }
+
+// The dashpots use Ma et al.'s C_P by default (their coefficients are
+// relative to it: plane strain, applied to the 2D strip's E and nu); the
+// result states the 2D assembly's own plane-stress C_P beside it, and a scene
+// may choose it. At the shipped medium (E_d 6.03 GPa, nu_d 0.221) Ma's is
+// sqrt((1 - nu)(1 - nu^2) / ((1 + nu)(1 - 2 nu))) = 1.042 times the 2D one.
+TEST(WaveStrip, StatesBothPWaveFormulasAndUsesMasByDefault) {
+  const TestResult ma = run_patched(json::object());
+  ASSERT_TRUE(ma.ok) << ma.reason;
+  const double nu = 0.221, ratio = std::sqrt((1 - nu) * (1 - nu * nu) / ((1 + nu) * (1 - 2 * nu)));
+  const double c_ma = ma.specimen_info.at("ma2022_wave_speed_p_m_s");
+  const double c_2d = ma.specimen_info.at("plane_stress_wave_speed_p_m_s");
+  EXPECT_NEAR(c_ma / c_2d, ratio, 1e-12);
+  EXPECT_NEAR(ratio, 1.042, 0.001);
+  EXPECT_EQ(ma.specimen_info.at("dashpot_wave_speed_p_m_s"), c_ma);
+  const TestResult plane = run_patched(json::parse(R"({"medium": {"p_speed_formula": "plane_stress"}})"));
+  ASSERT_TRUE(plane.ok) << plane.reason;
+  EXPECT_EQ(plane.specimen_info.at("dashpot_wave_speed_p_m_s"), plane.specimen_info.at("plane_stress_wave_speed_p_m_s"));
+  EXPECT_NE(plane.macro.at("total_recovery_time_s"), ma.macro.at("total_recovery_time_s"));
+  EXPECT_THROW(run_patched(json::parse(R"({"medium": {"p_speed_formula": "3d"}})")), demcal::Error);
+}

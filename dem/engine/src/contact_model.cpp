@@ -13,6 +13,8 @@ void ContactModel::make_force_free(PairBlock&, std::size_t, double) const {}
 
 double ContactModel::max_bond_utilisation(const ConstPairBlock&, const Bodies&) const { return NAN; }
 
+void ContactModel::add_rolling_limits(const ConstPairBlock&, const Bodies&, bool, double*) const {}
+
 bool ContactModel::install_bond(PairBlock&, std::size_t, const PairInfo&, double, Rng&) const { return false; }
 
 void ContactModelRegistry::add(const std::string& name, std::vector<std::string> parameter_keys,

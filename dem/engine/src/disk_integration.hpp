@@ -17,12 +17,25 @@ struct DiskArrays {
   const double *force_x, *force_y, *moment, *mass, *inverse_mass, *inverse_inertia, *x_built, *y_built;
   const std::uint8_t* fixed;
   const std::int32_t* clump;
+  const double* rolling_limit = nullptr;  // type A rolling resistance's couple per disk; nullptr: none
 };
 
+// A spin after one step of Coulomb friction in rotation: `trial` (the spin the
+// other moments would give) shrunk towards zero by `slowing` (the rolling
+// limit's couple times dt / I), and held at zero when the limit exceeds what
+// would turn it: static rolling resistance.
+inline double rolling_friction_spin(double trial, double slowing) {
+  const double left = std::max(0.0, std::abs(trial) - slowing);
+  return trial > 0 ? left : (trial < 0 ? -left : 0.0);
+}
+
 // Moves the free disks [from, to) one step; returns the largest squared
-// move since the last rebuild among them and `max_move2`.
-inline double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t to, double dt, double alpha, double gx,
-                              double gy, double max_move2) {
+// move since the last rebuild among them and `max_move2`. With rolling limits
+// the spin update takes rolling_friction_spin (a separate loop: without them
+// the arithmetic, and so the bits, stay as they were).
+template <bool kRollingLimits>
+inline double integrate_disks_loop(const DiskArrays& a, std::size_t from, std::size_t to, double dt, double alpha,
+                                   double gx, double gy, double max_move2) {
   // Local pointers, so they stay in registers through the loop.
   double* __restrict x = a.x;
   double* __restrict y = a.y;
@@ -39,6 +52,7 @@ inline double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t
   const double* __restrict y_built = a.y_built;
   const std::uint8_t* __restrict fixed = a.fixed;
   const std::int32_t* __restrict clump = a.clump;
+  const double* __restrict rolling_limit = a.rolling_limit;
   // No branch in the loop, so it vectorises: a fixed disk, and a clump's
   // member (which its clump moves afterwards), get `moves` = 0, which stops
   // them (v = 0, x unchanged) with the free disks' arithmetic untouched.
@@ -58,7 +72,12 @@ inline double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t
     const double to_velocity = inverse_mass[i] * dt;
     const double new_vx = (vx[i] + (fx - alpha * std::abs(fx) * sx) * to_velocity) * moves;
     const double new_vy = (vy[i] + (fy - alpha * std::abs(fy) * sy) * to_velocity) * moves;
-    w[i] = (w[i] + (mz - alpha * std::abs(mz) * sw) * (inverse_inertia[i] * dt)) * moves;
+    if constexpr (kRollingLimits) {
+      const double trial = w[i] + (mz - alpha * std::abs(mz) * sw) * (inverse_inertia[i] * dt);
+      w[i] = rolling_friction_spin(trial, rolling_limit[i] * (inverse_inertia[i] * dt)) * moves;
+    } else {
+      w[i] = (w[i] + (mz - alpha * std::abs(mz) * sw) * (inverse_inertia[i] * dt)) * moves;
+    }
     vx[i] = new_vx;
     vy[i] = new_vy;
     x[i] += new_vx * dt;
@@ -67,6 +86,12 @@ inline double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t
     max_move2 = std::max(max_move2, ddx * ddx + ddy * ddy);
   }
   return max_move2;
+}
+
+inline double integrate_disks(const DiskArrays& a, std::size_t from, std::size_t to, double dt, double alpha, double gx,
+                              double gy, double max_move2) {
+  return a.rolling_limit ? integrate_disks_loop<true>(a, from, to, dt, alpha, gx, gy, max_move2)
+                         : integrate_disks_loop<false>(a, from, to, dt, alpha, gx, gy, max_move2);
 }
 
 inline DiskArrays disk_arrays(Bodies& b, const std::vector<double>& inverse_mass,

@@ -24,6 +24,17 @@ World::World(WorldSettings settings) : settings_(settings) {
     throw Error("density scaling and gravity cannot be combined (gravity would act on the scaled masses)");
 }
 
+Wall& World::wall(BoxWall role) {
+  return const_cast<Wall&>(static_cast<const World&>(*this).wall(role));
+}
+
+const Wall& World::wall(BoxWall role) const {
+  static const char* const kNames[] = {"bottom", "top", "left", "right"};
+  if (role >= walls.size())
+    throw Error(std::string("the world has no ") + kNames[role] + " wall (" + std::to_string(walls.size()) + " walls)");
+  return walls[role];
+}
+
 std::uint8_t World::add_model(std::unique_ptr<ContactModel> model) {
   if (models_.size() >= kNoModel) throw Error("too many contact models (at most 254)");
   const std::vector<std::string> columns = model->state_columns();
@@ -32,6 +43,7 @@ std::uint8_t World::add_model(std::unique_ptr<ContactModel> model) {
                 " state columns (at most " + std::to_string(kMaxStateColumns) + ")");
   layout_.push_back(columns.size());
   column_names_.push_back(columns);
+  rolling_limits_ = rolling_limits_ || model->adds_rolling_limits();
   models_.push_back(std::move(model));
   built_ = false;
   return static_cast<std::uint8_t>(models_.size() - 1);
@@ -292,9 +304,19 @@ void World::wall_forces_on_disks(std::vector<double>& fx, std::vector<double>& f
   bodies.moment = keep_moment;
 }
 
+void World::add_rolling_limits() {
+  if (!rolling_limits_) return;
+  rolling_limit_.assign(bodies.size(), 0.0);
+  const ContactSet &pairs = pairs_, &wall_pairs = wall_pairs_;
+  for (std::uint8_t m : run_models_) models_[m]->add_rolling_limits(pairs.block(m), bodies, false, rolling_limit_.data());
+  for (std::uint8_t m : wall_run_models_)
+    models_[m]->add_rolling_limits(wall_pairs.block(m), bodies, true, rolling_limit_.data());
+}
+
 void World::integrate() {
   const std::size_t n = bodies.size();
-  const DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
+  DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
+  arrays.rolling_limit = rolling_limits_ ? rolling_limit_.data() : nullptr;
   const double dt = dt_s_, alpha = settings_.damping;
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   double max_move2 = integrate_disks(arrays, 0, n, dt, alpha, gx, gy, max_disk_move2_);
@@ -314,16 +336,18 @@ void World::integrate_clumps(double& max_move2) {
   for (std::ptrdiff_t index = 0; index < count; ++index) {
     Clump& c = clumps_[static_cast<std::size_t>(index)];
     // Resultant force and moment about the centre of mass.
-    double fx = c.mass * settings_.gravity_x_m_s2, fy = c.mass * settings_.gravity_y_m_s2, mz = 0;
+    double fx = c.mass * settings_.gravity_x_m_s2, fy = c.mass * settings_.gravity_y_m_s2, mz = 0, limit = 0;
     for (std::size_t k = 0; k < c.members.size(); ++k) {
       const std::size_t i = c.members[k];
       fx += bodies.fx[i];
       fy += bodies.fy[i];
       mz += bodies.moment[i] + c.offset_x[k] * bodies.fy[i] - c.offset_y[k] * bodies.fx[i];
+      if (rolling_limits_) limit += rolling_limit_[i];
     }
     c.vx += (fx - alpha * std::abs(fx) * sign(c.vx)) / c.mass * dt;
     c.vy += (fy - alpha * std::abs(fy) * sign(c.vy)) / c.mass * dt;
     c.w += (mz - alpha * std::abs(mz) * sign(c.w)) / c.inertia * dt;
+    if (rolling_limits_) c.w = rolling_friction_spin(c.w, limit * dt / c.inertia);
     c.x += c.vx * dt;
     c.y += c.vy * dt;
     // Rotate the member offsets exactly, so the clump keeps its shape.
@@ -376,6 +400,7 @@ void World::step() {
   } else {
     compute_forces();
     for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
+    add_rolling_limits();
     integrate();
   }
   for (auto& forces : external_forces_) forces->after_integration(bodies, time_s_, dt_s_);

@@ -117,7 +117,9 @@ void World::step_in_threads() {
   double* __restrict fy = bodies.fy.data();
   double* __restrict moment = bodies.moment.data();
   for (Wall& wall : walls) wall.fx = wall.fy = 0;
-  const DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
+  DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
+  if (rolling_limits_) rolling_limit_.assign(n, 0.0);  // sized before the threads read it
+  arrays.rolling_limit = rolling_limits_ ? rolling_limit_.data() : nullptr;
   const double dt = dt_s_, alpha = settings_.damping;
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   double max_move2 = max_disk_move2_;
@@ -185,6 +187,7 @@ void World::step_in_threads() {
           breaks_.insert(breaks_.end(), tp.log[p * team + t].begin(), tp.log[p * team + t].end());
       compute_wall_forces();
       for (auto& forces : external_forces_) forces->add(bodies, time_s_, dt_s_);
+      add_rolling_limits();
     }
     // 4. This thread's disks move.
     max_move2 = integrate_disks(arrays, my_first, my_last, dt, alpha, gx, gy, max_move2);

@@ -51,7 +51,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
   World world = make_platen_world(scene, parameters, square, options.seed, &keep, &specimen_info, false,
                                   on_flats ? &flats : nullptr, &options);
   const double t = square.thickness_m;
-  const double gap0 = world.walls[1].y0 - world.walls[0].y0;
+  const double gap0 = world.wall(kTopWall).y0 - world.wall(kBottomWall).y0;
 
   TestResult result;
   result.specimen_info = specimen_info;
@@ -63,7 +63,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
   LoadingMonitor monitor(loading, options, start, 0.5 * M_PI * D * D * t);
   for (;;) {
     world.step();
-    const double approach = (gap0 - (world.walls[1].y0 - world.walls[0].y0)) / D;
+    const double approach = (gap0 - (world.wall(kTopWall).y0 - world.wall(kBottomWall).y0)) / D;
     if (approach < next_record) continue;
     next_record = approach + loading.record_strain;
     CurvePoint point;

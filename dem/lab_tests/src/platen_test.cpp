@@ -177,21 +177,21 @@ std::string instability(const World& world, double platen_velocity_m_s) {
   // The platens span the domain: a disk beyond their ends, or through one, has
   // left it. Checked before the speed, since a test goes on past fast disks
   // when bonds are breaking (LoadingMonitor::record) but never past these.
-  const Wall& bottom = world.walls[0];
-  const Wall& top = world.walls[1];
+  const Wall& bottom = world.wall(kBottomWall);
+  const Wall& top = world.wall(kTopWall);
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b.x[i] < bottom.x0 || b.x[i] > bottom.x1) return "unstable: a disk left the domain sideways";
     if (b.y[i] < bottom.y0 - b.radius[i] || b.y[i] > top.y0 + b.radius[i])
       return "unstable: a disk passed through a platen";
     if (world.walls.size() >= 4 &&
-        (b.x[i] < world.walls[2].x0 - b.radius[i] || b.x[i] > world.walls[3].x0 + b.radius[i]))
+        (b.x[i] < world.wall(kLeftWall).x0 - b.radius[i] || b.x[i] > world.wall(kRightWall).x0 + b.radius[i]))
       return "unstable: a disk passed through a side wall";
   }
   if (fastest > 1000 * platen_velocity_m_s) return "unstable: a disk moves faster than 1000 x the platen speed";
   return "";
 }
 
-double platen_force(const World& world) { return 0.5 * (world.walls[1].fy - world.walls[0].fy); }
+double platen_force(const World& world) { return 0.5 * (world.wall(kTopWall).fy - world.wall(kBottomWall).fy); }
 
 void snapshot(const World& world, const RunOptions& options, std::size_t points, bool final) {
   if (options.vtk_dir.empty()) return;

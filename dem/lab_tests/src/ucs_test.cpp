@@ -52,8 +52,8 @@ double slope_on_axial_strain(const std::vector<CurvePoint>& curve, std::size_t f
 
 // Both platens approach at `speed_m_s` (bottom up, top down).
 void set_platen_speed(World& world, double speed_m_s) {
-  world.walls[0].vy = speed_m_s;
-  world.walls[1].vy = -speed_m_s;
+  world.wall(kBottomWall).vy = speed_m_s;
+  world.wall(kTopWall).vy = -speed_m_s;
 }
 
 }  // namespace
@@ -133,7 +133,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   std::map<std::string, double> specimen_info;
   World world = make_platen_world(scene, parameters, specimen, options.seed, nullptr, &specimen_info, false, nullptr,
                                   &options);
-  const double W = specimen.width_m, H0 = world.walls[1].y0 - world.walls[0].y0;
+  const double W = specimen.width_m, H0 = world.wall(kTopWall).y0 - world.wall(kBottomWall).y0;
 
   // Lateral strain from the outermost disks of the middle third of the height.
   // The gauges hold the world's indices of those disks in the order of their
@@ -141,7 +141,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   const Bodies& b = world.bodies;
   const double r_max = *std::max_element(b.radius.begin(), b.radius.end());
   std::vector<std::size_t> left, right;
-  for (std::size_t i : disks_in_band(b, world.walls[0].y0, H0 / 3, 2 * H0 / 3)) {
+  for (std::size_t i : disks_in_band(b, world.wall(kBottomWall).y0, H0 / 3, 2 * H0 / 3)) {
     if (b.x[i] - b.radius[i] < 2 * r_max) left.push_back(i);
     if (b.x[i] + b.radius[i] > W - 2 * r_max) right.push_back(i);
   }
@@ -153,8 +153,9 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   // nu's tangent comes from every disk of the middle three fifths
   // (LateralStrainFit): over E's short window the two edge gauges scattered
   // 1.5-2x more from seed to seed, and the middle third alone 1.4-1.5x more.
-  const LateralStrainFit bulk_gauge(world.bodies.x, disks_in_band(b, world.walls[0].y0, kNuGaugeBottomFraction * H0,
-                                                                   kNuGaugeTopFraction * H0));
+  const double bottom_y = world.wall(kBottomWall).y0;
+  const LateralStrainFit bulk_gauge(world.bodies.x,
+                                    disks_in_band(b, bottom_y, kNuGaugeBottomFraction * H0, kNuGaugeTopFraction * H0));
   std::vector<double> bulk_lateral_strain;
 
   TestResult result;
@@ -175,7 +176,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
   LoadingMonitor monitor(loading, options, start, W * H0 * specimen.thickness_m);
   for (;;) {
     world.step();
-    const double height = world.walls[1].y0 - world.walls[0].y0;
+    const double height = world.wall(kTopWall).y0 - world.wall(kBottomWall).y0;
     const double strain = (H0 - height) / H0;
     if (strain < next_record) continue;
     next_record = strain + loading.record_strain;
@@ -194,7 +195,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
       const double share = world.breaks().empty()
                                ? std::max(0.0, 1.0 - world.max_bond_utilisation() / loading.speedup_until_utilisation)
                                : 0.0;
-      const double speed = std::min(-world.walls[1].vy,  // the top platen's present speed
+      const double speed = std::min(-world.wall(kTopWall).vy,  // the top platen's present speed
                                     loading.platen_velocity_m_s * (1 + (loading.elastic_speedup - 1) * share));
       set_platen_speed(world, speed);
       if (share == 0) {

@@ -19,11 +19,15 @@
 // gap and, for the rotation inside it, a moment -k_n I_e theta (I_e =
 // w_e^3 t / 12), so an intact joint bends like a parallel bond (sum of A_e
 // x_e^2 + I_e = 2/3 R_j^3 t). Its average stress sigma = k_n gap (tension
-// positive) is checked against its strengths; a broken element carries only
-// compression at its centre. Every element break is logged as a crack; the
-// pair stays a joint (held in the neighbour list) while an element is bonded.
-// A pair that meets during the test, or a fully broken joint that has left
-// the neighbour list and comes back, is a linear contact.
+// positive) is checked against its strengths (broken strictly beyond them, so
+// a zero strength breaks an element at its first tension or shear, never at
+// rest); a broken element carries compression only, where its faces overlap:
+// the gap varies as gap - theta u across it, so a pressed broken element
+// still resists rotation (one element fully broken included). Every element
+// break is logged as a crack; the pair stays a joint (held in the neighbour
+// list) while an element is bonded. A fully broken joint whose faces have
+// parted everywhere becomes a linear contact at once, as a pair that meets
+// during the test is: its law never depends on the neighbour list.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -157,7 +161,7 @@ class FlatJointModel : public LinearBase {
     double& theta = c.column[kJointRotation][k];
     theta += g.relative_w * step.dt_s;
     PairForce f;
-    bool any_bonded = false;
+    bool any_bonded = false, open = true;
     for (int e = 0; e < elements_; ++e) {
       const double x = -rj + (e + 0.5) * width;  // the element's centre along t
       double& gap = c.column[element(e, kGap)][k];
@@ -169,10 +173,12 @@ class FlatJointModel : public LinearBase {
       if (bonded != 0.0) {
         const double sigma = kn * gap;  // average normal stress, tension > 0
         const double tau_c = c.column[element(e, kCohesion)][k] - sigma * tan_phi_;
-        if (sigma >= c.column[element(e, kTensile)][k]) {
+        // Strictly beyond a strength: a zero strength is none (the first tension or shear breaks the element),
+        // not a break of an unloaded element.
+        if (sigma > c.column[element(e, kTensile)][k]) {
           bonded = 0.0;
           log_break(c, k, g, b, step, BreakMode::Tension);
-        } else if (std::abs(shear) >= tau_c * area) {
+        } else if (std::abs(shear) > tau_c * area) {
           bonded = 0.0;
           log_break(c, k, g, b, step, BreakMode::Shear);
         } else {
@@ -182,17 +188,54 @@ class FlatJointModel : public LinearBase {
         }
       }
       if (bonded == 0.0) {
-        // Broken: the faces push where they overlap and slide on Coulomb friction.
-        normal = gap < 0 ? -kn * area * gap : 0.0;
+        // Broken: the faces push where they overlap (the gap varies as gap - theta u across the element, so a
+        // pressed broken element resists rotation too) and slide on Coulomb friction.
+        const Pressed pressed = pressed_part(gap, theta, width);
+        normal = kn * step.thickness_m * pressed.force_per_kn;
+        moment = -kn * step.thickness_m * pressed.moment_per_kn;
         const double limit = joint_friction_ * normal;
         if (std::abs(shear) > limit) shear = std::copysign(limit, shear);
+        open = open && pressed.force_per_kn == 0.0;
+      } else {
+        open = false;
       }
       f.fn += normal;
       f.fs += shear;
       f.moment += moment - x * normal;
     }
     if (!any_bonded) c.flags[k] &= ~static_cast<PairFlags>(kBonded);
+    // A fully broken joint whose faces have parted is a linear contact from
+    // now on, as a pair that meets later is: one law for a broken joint,
+    // whether or not it then leaves the neighbour list (and so whatever the skin).
+    if (open) {
+      c.column[kJoint][k] = 0.0;
+      c.column[kShearForce][k] = 0.0;
+    }
     return f;
+  }
+
+  // The compressed part of an element of width w whose faces stand apart by
+  // gap - theta u at u in [-w/2, w/2] from its centre: the integrals of the
+  // overlap (theta u - gap, where positive) and of the overlap times u, m^2
+  // and m^3 per unit thickness (times k_n t: the force and the moment about
+  // the element's centre).
+  struct Pressed {
+    double force_per_kn = 0, moment_per_kn = 0;
+  };
+  static Pressed pressed_part(double gap, double theta, double width) {
+    double lo = -0.5 * width, hi = 0.5 * width;
+    if (theta == 0.0) {
+      if (gap >= 0) return {};
+      return {-gap * width, 0.0};
+    }
+    const double zero = gap / theta;  // where the overlap changes sign
+    if (theta > 0)
+      lo = std::max(lo, zero);
+    else
+      hi = std::min(hi, zero);
+    if (!(hi > lo)) return {};
+    const double d1 = hi - lo, d2 = hi * hi - lo * lo, d3 = hi * hi * hi - lo * lo * lo;
+    return {theta * d2 / 2.0 - gap * d1, theta * d3 / 3.0 - gap * d2 / 2.0};
   }
 
   // A broken element is a crack: logged like a bond break, the pair's flag

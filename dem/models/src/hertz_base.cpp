@@ -110,6 +110,21 @@ void HertzBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, 
   rotational_nm_rad = st * arm_m * arm_m + rolling_.spring_nm_rad(sn, radius);
 }
 
+void HertzBase::add_rolling_limits(const ConstPairBlock& c, const Bodies& b, bool walls, double* limit_nm) const {
+  if (rolling_.type != RollingResistance::Type::Cdt) return;
+  for (std::size_t k = 0; k < c.size; ++k) {
+    if (!(c.flags[k] & kTouching)) continue;
+    const double a = c.column[kContactRadius][k];
+    const double repulsive = 4.0 / 3.0 * e_eff_pa_ * a * a * a / c.column[kRadiusEff][k];
+    const std::size_t i = static_cast<std::size_t>(c.i[k]);
+    limit_nm[i] += rolling_.friction * b.radius[i] * repulsive;
+    if (!walls) {
+      const std::size_t j = static_cast<std::size_t>(c.j[k]);
+      limit_nm[j] += rolling_.friction * b.radius[j] * repulsive;
+    }
+  }
+}
+
 double HertzBase::max_damping_ratio() const {
   const double tangential = std::sqrt(3.0) * 0.5 * damping_;  // damping_ = 2 sqrt(5/6) |beta|
   return std::max(tangential, rolling_.type == RollingResistance::Type::Epsd ? rolling_.damping : 0.0);

@@ -76,9 +76,10 @@ void servo_to_isotropic_stress(World& world, const SpecimenSpec& spec) {
     return -(wall.fx * wall.inward_nx + wall.fy * wall.inward_ny) / (loaded_length * spec.thickness_m);
   };
   for (int round = 0; round < 400; ++round) {
-    const double w_now = world.walls[3].x0 - world.walls[2].x0, h_now = world.walls[1].y0 - world.walls[0].y0;
-    world.walls[0].servo_length_m = world.walls[1].servo_length_m = w_now;
-    world.walls[2].servo_length_m = world.walls[3].servo_length_m = h_now;
+    const double w_now = world.wall(kRightWall).x0 - world.wall(kLeftWall).x0;
+    const double h_now = world.wall(kTopWall).y0 - world.wall(kBottomWall).y0;
+    world.wall(kBottomWall).servo_length_m = world.wall(kTopWall).servo_length_m = w_now;
+    world.wall(kLeftWall).servo_length_m = world.wall(kRightWall).servo_length_m = h_now;
     world.run(50);
     bool reached = true;
     for (int w = 0; w < 4; ++w) {
@@ -239,9 +240,9 @@ Specimen pack_specimen(const SpecimenSpec& spec) {
   // become forces of the test's stiffness.
   Specimen out;
   const Bodies& b = world.bodies;
-  const double x0 = world.walls[2].x0, y0 = world.walls[0].y0;
-  out.width_m = world.walls[3].x0 - x0;
-  out.height_m = world.walls[1].y0 - y0;
+  const double x0 = world.wall(kLeftWall).x0, y0 = world.wall(kBottomWall).y0;
+  out.width_m = world.wall(kRightWall).x0 - x0;
+  out.height_m = world.wall(kTopWall).y0 - y0;
   out.thickness_m = spec.thickness_m;
   out.density_kg_m3 = spec.density_kg_m3;
   std::vector<std::int64_t> kept_index(n, -1);

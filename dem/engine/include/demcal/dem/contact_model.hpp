@@ -104,6 +104,15 @@ class ContactModel {
   // models that act only in contact, JKR's delta_c for its largest pairs.
   // The neighbour list must keep such pairs, so its skin must exceed it.
   virtual double attachment_gap_m(double /*radius_max_m*/) const { return 0.0; }
+  // Rolling resistance on each body's own spin (type A): whether the model
+  // adds to the bodies' rolling limits, and the adding, after each step's
+  // forces, in the block's pair order: limit_nm[i] grows by the largest
+  // couple the pair's contact can give disk i against its rotation (and j's
+  // for disk pairs). The integration applies each body's limit as Coulomb
+  // friction in rotation, so a body at rest stays at rest while the other
+  // moments on it stay below its limit.
+  virtual bool adds_rolling_limits() const { return false; }
+  virtual void add_rolling_limits(const ConstPairBlock& c, const Bodies& b, bool walls, double* limit_nm) const;
   // The largest damping ratio its dashpots give any mode of a pair it joins
   // (normal, tangential, rolling): a dashpot's coefficient over the critical
   // one for that mode's stiffness and effective mass. The time step shrinks

@@ -2,10 +2,15 @@
 // Straight walls (loading platens, confinement): segments that move rigidly
 // under velocity control or a stress servo, and collect the contact forces
 // the disks exert on them.
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace demcal::dem {
+
+// The walls of a box (a packing's vessel; a lab test's platens and side
+// walls), by role: every box is built in this order.
+enum BoxWall : std::size_t { kBottomWall = 0, kTopWall = 1, kLeftWall = 2, kRightWall = 3 };
 
 struct Wall {
   std::string name;

@@ -70,6 +70,9 @@ class World {
 
   Bodies bodies;
   std::vector<Wall> walls;
+  // A box's wall by its role (walls.hpp); throws an Error when the world has no such wall.
+  Wall& wall(BoxWall role);
+  const Wall& wall(BoxWall role) const;
 
   // Makes the disks `members` one rigid clump with the given mass, inertia
   // about its centre of mass and centre (x, y); returns its index. Their own
@@ -183,6 +186,9 @@ class World {
   void step_in_threads();
   void build_thread_partition();
   void move_walls();
+  // The bodies' rolling limits (type A rolling resistance) from this step's
+  // contacts, when a model adds them (serial, in pair order).
+  void add_rolling_limits();
   void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
   // The mass disk i moves with: its clump's, its own, or 0 when it is fixed.
@@ -205,6 +211,10 @@ class World {
   // every rebuild, so masses set by hand count from the next refresh(), as
   // genesis's new radii do), so the integration does not divide.
   std::vector<double> inverse_mass_, inverse_inertia_;
+  // Per disk, the largest rolling-resistance couple its contacts give it this
+  // step (N m); empty while no model adds rolling limits.
+  std::vector<double> rolling_limit_;
+  bool rolling_limits_ = false;
   // The threaded force loop's bookkeeping, made at each rebuild (see
   // world_threads.cpp). Range t is, for each model position p, the pairs
   // [range_start[p * (team + 1) + t], range_start[p * (team + 1) + t + 1]).

@@ -13,7 +13,9 @@
 //   "boundaries": {"left"|"right"|"bottom"|"top": {"type": "fixed"|"free"|"viscous"|"input",
 //                  "xi": number or expression, "eta": ...}}   (exactly one input side; free by default)
 //   "medium":     {"E_d_Pa", "nu_d"} (the dashpots' C_P and C_S by the continuum formulas) and/or
-//                 {"wave_speed_p_m_s", "wave_speed_s_m_s"} (given speeds, used instead)
+//                 {"wave_speed_p_m_s", "wave_speed_s_m_s"} (given speeds, used instead);
+//                 "p_speed_formula": "ma2022" (default: Ma et al.'s C_P, the plane-strain one their
+//                 coefficients are relative to) or "plane_stress" (the 2D assembly's, sqrt(E / (rho (1 - nu^2))))
 //   "pulse":      {"p_amplitude_m_s" (A, default 1), "s_amplitude_m_s" (default 0), "period_s" (T, default 0.2)}
 //   "monitors":   {"points": [[x / W, y / H], ...] (T1, T2, ...), "reflection_point": [x / W, y / H],
 //                  "radius_m" (default 2 x the largest radius)}
@@ -42,6 +44,11 @@ enum class BoundaryType { fixed, free, viscous, input, velocity };
 // end disks out to the corners), which sums to the side's length whatever the
 // packing, so the boundary's impedance does not change from specimen to specimen.
 enum class DashpotWidth { diameter, tributary };
+// Which continuum formula gives C_P from E_d and nu_d: Ma et al. 2022's,
+// sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))) (plane strain, as they wrote it
+// for their 2D model), or the plane-stress one of a 2D disk assembly,
+// sqrt(E / (rho (1 - nu^2))), 4 % slower at nu 0.22. C_S is the same in both.
+enum class PSpeedFormula { ma2022, plane_stress };
 
 struct SideSpec {
   BoundaryType type = BoundaryType::free;
@@ -57,6 +64,7 @@ struct WaveStripSpec {
   // The equivalent continuum behind the dashpots.
   double e_d_pa = 0, nu_d = 0;
   double given_p_speed_m_s = 0, given_s_speed_m_s = 0;  // > 0: used instead of the formulas
+  PSpeedFormula p_formula = PSpeedFormula::ma2022;
   // The pulse.
   double p_amplitude_m_s = 1, s_amplitude_m_s = 0, period_s = 0.2;
   // Monitoring points, as fractions of the specimen's width and height.
@@ -72,7 +80,9 @@ struct WaveStripSpec {
   // the formulas C_P = sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))), C_S = sqrt(E / (2 rho (1 + nu)))).
   double p_speed_m_s(double rho_kg_m3) const;
   double s_speed_m_s(double rho_kg_m3) const;
-  double p_speed_formula_m_s(double rho_kg_m3) const;
+  double p_speed_formula_m_s(double rho_kg_m3) const;  // the chosen formula's
+  double p_speed_ma2022_m_s(double rho_kg_m3) const;
+  double p_speed_plane_stress_m_s(double rho_kg_m3) const;
   double s_speed_formula_m_s(double rho_kg_m3) const;
   // Reads the scene's sections with `parameters`; throws an Error naming the scene file and the field.
   static WaveStripSpec from_scene(const Scene& scene, const std::map<std::string, double>& parameters);

@@ -79,6 +79,11 @@ class HertzBase : public ContactModel {
   // 2/m + 2 r^2/I; m/3 against a wall), so its zeta is sqrt(3) times that:
   // 1.58 |beta|. Rolling damping (type C) adds eta_r.
   double max_damping_ratio() const override;
+  // Type A rolling resistance: each touching pair can give each of its disks
+  // mu_r R_i F_rep against its own spin (F_rep = 4 E* a^3 / (3 R*), the
+  // repulsive part of the normal force, from the pair's contact radius).
+  bool adds_rolling_limits() const override { return rolling_.type == RollingResistance::Type::Cdt; }
+  void add_rolling_limits(const ConstPairBlock& c, const Bodies& b, bool walls, double* limit_nm) const override;
 
   double effective_modulus_pa() const { return e_eff_pa_; }
   double effective_shear_modulus_pa() const { return g_eff_pa_; }
