@@ -16,8 +16,8 @@ void for_each_disk_pair(const World& world, F f) {
     for (std::size_t local = 0; local < c.size; ++local, ++k) {
       const std::size_t i = static_cast<std::size_t>(c.i[local]), j = static_cast<std::size_t>(c.j[local]);
       const double dx = b.x[j] - b.x[i], dy = b.y[j] - b.y[i];
-      const double distance = std::sqrt(dx * dx + dy * dy);
-      f(world.model(m), c, local, b.radius[i] + b.radius[j] - distance, distance);
+      const double distance = centre_distance_m(dx, dy);
+      f(world.model(m), c, local, disk_overlap_m(b.radius[i], b.radius[j], distance), distance);
     }
   }
 }

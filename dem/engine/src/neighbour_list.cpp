@@ -19,6 +19,8 @@
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/world.hpp"
 
+#include "world_internals.hpp"
+
 namespace demcal::dem {
 namespace {
 
@@ -28,7 +30,7 @@ std::uint64_t pair_key(std::uint8_t model, std::uint32_t i, std::uint32_t j) {
 }
 
 // A pair found by the grid: its sort key and the disks' indices (i the lower id).
-using Found = detail::FoundPair;
+using Found = FoundPair;
 
 // Pair k's key: disk-disk pairs by both ids, disk-wall pairs by the disk's id and the wall.
 std::uint64_t key_of(const ContactSet& c, std::size_t k, const Bodies& b, bool wall) {
@@ -62,7 +64,7 @@ void World::build_disk_pairs(ContactSet& fresh) {
   const long ncx = static_cast<long>((xmax - xmin) / cell) + 1;
   const long ncy = static_cast<long>((ymax - ymin) / cell) + 1;
 
-  ListScratch& scratch = list_scratch_;
+  ListScratch& scratch = internals_->list_scratch;
   std::vector<std::uint32_t>& cell_of = scratch.cell_of;
   std::vector<std::uint32_t>& start = scratch.cell_start;
   std::vector<std::uint32_t>& order = scratch.order;
@@ -281,8 +283,8 @@ void World::rebuild() {
                 "model's pairs pull across (" + format_double(attached) +
                 " m, JKR's delta_c at the largest disk): raise the skin above it");
   // Built in the last but one build's sets (their storage kept), then swapped in.
-  ContactSet& fresh_pairs = list_scratch_.pairs;
-  ContactSet& fresh_walls = list_scratch_.wall_pairs;
+  ContactSet& fresh_pairs = internals_->list_scratch.pairs;
+  ContactSet& fresh_walls = internals_->list_scratch.wall_pairs;
   fresh_pairs.set_layout(layout_);
   fresh_walls.set_layout(layout_);
   build_disk_pairs(fresh_pairs);

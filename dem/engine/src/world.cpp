@@ -10,10 +10,17 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/rng.hpp"
 #include "disk_integration.hpp"
+#include "world_internals.hpp"
 
 namespace demcal::dem {
 
-World::World(WorldSettings settings) : settings_(settings) {
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+const std::vector<double>& World::thread_cuts() const { return internals_->partition.cuts; }
+
+World::World(WorldSettings settings) : settings_(settings), internals_(std::make_unique<Internals>()) {
   for (auto& row : table_) row.fill(kNoModel);
   if (!(settings_.thickness_m > 0)) throw Error("thickness must be positive");
   if (settings_.damping < 0 || settings_.damping >= 1) throw Error("local damping must lie in [0, 1)");
@@ -93,7 +100,7 @@ std::size_t World::install_bonds(double tolerance_m, std::uint64_t seed, double 
       const std::size_t i = static_cast<std::size_t>(block.i[k]), j = static_cast<std::size_t>(block.j[k]);
       // The overlap as the force loop computes it, so a force-free pair is exactly force-free.
       const double dx = bodies.x[j] - bodies.x[i], dy = bodies.y[j] - bodies.y[i];
-      const double gap = -(bodies.radius[i] + bodies.radius[j] - std::sqrt(dx * dx + dy * dy));
+      const double gap = -disk_overlap_m(bodies.radius[i], bodies.radius[j], centre_distance_m(dx, dy));
       if (gap < 0) models_[m]->make_force_free(block, k, -gap * (1 - locked_in_fraction));
       if (gap > tolerance_m) continue;
       PairInfo info{bodies.radius[i], bodies.radius[j], bodies.group[i], bodies.group[j], false, -gap};
@@ -118,7 +125,7 @@ std::size_t World::make_wall_contacts_force_free() {
       // The overlap as the force loop computes it, so the contact is exactly force-free.
       double dx, dy, distance;
       wall_offset(wall, bodies.x[i], bodies.y[i], dx, dy, distance);
-      const double overlap = bodies.radius[i] - distance;
+      const double overlap = wall_overlap_m(bodies.radius[i], distance);
       if (overlap <= 0) continue;
       models_[m]->make_force_free(block, k, overlap);
       ++touching;
@@ -137,7 +144,7 @@ double World::wall_contact_stiffness_n_m(std::size_t w) const {
       const std::size_t i = static_cast<std::size_t>(block.i[k]);
       double dx, dy, distance;
       wall_offset(walls[w], bodies.x[i], bodies.y[i], dx, dy, distance);
-      if (bodies.radius[i] - distance <= 0) continue;
+      if (wall_overlap_m(bodies.radius[i], distance) <= 0) continue;
       double translational = 0, rotational = 0;
       models_[m]->stiffness(block, k, bodies.radius[i], translational, rotational);
       sum += translational;

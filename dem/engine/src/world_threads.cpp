@@ -26,6 +26,7 @@
 #include "demcal/dem/thread_balance.hpp"
 #include "demcal/dem/world.hpp"
 #include "disk_integration.hpp"
+#include "world_internals.hpp"
 
 namespace demcal::dem {
 
@@ -41,12 +42,12 @@ void World::set_thread_cuts(std::vector<double> cuts) {
   bool increasing = cuts.size() >= 3 && cuts.front() == 0.0 && cuts.back() == 1.0;
   for (std::size_t t = 1; t < cuts.size() && increasing; ++t) increasing = cuts[t] > cuts[t - 1];
   if (!increasing) throw std::invalid_argument("set_thread_cuts: team + 1 increasing fractions from 0 to 1 expected");
-  partition_.cuts = std::move(cuts);
-  if (built_ && static_cast<std::size_t>(threads_in_use_) + 1 == partition_.cuts.size()) build_thread_partition();
+  internals_->partition.cuts = std::move(cuts);
+  if (built_ && static_cast<std::size_t>(threads_in_use_) + 1 == internals_->partition.cuts.size()) build_thread_partition();
 }
 
 void World::build_thread_partition() {
-  ThreadPartition& tp = partition_;
+  ThreadPartition& tp = internals_->partition;
   const std::size_t n = bodies.size(), pairs = pairs_.size();
   const std::size_t team = static_cast<std::size_t>(threads_in_use_);
   // Each model's block cut into `team` parts at the same fractions (equal at
@@ -110,7 +111,7 @@ void World::build_thread_partition() {
 }
 
 void World::step_in_threads() {
-  ThreadPartition& tp = partition_;
+  ThreadPartition& tp = internals_->partition;
   const std::size_t n = bodies.size();
   const std::size_t team = tp.team, models = run_models_.size();
   double* __restrict fx = bodies.fx.data();
@@ -199,9 +200,9 @@ void World::step_in_threads() {
   // than asked leaves times at 0, and the cuts where they are).
   const std::uint32_t every = settings_.thread_balance_every_steps;
   if (every > 0 && ++tp.window_steps >= every) {
-    busy_s_.resize(team);
-    for (std::size_t t = 0; t < team; ++t) busy_s_[t] = tp.busy[t].s;
-    if (rebalance_cuts(tp.cuts, busy_s_)) build_thread_partition();
+    internals_->busy_s.resize(team);
+    for (std::size_t t = 0; t < team; ++t) internals_->busy_s[t] = tp.busy[t].s;
+    if (rebalance_cuts(tp.cuts, internals_->busy_s)) build_thread_partition();
     for (auto& b : tp.busy) b.s = 0;
     tp.window_steps = 0;
   }

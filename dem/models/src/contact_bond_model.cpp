@@ -88,7 +88,7 @@ class ContactBondModel : public LinearBase {
       if (!(c.flags[k] & kBonded)) continue;
       const std::size_t i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
       const double dx = b.x[j] - b.x[i], dy = b.y[j] - b.y[i];
-      const double overlap = b.radius[i] + b.radius[j] - std::sqrt(dx * dx + dy * dy);
+      const double overlap = disk_overlap_m(b.radius[i], b.radius[j], centre_distance_m(dx, dy));
       const PairState<const double> s = c.column.pair(k);
       const double fn = s[kNormalStiffness] * (overlap - s[kReferenceOverlap]);
       most = std::max({most, utilisation(-fn, s[kNormalStrength]), utilisation(std::abs(s[kShearForce]), s[kShearStrength])});

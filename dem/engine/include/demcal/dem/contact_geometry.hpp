@@ -18,6 +18,17 @@
 
 namespace demcal::dem {
 
+// A pair's centre distance and overlap (> 0 when touching), m, computed one
+// way everywhere: the force loops, the batches, a bond's installation, the
+// walls made force-free, the equilibrium measure and a bond's utilisation must
+// agree to the bit (a contact installed force-free is then exactly force-free).
+inline double centre_distance_m(double dx, double dy) { return std::sqrt(dx * dx + dy * dy); }
+inline double disk_overlap_m(double radius_i_m, double radius_j_m, double distance_m) {
+  return radius_i_m + radius_j_m - distance_m;
+}
+inline double wall_overlap_m(double radius_m, double distance_m) { return radius_m - distance_m; }
+
+
 struct Geometry {
   double nx, ny;
   double overlap;        // > 0 when touching, m
@@ -89,8 +100,8 @@ inline void for_disk_pairs_into(const PairBlock& c, Bodies& b, PairResult* __res
   for (std::size_t k = 0; k < size; ++k) {
     const std::int32_t i = ci[k], j = cj[k];
     const double dx = x[j] - x[i], dy = y[j] - y[i];
-    const double distance = std::sqrt(dx * dx + dy * dy);
-    const double overlap = r[i] + r[j] - distance;
+    const double distance = centre_distance_m(dx, dy);
+    const double overlap = disk_overlap_m(r[i], r[j], distance);
     if (skip(k, -overlap)) {
       if constexpr (kKeepResults)
         if (stores_result(direct, k)) results[k] = PairResult{0.0, 0.0, 0.0, 0.0};
@@ -146,7 +157,7 @@ inline void wall_offset(const Wall& wall, double x, double y, double& dx, double
   const double px = wall.x0 + s * ex, py = wall.y0 + s * ey;
   dx = x - px;
   dy = y - py;
-  distance = std::sqrt(dx * dx + dy * dy);
+  distance = centre_distance_m(dx, dy);
 }
 
 // Disk-wall pairs: c.i is the disk, c.j the wall.
@@ -158,7 +169,7 @@ inline void for_wall_pairs(const PairBlock& c, Bodies& b, std::vector<Wall>& wal
     if (!wall.active) continue;
     double dx, dy, distance;
     wall_offset(wall, b.x[i], b.y[i], dx, dy, distance);
-    const double overlap = b.radius[i] - distance;
+    const double overlap = wall_overlap_m(b.radius[i], distance);
     if (skip(k, -overlap) || distance == 0.0) continue;
     Geometry g;
     g.nx = dx / distance;

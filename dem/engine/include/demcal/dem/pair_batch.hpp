@@ -76,8 +76,8 @@ inline void batch_geometry(const PairBlock& c, const Bodies& b, std::size_t from
   for (std::size_t p = 0; p < n; ++p) {
     const std::int32_t i = ci[p], j = cj[p];
     const double dx = x[j] - x[i], dy = y[j] - y[i];
-    const double distance = std::sqrt(dx * dx + dy * dy);
-    const double overlap = r[i] + r[j] - distance;
+    const double distance = centre_distance_m(dx, dy);
+    const double overlap = disk_overlap_m(r[i], r[j], distance);
     const double inverse = 1.0 / distance;
     const double nx = dx * inverse, ny = dy * inverse;
     const double arm_i = r[i] - 0.5 * overlap;

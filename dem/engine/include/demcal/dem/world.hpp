@@ -53,20 +53,15 @@ struct WorldSettings {
   std::uint32_t thread_balance_every_steps = 256;
 };
 
-namespace detail {
-// A pair the neighbour-list build found: its sort key and its disks' indices.
-struct FoundPair {
-  std::uint64_t key;
-  std::uint32_t i, j;
-  bool operator<(const FoundPair& o) const { return key < o.key; }
-};
-}  // namespace detail
 
 class World {
  public:
   static constexpr std::uint8_t kNoModel = 255;
 
   explicit World(WorldSettings settings = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   Bodies bodies;
   std::vector<Wall> walls;
@@ -149,7 +144,7 @@ class World {
   // set_thread_cuts takes team + 1 increasing fractions from 0 to 1; they
   // apply at once on a team of that size, else from the build that makes
   // one (with thread_balance_every_steps 0 they then stay).
-  const std::vector<double>& thread_cuts() const { return partition_.cuts; }
+  const std::vector<double>& thread_cuts() const;
   void set_thread_cuts(std::vector<double> cuts);
   const WorldSettings& settings() const { return settings_; }
   WorldSettings& settings() { return settings_; }
@@ -215,42 +210,11 @@ class World {
   // step (N m); empty while no model adds rolling limits.
   std::vector<double> rolling_limit_;
   bool rolling_limits_ = false;
-  // The threaded force loop's bookkeeping, made at each rebuild (see
-  // world_threads.cpp). Range t is, for each model position p, the pairs
-  // [range_start[p * (team + 1) + t], range_start[p * (team + 1) + t + 1]).
-  struct ThreadPartition {
-    std::size_t team = 1;
-    std::vector<std::size_t> range_start;
-    std::vector<std::uint8_t> direct;             // per disk pair: kAddToI, kAddToJ where that disk is not shared
-    std::vector<PairResult> results;              // per disk pair
-    std::vector<std::uint32_t> shared;            // disks with pairs in more than one range
-    std::vector<std::uint32_t> incidence_start;   // shared disk s's entries are [start[s], start[s + 1])
-    std::vector<std::uint32_t> incidence;         // pair index * 2, + 1 where the disk is the pair's j
-    std::vector<std::vector<BreakEvent>> log;     // per (model position p, range t) at p * team + t, in pair order
-    std::vector<double> cuts;                     // range t: the fractions [cuts[t], cuts[t + 1]) of each block
-    struct alignas(64) Busy {                     // a cache line per thread: no false sharing
-      double s = 0;
-    };
-    std::vector<Busy> busy;                       // per thread: time in its ranges since the cuts last moved
-    std::uint32_t window_steps = 0;
-  };
-  ThreadPartition partition_;
-  std::vector<double> busy_s_;  // the threads' times handed to rebalance_cuts
-  // The neighbour-list build's working arrays, kept from one build to the
-  // next so a rebuild allocates (and the kernel zeroes) nothing new once the
-  // list has reached its size (neighbour_list.cpp).
-  struct ListScratch {
-    std::vector<std::uint32_t> cell_of, cell_start, order, bucket_start, bucket_next;
-    std::vector<double> x, y, radius;
-    std::vector<std::int32_t> clump;
-    std::vector<std::vector<detail::FoundPair>> found_by_thread;
-    std::vector<detail::FoundPair> found;
-    // Per search thread: {1, group, group} of a pair no model is assigned to
-    // (reported after the threads, which must not throw), or all 0.
-    std::vector<std::array<std::uint8_t, 3>> unassigned;
-    ContactSet pairs, wall_pairs;  // the next build's sets: the last but one's storage
-  };
-  ListScratch list_scratch_;
+  // The threaded step's bookkeeping and the neighbour search's working
+  // arrays (world_internals.hpp, not a public header: nothing a model or a
+  // lab test uses).
+  struct Internals;
+  std::unique_ptr<Internals> internals_;
   int threads_in_use_ = 1;
   double max_disk_move2_ = 0;
   double skin_m_ = 0;
