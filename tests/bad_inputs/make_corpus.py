@@ -50,12 +50,14 @@ def garbage(n, seed):
     return out[:n]
 
 
-def case(id, command, file, message=None, note=None):
+def case(id, command, file, message=None, note=None, lines=None):
     c = {"id": id, "command": command, "file": file}
     if message:
         c["message"] = message
     if note:
         c["note"] = note
+    if lines:
+        c["lines"] = lines  # a command that reports several problems at once, one line each
     CASES.append(c)
 
 
@@ -286,6 +288,11 @@ design_case("run_overflow.csv", HEADER + "99999999999,10,30\n", "99999999999")
 design_case("duplicate_column.csv", "run,pb_sigma_c_MPa,pb_sigma_c_MPa\n1,10,12\n", "twice")
 case("design/does_not_exist_csv", batch(missing(D, "does_not_exist.csv")), path(D, "does_not_exist.csv"))
 case("design/directory_csv", batch(directory("as_file.csv")), f"{HERE}/dir/as_file.csv")
+# Several problems at once: a circumscribed CCD whose axial points make five parameters negative names each on its
+# own line, then the fix (1 + 5 + 1 lines).
+case("design/ccd_leaves_the_physical_range", ["{bin}/demcal-doe", "ccd", "--space", "data/spaces/su2021_bbd_E.json",
+                                              "--out", "{tmp}/design.csv"],
+     "data/spaces/su2021_bbd_E.json", "--type inscribed", lines=7)
 
 
 def h5(name, build):
