@@ -48,7 +48,6 @@ MAX_ROUNDS = 12
 FIRST_VERIFICATION_SEEDS = 5
 MAX_VERIFICATION_SEEDS = 20
 CHECK_SEEDS = 4  # specimens of each check test at the solution
-CHECK_SHOWN = ("c_MPa", "phi_deg", "hb_m_i", "sigma_u_MPa", "sigma_t_MPa", "E_GPa", "nu")  # in the progress line
 EXIT_MET, EXIT_UNREACHABLE, EXIT_BUDGET = 0, 3, 4
 EXIT_FAILED = 4  # the runs themselves failed: nothing says the targets are out of reach
 OFFSET_TRIM = 0.2  # share of the verified specimens cut from each end of the offset's mean (one of 5, 4 of 20)
@@ -751,14 +750,16 @@ class Calibration:
         for k, path in enumerate(self.check_tests):
             name = os.path.splitext(os.path.basename(path))[0]
             folder = os.path.join("checks", f"c{k + 1}_{name}")
-            have = executables.describe(path)["parameters"]
+            described = executables.describe(path)
+            have = described["parameters"]
+            shown = {o for o, d in described["outputs"].items() if d.get("headline")}  # the test's headline values
             result = calibrate_runs.check(self.tools, path, os.path.join(self.out, folder),
                                           {n: v for n, v in values.items() if n in have}, first, CHECK_SEEDS,
                                           self.quiet)
             out.append(dict(result, scene=path, folder=folder, first_seed=first, seeds=CHECK_SEEDS,
                             note="runs beyond the calibration's budget"))
             self.say(f"check {name} on seeds {first}-{first + CHECK_SEEDS - 1}: " + ", ".join(
-                f"{o} {s['mean']:.4g}" for o, s in sorted(result["outputs"].items()) if o in CHECK_SHOWN))
+                f"{o} {s['mean']:.4g}" for o, s in sorted(result["outputs"].items()) if o in shown))
         return out
 
     def reachable(self):

@@ -10,7 +10,7 @@ from . import executables
 from .errors import StudyError, load_json
 from .files import write_target
 from .mohr import mohr_section
-from .plots import NO_CURVES, curves_png
+from .plots import NO_CURVES, axes_of, curves_png
 from .report_text import (code, md, num, parameter_block_lines, parameter_entries, percent, result_words, scene_text,
                           shown_path, verdict_words, verification_lines, without_paths, write_parameters)
 from .to_html import to_html
@@ -34,13 +34,13 @@ def correction_text(correction):
     return text
 
 
-def final_runs_lines(runs_dir, out):
+def final_runs_lines(runs_dir, out, axes):
     """Each test's stress-strain curves over the final verification's runs (none when no run stored a curve, as an
     external program's), and the Mohr circles of a biaxial series among them (its mean peaks and envelope)."""
     lines = []
     h5, runs_csv = os.path.join(runs_dir, "runs.h5"), os.path.join(runs_dir, "runs.csv")
     if os.path.exists(h5):
-        why = curves_png(h5, os.path.join(out, "verification_curves.png"))
+        why = curves_png(h5, os.path.join(out, "verification_curves.png"), axes)
         if why != NO_CURVES:
             lines += ["", "## Curves of the final verification", "",
                       "![stress-strain curves of the final verification](verification_curves.png)" if why is None
@@ -63,7 +63,7 @@ def check_lines(k, check, out):
     h5 = os.path.join(folder, "responses.h5")
     if os.path.exists(h5):
         png = f"check{k}_curves.png"
-        why = curves_png(h5, os.path.join(out, png))
+        why = curves_png(h5, os.path.join(out, png), axes_of(check["scene"]))
         if why != NO_CURVES:
             lines += ["", f"![curves of check {k}]({png})" if why is None else why]
     table = os.path.join(folder, "responses.csv")
@@ -210,7 +210,7 @@ def report(out):
         lines += ["", "## The final verification (DEM mean over fresh seeds, 95 % interval)", ""]
         lines += verification_lines(verification, out)
     if last:
-        lines += final_runs_lines(os.path.join(out, last, "runs"), out)
+        lines += final_runs_lines(os.path.join(out, last, "runs"), out, axes_of(config["scene"]))
     for k, c in enumerate(solution.get("checks", [])):
         lines += check_lines(k + 1, c, out)
     if solution.get("reachable"):

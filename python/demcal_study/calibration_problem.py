@@ -135,7 +135,10 @@ class Problem:
         stress_targets = sorted(o for o, s in self.output_stress_like.items() if s)
         self.scale_target = None
         if scale_parameter is not None and stress_targets:
-            self.scale_target = "E_GPa" if "E_GPa" in stress_targets else stress_targets[0]
+            # A modulus (set by the stiffnesses alone) when one is a target, the test's first by its rank; else the
+            # first stress target.
+            moduli = sorted((outputs[o]["modulus"], o) for o in stress_targets if o in outputs and outputs[o].get("modulus"))
+            self.scale_target = moduli[0][1] if moduli else stress_targets[0]
         self.output_si = {o: info[o]["si_factor"] for o in self.targets}
         # The scale parameter's reference value at scale 1; every ratio multiplies it.
         self.scale_reference = varied[scale_parameter][2] if scale_parameter else 1.0

@@ -42,7 +42,28 @@ def pieces(strain, stress):
     yield strain[start:], stress[start:]
 
 
-def curves_png(runs_h5, out_png):
+def curve_axes(description):
+    """{label: {"x", "y"}} of a scene's curves as demcal-dem describes them ("" for a scene's one test; a test
+    list's labels), None for a test whose record is not a stress-strain curve."""
+    if description.get("test") == "list":
+        return {t["label"]: t.get("curve_axes") for t in description.get("tests", [])}
+    return {"": description.get("curve_axes")}
+
+
+def axes_of(scene):
+    """curve_axes of the scene file `scene` (through demcal-dem describe); None when it cannot be described."""
+    from . import executables
+    from .errors import StudyError
+    try:
+        return curve_axes(executables.describe(scene))
+    except (StudyError, OSError, KeyError, TypeError):
+        return None
+
+
+def curves_png(runs_h5, out_png, axes):
+    """The stored curves of every point in `runs_h5`, one panel per test, labelled by `axes` (curve_axes)."""
+    if axes is None:
+        return "(no curve plot: the scene could not be described, so its axes are unknown)"
     try:
         import h5py
     except ImportError as e:
@@ -55,22 +76,21 @@ def curves_png(runs_h5, out_png):
     except ImportError as e:
         return f"(no curve plot: {e})"
     with h5py.File(runs_h5, "r") as f:
-        runs = {name: curve_sets(f["points"][name]) for name in sorted(f["points"])}
-        deviatoric = {label for name in f["points"] for label in runs[name] if confined(f["points"][name], label)}
+        runs = {name: {label: c for label, c in curve_sets(f["points"][name]).items() if axes.get(label)}
+                for name in sorted(f["points"])}
     labels = sorted({label for sets in runs.values() for label in sets})
     if not labels:
         return NO_CURVES
-    fig, axes = plt.subplots(1, len(labels), figsize=(6 * len(labels), 4), squeeze=False)
-    for ax, label in zip(axes[0], labels):
+    fig, panels = plt.subplots(1, len(labels), figsize=(6 * len(labels), 4), squeeze=False)
+    for ax, label in zip(panels[0], labels):
         for name, sets in runs.items():
             if label not in sets:
                 continue
             for k, (strain, stress) in enumerate(pieces(*sets[label])):
                 ax.plot(strain * 100, stress, color=f"C{list(runs).index(name) % 10}",
                         label=name.replace("run1_", "") if k == 0 else None)
-        ax.set_xlabel("axial strain (%)" if label != "brazilian" else "platen approach / D (%)")
-        ax.set_ylabel("deviatoric stress (MPa)" if label in deviatoric else
-                      "2F / (pi D t) (MPa)" if label == "brazilian" else "axial stress (MPa)")
+        ax.set_xlabel(axes[label]["x"] + " (%)")
+        ax.set_ylabel(axes[label]["y"])
         ax.set_title(f"{label + ': ' if label else ''}verification runs at the calibrated parameters", fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)

@@ -10,7 +10,7 @@ from .cost import count_rows, make_wall_s
 from .outputs import stem, tests_per_point
 from .errors import StudyError, load_json
 from .files import write_if_changed
-from .plots import convergence_png, curves_png
+from .plots import convergence_png, curves_png, axes_of
 from .report_text import (code, md, num, parameter_block_lines, parameter_entries, percent, scene_text, shown_path,
                           verification_lines as verification_table, without_paths, write_parameters)
 from .sections import (candidates_lines, comparison_section, design_range_lines, holdout_lines, screening_section,
@@ -98,7 +98,7 @@ def calibration_report(study, out):
     if solution.get("unidentified"):
         lines += ["", "Not identified by these targets (restarts that meet them spread over more than half the range): "
                   + ", ".join(md(n) for n in solution["unidentified"]) + "."]
-    lines += verification_lines(refined, first, out) + candidates_lines(out)
+    lines += verification_lines(refined, first, out, axes_of(study["scene"])) + candidates_lines(out)
     lines += [""] + stability_section(out) + comparison_section(study, out)
     return lines
 
@@ -166,7 +166,7 @@ def surrogate_lines(study, solution, out):
                     "identified |", "|---|---|---|---|"]
 
 
-def verification_lines(refined, first, out):
+def verification_lines(refined, first, out, axes):
     """The first verification, the refinement rounds, the final verification table and its curves."""
     final = refined["final"]
     lines = ["", "## Verification in DEM", ""]
@@ -186,7 +186,7 @@ def verification_lines(refined, first, out):
         lines += ["", "Other outputs at the answer (mean and SD over the final verification's seeds that ran): " + ", ".join(
             f"{md(n)} {num(v['mean'])} (SD {num(v['sd'])})" for n, v in others.items()) + "."]
     runs = os.path.join(os.path.dirname(final["runs"]), "runs.h5")
-    if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png")) is None:
+    if os.path.exists(runs) and curves_png(runs, os.path.join(out, "verification_curves.png"), axes) is None:
         lines += ["", "![stress-strain curves](verification_curves.png)"]
     return lines
 

@@ -180,6 +180,17 @@ def test_check_tests_run_at_the_verified_solution_on_fresh_seeds_apart_from_the_
     assert f"## Check 1: `{shown}` at the solution (not a target)" in md and "| phi_deg | 40 | 1.5 | 4 |" in md
 
 
+def test_the_scale_target_is_the_modulus_describe_ranks_first():
+    # Described moduli are preferred by their rank, whatever the names; without one, the first stress target.
+    d = json.loads(json.dumps(DESCRIPTION))
+    d["outputs"]["secant_GPa"] = {"unit": "GPa", "stress_like": True, "si_factor": 1e9, "modulus": 2}
+    d["outputs"]["tangent_GPa"] = {"unit": "GPa", "stress_like": True, "si_factor": 1e9, "modulus": 1}
+    p = Problem(d, {"sigma_u_MPa": 48, "secant_GPa": 6.0, "tangent_GPa": 6.5, "nu": 0.2})
+    assert p.scale_target == "tangent_GPa"
+    assert Problem(d, {"sigma_u_MPa": 48, "secant_GPa": 6.0, "nu": 0.2}).scale_target == "secant_GPa"
+    assert Problem(d, {"sigma_u_MPa": 48, "nu": 0.2}).scale_target == "sigma_u_MPa"
+
+
 def test_problem_codes_wide_ranges_on_a_log_scale_and_fixes_what_shapes_the_specimen():
     p = Problem(DESCRIPTION, {"E_GPa": 6.5, "sigma_u_MPa": 48, "nu": 0.2})
     assert p.scale_parameter == "Ec_Pa" and p.scale_target == "E_GPa"

@@ -26,7 +26,12 @@ def test_a_test_list_gets_a_panel_per_test_and_a_series_splits_per_specimen(tmp_
         assert plots.confined(f["points/run1_seed1"], "biaxial") and not plots.confined(f["points/run1_seed1"], "ucs")
     assert [len(s) for s, _ in plots.pieces(*sets["biaxial"])] == [3, 2]
     out = tmp_path / "curves.png"
-    assert plots.curves_png(str(runs), str(out)) is None and out.stat().st_size > 0
+    axes = plots.curve_axes({"test": "list", "tests": [
+        {"label": "biaxial", "curve_axes": {"x": "axial strain", "y": "deviatoric stress (MPa)"}},
+        {"label": "ucs", "curve_axes": {"x": "axial strain", "y": "axial stress (MPa)"}}]})
+    assert plots.curves_png(str(runs), str(out), axes) is None and out.stat().st_size > 0
+    # The axes come from the scene's description (demcal-dem describe): without them, no plot and why.
+    assert "could not be described" in plots.curves_png(str(runs), str(out), None)
 
 
 def test_a_scene_keeps_its_one_panel_and_no_curve_says_so(tmp_path):
@@ -34,7 +39,10 @@ def test_a_scene_keeps_its_one_panel_and_no_curve_says_so(tmp_path):
     stored(runs, {"run1_seed1": {"curve_axial_strain": [0, 1e-3], "curve_stress_MPa": [0, 9]}})
     with h5py.File(runs, "r") as f:
         assert list(plots.curve_sets(f["points/run1_seed1"])) == [""]
-    assert plots.curves_png(str(runs), str(tmp_path / "c.png")) is None
+    one = plots.curve_axes({"test": "ucs", "curve_axes": {"x": "axial strain", "y": "axial stress (MPa)"}})
+    assert plots.curves_png(str(runs), str(tmp_path / "c.png"), one) is None
     empty = tmp_path / "empty.h5"
     stored(empty, {"run1_seed1": {"run": [1]}})
-    assert plots.curves_png(str(empty), str(tmp_path / "e.png")) == "(no curves stored)"
+    assert plots.curves_png(str(empty), str(tmp_path / "e.png"), one) == "(no curves stored)"
+    # A test whose record is not a curve (a heap's profile) is left out.
+    assert plots.curves_png(str(runs), str(tmp_path / "h.png"), {"": None}) == "(no curves stored)"

@@ -75,7 +75,7 @@ def test_no_curves_section_when_no_run_stored_a_curve(tmp_path):
             g = f.create_group(f"points/run1_seed{seed}")
             g.create_dataset("curve_axial_strain", data=np.zeros(0))
             g.create_dataset("curve_stress_MPa", data=np.zeros(0))
-    assert final_runs_lines(str(runs), str(tmp_path)) == []
+    assert final_runs_lines(str(runs), str(tmp_path), {"": {"x": "axial strain", "y": "axial stress (MPa)"}}) == []
     assert not (tmp_path / "verification_curves.png").exists()
 
 

@@ -21,6 +21,7 @@
 #include "demcal/dem/describe.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
+#include "demcal/dem/scene_set.hpp"
 
 using namespace demcal;
 using namespace demcal::dem;
@@ -316,6 +317,26 @@ TEST(LabTests, DescribeGivesEachOutputItsPhysicalRange) {
   EXPECT_NE(error_of([&] { Scene::from_json(scene, source("tests/data/x.json")); })
                 .find("outputs.y_MPa.range: low must be below high"),
             std::string::npos);
+}
+
+// What the study layer used to keep lists of comes from describe: each
+// test's headline outputs, its moduli ranked (the preferred scale target),
+// and its curve's axes.
+TEST(LabTests, DescribeFlagsHeadlinesModuliAndTheCurvesAxes) {
+  json ucs = describe_scene(Scene::load(source("tests/data/ucs_small.json")));
+  EXPECT_EQ(ucs["outputs"]["sigma_u_MPa"].value("headline", false), true);
+  EXPECT_EQ(ucs["outputs"]["cracks_shear"].value("headline", false), false);
+  EXPECT_EQ(ucs["outputs"]["E_GPa"]["modulus"], 1);
+  EXPECT_EQ(ucs["outputs"]["E50_GPa"]["modulus"], 2);
+  EXPECT_FALSE(ucs["outputs"]["sigma_u_MPa"].contains("modulus"));
+  EXPECT_EQ(ucs["curve_axes"], json({{"x", "axial strain"}, {"y", "axial stress (MPa)"}}));
+  json disc = describe_scene(Scene::load(source("tests/data/brazilian_small.json")));
+  EXPECT_EQ(disc["curve_axes"]["y"], "2F / (pi D t) (MPa)");
+  EXPECT_EQ(disc["outputs"]["sigma_t_MPa"].value("headline", false), true);
+  json list = describe_scene_set(SceneSet::load(source("tests/data/tests_small.json")));
+  for (const json& t : list["tests"]) EXPECT_TRUE(t.contains("curve_axes")) << t.dump();
+  json wave = describe_scene(Scene::load(source("tests/data/wave_strip_small.json")));
+  EXPECT_TRUE(wave["curve_axes"].is_null());  // velocity histories, not a stress-strain curve
 }
 
 // The registries list every contact model's parameter keys (the reference

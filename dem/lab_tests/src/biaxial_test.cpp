@@ -228,6 +228,18 @@ class BiaxialTest : public LabTest {
   std::vector<BoundaryRole> boundary_roles() const override {
     return {{"disk-platen", kPlatenGroup, "the specimen's disks against the platens and the confining side walls"}};
   }
+  // A series: its envelope's parameters (one confinement: its peak).
+  std::vector<std::string> headline_outputs(const Scene& scene) const override {
+    if (scene.loading().confining_stresses_pa.size() >= 2) return {"c_MPa", "phi_deg", "hb_m_i"};
+    return {"q_peak_MPa_1"};
+  }
+  std::vector<std::string> modulus_outputs(const Scene& scene) const override {
+    std::vector<std::string> names;
+    for (std::size_t k = 1; k <= scene.loading().confining_stresses_pa.size(); ++k)
+      names.push_back("E_GPa_" + std::to_string(k));
+    return names;
+  }
+  std::pair<std::string, std::string> curve_axes() const override { return {"axial strain", "deviatoric stress (MPa)"}; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out;
     const std::vector<double>& confinements = scene.loading().confining_stresses_pa;

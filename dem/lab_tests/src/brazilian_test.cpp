@@ -94,6 +94,10 @@ class BrazilianTest : public LabTest {
   std::vector<BoundaryRole> boundary_roles() const override { return {platen_role()}; }
   // 1: the platens start on the flats, force-free (2026-12-03).
   int results_version() const override { return 1; }
+  std::vector<std::string> headline_outputs(const Scene&) const override { return {"sigma_t_MPa"}; }
+  std::pair<std::string, std::string> curve_axes() const override {
+    return {"platen approach / D", "2F / (pi D t) (MPa)"};
+  }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out = {
         {"sigma_t_MPa", "MPa", "tensile strength 2 F_max / (pi D t)", true, kNonNegative},

@@ -9,6 +9,20 @@ namespace demcal::dem {
 
 namespace {
 
+bool listed(const std::vector<std::string>& names, const std::string& name) {
+  for (const std::string& n : names)
+    if (n == name) return true;
+  return false;
+}
+
+nlohmann::json axes_json(const LabTest& test) {
+  const auto [x, y] = test.curve_axes();
+  return x.empty() ? nlohmann::json(nullptr) : nlohmann::json({{"x", x}, {"y", y}});
+}
+
+// An output with the flags its test gives it: a headline value, a modulus.
+nlohmann::json flagged_output_json(const OutputSpec& o, const Scene& scene);
+
 nlohmann::json output_json(const OutputSpec& o) {
   const Quantity q = quantity_of_unit(o.unit, "output " + o.name);
   nlohmann::json item = {{"unit", o.unit}, {"description", o.description}, {"quantity", quantity_name(q)},
@@ -17,6 +31,16 @@ nlohmann::json output_json(const OutputSpec& o) {
   // The values a target may take: [low, high], null for an open end.
   const auto end = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   item["range"] = nlohmann::json::array({end(o.range.low), end(o.range.high)});
+  return item;
+}
+
+nlohmann::json flagged_output_json(const OutputSpec& o, const Scene& scene) {
+  nlohmann::json item = output_json(o);
+  if (listed(scene.lab_test().headline_outputs(scene), o.name)) item["headline"] = true;
+  // A modulus carries its rank in the test's list (1: the preferred scale target).
+  const std::vector<std::string> moduli = scene.lab_test().modulus_outputs(scene);
+  for (std::size_t k = 0; k < moduli.size(); ++k)
+    if (moduli[k] == o.name) item["modulus"] = static_cast<int>(k + 1);
   return item;
 }
 
@@ -40,7 +64,8 @@ nlohmann::json describe_scene(const Scene& scene) {
     out["parameters"][name] = item;
   }
   out["outputs"] = json::object();
-  for (const OutputSpec& o : scene.lab_test().outputs(scene)) out["outputs"][o.name] = output_json(o);
+  for (const OutputSpec& o : scene.lab_test().outputs(scene)) out["outputs"][o.name] = flagged_output_json(o, scene);
+  out["curve_axes"] = axes_json(scene.lab_test());
   out["contacts"] = json::object();
   for (const ContactRole& role : scene.contact_roles())
     out["contacts"][role.name] = {{"model", scene.contacts().at(role.name).model}, {"description", role.description},
@@ -68,7 +93,8 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   out["tests"] = json::array();
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Scene& s = set.scenes()[k];
-    out["tests"].push_back({{"scene", s.origin()}, {"name", s.name()}, {"test", s.test()}, {"label", set.label(k)}});
+    out["tests"].push_back({{"scene", s.origin()}, {"name", s.name()}, {"test", s.test()}, {"label", set.label(k)},
+                            {"curve_axes", axes_json(s.lab_test())}});
   }
   out["parameters"] = json::object();
   for (const auto& [name, p] : set.parameters()) {
@@ -81,7 +107,7 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   out["outputs"] = json::object();
   for (std::size_t k = 0; k < set.size(); ++k)
     for (const OutputSpec& o : set.scenes()[k].lab_test().outputs(set.scenes()[k])) {
-      json item = output_json(o);
+      json item = flagged_output_json(o, set.scenes()[k]);
       item["test"] = set.label(k);
       out["outputs"][set.output_name(k, o.name)] = item;
     }

@@ -380,6 +380,8 @@ class HeapTest : public LabTest {
     return {{"particle-particle", {{kPowderGroup, kPowderGroup}}, "particles against each other"}};
   }
   void check_scene(const Scene& scene) const override { HeapSpec::from_scene(scene, scene.resolve({})); }
+  std::vector<std::string> headline_outputs(const Scene&) const override { return {"aor_deg", "aor_fixed_base_deg"}; }
+  std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }  // a profile, not a curve
   std::vector<OutputSpec> outputs(const Scene&) const override {
     return {{"aor_deg", "deg", "angle of repose, the mean of both flanks' least-squares lines between 10 and 90 % of the "
                                "heap's height", true, kAcuteAngleDeg},

@@ -7,6 +7,13 @@
 
 namespace demcal::dem {
 
+// By default every output is a headline (an external command's few).
+std::vector<std::string> LabTest::headline_outputs(const Scene& scene) const {
+  std::vector<std::string> names;
+  for (const OutputSpec& o : outputs(scene)) names.push_back(o.name);
+  return names;
+}
+
 LabTestRegistry& LabTestRegistry::instance() {
   static LabTestRegistry registry = [] {
     LabTestRegistry r;

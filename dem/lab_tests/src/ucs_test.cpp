@@ -248,6 +248,8 @@ class UcsTest : public LabTest {
     for (OutputSpec& o : platen_crack_outputs(scene)) out.push_back(o);
     return out;
   }
+  std::vector<std::string> headline_outputs(const Scene&) const override { return {"sigma_u_MPa", "E_GPa", "nu"}; }
+  std::vector<std::string> modulus_outputs(const Scene&) const override { return {"E_GPa", "E50_GPa"}; }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
                  const RunOptions& options) const override {
     return run_ucs(scene, parameters, options);

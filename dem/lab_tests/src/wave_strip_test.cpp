@@ -559,6 +559,8 @@ class WaveStripTest : public LabTest {
             {"run", "duration, gravity, recording, recovery threshold, quiet period", false}};
   }
   void check_scene(const Scene& scene) const override { WaveStripSpec::from_scene(scene, scene.resolve({})); }
+  std::vector<std::string> headline_outputs(const Scene&) const override { return {"total_recovery_time_s"}; }
+  std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }  // velocity histories
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
     std::vector<OutputSpec> out;
     std::size_t points = 0;

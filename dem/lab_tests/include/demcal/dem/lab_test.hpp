@@ -82,6 +82,15 @@ class LabTest {
   // What a run of `scene` reports (some outputs depend on the specimen, e.g.
   // the cracks in the mortar and the interface of a concrete).
   virtual std::vector<OutputSpec> outputs(const Scene& scene) const = 0;
+  // The outputs a progress line shows and a report leads with (the test's
+  // headline values), and those that are moduli (set by the stiffnesses
+  // alone: a calibration's preferred scale target). Names of outputs();
+  // describe flags them, so the study layer keeps no list of its own.
+  virtual std::vector<std::string> headline_outputs(const Scene& scene) const;
+  virtual std::vector<std::string> modulus_outputs(const Scene&) const { return {}; }
+  // The labels of the axes of the test's curve, for plots ({"", ""}: its record
+  // is not a stress-strain curve).
+  virtual std::pair<std::string, std::string> curve_axes() const { return {"axial strain", "axial stress (MPa)"}; }
   // Packs (or loads) the specimen, bonds it and runs the test. Bad input
   // throws; a run that goes unstable or times out returns ok = false.
   virtual TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
