@@ -831,14 +831,17 @@ def check_targets(targets, description, problems):
             problems.add(f"--target: {name}: 0 cannot be a target (its errors are relative to it)")
             continue
         declared = outs[name].get("range") if name in outs else None
-        if isinstance(declared, (list, tuple)) and len(declared) == 2:
-            low, high = declared
-            if (low is not None and value < low) or (high is not None and value > high):
-                problems.add(f"--target: {name}={value:g} lies outside its physical range, "
-                             f"{range_text(low, high, outs[name].get('unit'))}")
-                continue
+        if isinstance(declared, (list, tuple)) and len(declared) == 2 and outside(value, *declared):
+            problems.add(f"--target: {name}={value:g} lies outside its physical range, "
+                         f"{range_text(*declared, outs[name].get('unit'))}")
+            continue
         good[name] = value
     return good
+
+
+def outside(value, low, high):
+    """Whether `value` lies outside [low, high] (None: an open end)."""
+    return (low is not None and value < low) or (high is not None and value > high)
 
 
 def check_fixed(fixed, description, problems):
@@ -853,7 +856,7 @@ def check_fixed(fixed, description, problems):
             problems.add(f"--fixed: {name}: {value} is not a finite number")
             continue
         low, high = params[name].get("low"), params[name].get("high")
-        if (low is not None and value < low) or (high is not None and value > high):
+        if outside(value, low, high):
             problems.add(f"--fixed: {name}={value:g} lies outside the scene's physical bounds, "
                          f"{range_text(low, high, params[name].get('unit'))}")
             continue

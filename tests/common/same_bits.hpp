@@ -31,4 +31,25 @@ inline void expect_same_bits(const dem::World& a, const dem::World& b) {
   EXPECT_EQ(a.dt_s(), b.dt_s());
 }
 
+// The same for two runs whose disks are stored in different orders: each
+// disk compared with the one of the same id (position, velocity, spin), and
+// the walls' forces, the breaks and the time step.
+inline void expect_same_bits_per_id(const dem::World& a, const dem::World& b) {
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  std::vector<std::size_t> index_b(b.bodies.size());
+  for (std::size_t k = 0; k < b.bodies.size(); ++k) index_b[b.bodies.id[k]] = k;
+  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+    const std::size_t m = index_b[a.bodies.id[k]];
+    ASSERT_EQ(a.bodies.x[k], b.bodies.x[m]) << "disk " << a.bodies.id[k];
+    ASSERT_EQ(a.bodies.y[k], b.bodies.y[m]) << "disk " << a.bodies.id[k];
+    ASSERT_EQ(a.bodies.vx[k], b.bodies.vx[m]) << "disk " << a.bodies.id[k];
+    ASSERT_EQ(a.bodies.vy[k], b.bodies.vy[m]) << "disk " << a.bodies.id[k];
+    ASSERT_EQ(a.bodies.w[k], b.bodies.w[m]) << "disk " << a.bodies.id[k];
+  }
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  for (std::size_t w = 0; w < a.walls.size(); ++w) EXPECT_EQ(a.walls[w].fy, b.walls[w].fy) << "wall " << w;
+  EXPECT_EQ(a.breaks().size(), b.breaks().size());
+  EXPECT_EQ(a.dt_s(), b.dt_s());
+}
+
 }  // namespace demcal::test

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "../common/load_until_breaks.hpp"
+#include "../common/same_bits.hpp"
 #include "demcal/core/rng.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
@@ -32,22 +33,6 @@ World world_in_order(const Scene& scene, const std::map<std::string, double>& pa
   return world;
 }
 
-void expect_same_bits_per_id(const World& a, const World& b) {
-  ASSERT_EQ(a.bodies.size(), b.bodies.size());
-  std::vector<std::size_t> index_b(b.bodies.size());
-  for (std::size_t k = 0; k < b.bodies.size(); ++k) index_b[b.bodies.id[k]] = k;
-  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
-    const std::size_t m = index_b[a.bodies.id[k]];
-    ASSERT_EQ(a.bodies.x[k], b.bodies.x[m]) << "disk " << a.bodies.id[k];
-    ASSERT_EQ(a.bodies.y[k], b.bodies.y[m]) << "disk " << a.bodies.id[k];
-    ASSERT_EQ(a.bodies.vx[k], b.bodies.vx[m]) << "disk " << a.bodies.id[k];
-    ASSERT_EQ(a.bodies.w[k], b.bodies.w[m]) << "disk " << a.bodies.id[k];
-  }
-  EXPECT_EQ(a.walls[1].fy, b.walls[1].fy);
-  EXPECT_EQ(a.breaks().size(), b.breaks().size());
-  EXPECT_EQ(a.dt_s(), b.dt_s());
-}
-
 }  // namespace
 
 TEST(Identity, ReorderedDisksGiveTheSameBitsForEveryDisk) {
@@ -71,7 +56,7 @@ TEST(Identity, ReorderedDisksGiveTheSameBitsForEveryDisk) {
     ASSERT_GE(a.breaks().size(), 20u) << file << ": the run should reach bond breakage";
     a.run(steps);
     b.run(2 * steps);
-    expect_same_bits_per_id(a, b);
+    test::expect_same_bits_per_id(a, b);
   }
 }
 
