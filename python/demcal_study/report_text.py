@@ -164,14 +164,18 @@ def parameter_block_lines(entries, scene, out, heading="## Final parameter set")
         return [heading, "", "No parameter set: no DEM point gave one.", ""]
     width = max(len(n) for n, _, _, _ in entries)
     block = [f"{n:<{width}} = {v!r}  # {(u + ', ') if u and u != '1' else ''}{HOW[h]}" for n, v, u, h in entries]
+    # The export command, run from this report's folder: the study layer's package and the scene relative to it,
+    # and Debian's interpreter (the one with the study layer's packages).
+    package = os.path.relpath(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), os.path.abspath(out))
     scene_shown = shown_path(scene, out)
     return [heading, "",
             "Every parameter of the scene (fixed ones included), exact as the DEM ran them; also in "
             "[parameters.json](parameters.json) beside this report (name, value, unit).", "",
             "```text"] + block + ["```", "",
                                   "Export it to PFC, YADE or LIGGGHTS from this report's folder: "
-                                  f"`python -m demcal_study export --solution parameters.json --scene {scene_shown} "
-                                  "--to pfc` (or `--to yade`, `--to liggghts`).", ""]
+                                  f"`PYTHONPATH={package} /usr/bin/python3 -m demcal_study export --solution "
+                                  f"parameters.json --scene {scene_shown} --to pfc` (or `--to yade`, "
+                                  "`--to liggghts`).", ""]
 
 
 # -- the scene and the verification, as a report shows them --------------------------------------------------------
