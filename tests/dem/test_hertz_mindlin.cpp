@@ -55,6 +55,29 @@ double run_until_apart(World& world) {
   return 0;
 }
 
+// A floor (a steel wall of group 1 along y = 0) under disk 0, which then
+// falls on it at `speed_m_s`; runs until the disk has left the floor again
+// (the wall pair's force on the floor tells when it touches). Returns
+// whether it touched at all.
+bool bounce_off_a_floor(World& world, double speed_m_s) {
+  Wall floor;
+  floor.x0 = -1;
+  floor.x1 = 1;
+  floor.group = 1;
+  floor.inward_ny = 1;
+  world.walls.push_back(floor);
+  world.bodies.vy[0] = -speed_m_s;
+  bool touched = false;
+  for (int s = 0; s < 1000000; ++s) {
+    world.step();
+    if (world.walls[0].fy != 0.0)
+      touched = true;
+    else if (touched)
+      break;
+  }
+  return touched;
+}
+
 double effective_modulus() { return kShearModulus / (1 - kPoisson); }  // E / (2 (1 - nu^2)), E = 2 G (1 + nu)
 
 }  // namespace
@@ -121,21 +144,7 @@ TEST(HertzMindlin, TheHeapScenesStepReturnsTheSetRestitution) {
       p["poisson_2"] = 0.3;
       wall.assign(0, 1, wall.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test")));
       wall.bodies.add_disk(0.0, r + 1e-7, r, rho, thickness, 0);
-      wall.bodies.vy[0] = -speed;
-      Wall floor;
-      floor.x0 = -1;
-      floor.x1 = 1;
-      floor.group = 1;
-      floor.inward_ny = 1;
-      wall.walls.push_back(floor);
-      bool touched = false;
-      for (int s = 0; s < 1000000; ++s) {
-        wall.step();
-        if (wall.walls[0].fy != 0.0)
-          touched = true;
-        else if (touched)
-          break;
-      }
+      ASSERT_TRUE(bounce_off_a_floor(wall, speed));
       EXPECT_NEAR(wall.bodies.vy[0] / speed, e, 0.03 * e) << "wall, e " << e << ", " << speed << " m/s";
     }
   }
@@ -153,22 +162,7 @@ TEST(HertzMindlin, DiskBouncesOffAWallWithTheWallsRestitution) {
   p["poisson_2"] = 0.3;
   world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test")));
   world.bodies.add_disk(0.0, kRadius + 1e-6, kRadius, kDensity, kThickness, 0);
-  world.bodies.vy[0] = -0.3;
-  Wall floor;
-  floor.x0 = -1;
-  floor.x1 = 1;
-  floor.group = 1;
-  world.walls.push_back(floor);
-  // The wall pair's force on the floor tells when the disk touches it.
-  bool touched = false;
-  for (int s = 0; s < 100000; ++s) {
-    world.step();
-    if (world.walls[0].fy != 0.0)
-      touched = true;
-    else if (touched)
-      break;
-  }
-  ASSERT_TRUE(touched);
+  ASSERT_TRUE(bounce_off_a_floor(world, 0.3));
   EXPECT_NEAR(world.bodies.vy[0] / 0.3, 0.4, 0.01 * 0.4);
   EXPECT_NEAR(world.bodies.vx[0], 0.0, 1e-15);
 }
