@@ -221,6 +221,11 @@ class BiaxialTest : public LabTest {
   // 1: a series also reports the Hoek-Brown hb_ outputs (2026-12-03).
   // 2: E's and nu's window a tenth of the points to the peak (ucs_macro_values).
   int results_version() const override { return 2; }
+  // Its confining stresses are numbers in `loading`, not stress-like
+  // parameters: scaling the parameters alone does not scale its outputs
+  // (the law does, with the confinements scaled too: the invariant driver
+  // checks that). So no calibration may rest on it.
+  bool exact_scaling() const override { return false; }
   std::string description() const override {
     return "biaxial (2D triaxial) compression: servo side walls hold each of loading.confining_stresses_MPa while "
            "frictionless platens approach; a series fits the Mohr-Coulomb and Hoek-Brown envelopes";
