@@ -108,15 +108,15 @@ std::vector<PointSpec> batch_points(const SceneSet& scene, const BatchOptions& o
   if (make_folder) {
     if (options.move_aside) {
       try {
-        claim_result_files(scene, options);
+        check_result_files(scene, options);
       } catch (const Error&) {
         log::info("moved the results of another scene to " + move_results_aside(options));
       }
     }
-    claim_result_files(scene, options);  // before the folder is made or anything written
+    check_result_files(scene, options);  // before the folder is made or anything written
     ::mkdir(points_dir.c_str(), 0755);
     if (!file_exists(points_dir)) throw Error(points_dir + ": cannot create the folder of point results");
-    claim_result_files(scene, options);
+    record_result_files(scene, options);
   }
   std::vector<PointSpec> all = design_points(design, design_columns, options.seeds, points_dir, scene.fingerprint(),
                                              options.first_seed);

@@ -46,7 +46,7 @@ std::string scene_named_in(const std::string& out_path) {
 
 }  // namespace
 
-void claim_result_files(const dem::SceneSet& scene, const BatchOptions& options) {
+void check_result_files(const dem::SceneSet& scene, const BatchOptions& options) {
   const std::string path = owner_file(options);
   std::ifstream in(path);
   if (in) {
@@ -66,7 +66,11 @@ void claim_result_files(const dem::SceneSet& scene, const BatchOptions& options)
   const std::string named = scene_named_in(options.out_path);
   if (!named.empty() && normal(named) != normal(options.scene_path))
     throw Error(refusal(options, "scene file " + named));
-  if (!fs::exists(options.out_path + ".points")) return;  // a batch that could not make its folder says so itself
+}
+
+void record_result_files(const dem::SceneSet& scene, const BatchOptions& options) {
+  const std::string path = owner_file(options);
+  if (fs::exists(path)) return;  // checked to be this scene's
   write_file_atomically(path, json({{"name", scene.name()}, {"scene", options.scene_path},
                                     {"fingerprint", scene.fingerprint()}})
                                       .dump(2) +

@@ -119,7 +119,7 @@ void World::step_in_threads() {
   double* __restrict moment = bodies.moment.data();
   for (Wall& wall : walls) wall.fx = wall.fy = 0;
   DiskArrays arrays = disk_arrays(bodies, inverse_mass_, inverse_inertia_, x_built_, y_built_);
-  if (rolling_limits_) rolling_limit_.assign(n, 0.0);  // sized before the threads read it
+  if (rolling_limits_) rolling_limit_.resize(n);  // sized (add_rolling_limits fills it) before the threads take its address
   arrays.rolling_limit = rolling_limits_ ? rolling_limit_.data() : nullptr;
   const double dt = dt_s_, alpha = settings_.damping;
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;

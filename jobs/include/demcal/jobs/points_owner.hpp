@@ -13,8 +13,10 @@ namespace demcal::jobs {
 
 // Throws a one-line Error when OUT holds another scene's results (the scene
 // recorded in OUT.points/scene.owner, or for results of older versions the
-// scene file named in OUT); otherwise records `scene` as OUT's owner.
-void claim_result_files(const dem::SceneSet& scene, const BatchOptions& options);
+// scene file named in OUT). Writes nothing.
+void check_result_files(const dem::SceneSet& scene, const BatchOptions& options);
+// Records `scene` as OUT's owner once OUT.points/ exists (after the check).
+void record_result_files(const dem::SceneSet& scene, const BatchOptions& options);
 
 // Moves OUT, OUT.points/ and the CSV export (when they exist) into a new
 // folder OUT_STEM.moved-K/ (the first K free) and returns that folder; "" when
