@@ -27,6 +27,7 @@
 #include "demcal/jobs/merge.hpp"
 #include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene_set.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 
@@ -79,7 +80,9 @@ void write_curves(const dem::SceneSet& set, const nlohmann::json& curve, const s
 
 // The scene's packed specimen at its default parameters (from the cache, or packed now).
 dem::Specimen packed_specimen(const dem::Scene& scene, std::uint64_t seed, const std::string& cache_dir) {
-  return dem::cached_specimen(scene.specimen(scene.resolve({}), seed), cache_dir);
+  if (scene.lab_test().dimension() != 2 || !scene.has_section("specimen"))
+    throw Error(scene.origin() + ": its test (" + scene.test() + ") has no packed 2D specimen of ours");
+  return dem::cached_specimen(dem::specimen_spec(scene, scene.resolve({}), seed), cache_dir);
 }
 
 }  // namespace

@@ -18,7 +18,6 @@
 namespace demcal::jobs {
 
 using dem::SceneSet;
-using dem::SpecimenSpec;
 
 using json = nlohmann::json;
 
@@ -32,7 +31,7 @@ bool file_exists(const std::string& path) {
 // Packs each distinct specimen of the points once (in parallel), before the
 // points share it through the cache.
 void pack_specimens(const SceneSet& scene, const std::vector<const PointSpec*>& pending, const PointRunOptions& options) {
-  const std::vector<SpecimenSpec> to_pack = distinct_specimens(scene, pending);
+  const std::vector<dem::SpecimenToPack> to_pack = distinct_specimens(scene, pending);
   if (to_pack.empty() || options.cache_dir.empty()) return;
   if (options.progress)
     log::info("packing " + std::to_string(to_pack.size()) + " specimen(s) (cached in " + options.cache_dir + ")");
@@ -42,7 +41,7 @@ void pack_specimens(const SceneSet& scene, const std::vector<const PointSpec*>& 
       [&](std::size_t i) {
         omp_set_num_threads(threads);
         try {
-          cached_specimen(to_pack[i], options.cache_dir);
+          to_pack[i].pack(options.cache_dir);
         } catch (const std::exception&) {
           // Reported by the points that need this specimen.
         }
@@ -58,13 +57,13 @@ int threads_per_run(int threads, int jobs, std::size_t tasks) {
   return std::max(1, budget / static_cast<int>(at_once));
 }
 
-std::vector<SpecimenSpec> distinct_specimens(const SceneSet& scene, const std::vector<const PointSpec*>& points) {
-  std::vector<SpecimenSpec> specimens;
+std::vector<dem::SpecimenToPack> distinct_specimens(const SceneSet& scene, const std::vector<const PointSpec*>& points) {
+  std::vector<dem::SpecimenToPack> specimens;
   std::set<std::string> keys;
   for (const PointSpec* p : points) {
     try {
-      for (const SpecimenSpec& spec : scene.specimens(scene.resolve(p->design), p->seed))
-        if (keys.insert(spec.cache_key()).second) specimens.push_back(spec);
+      for (dem::SpecimenToPack& spec : scene.specimens(scene.resolve(p->design), p->seed))
+        if (keys.insert(spec.cache_key).second) specimens.push_back(std::move(spec));
     } catch (const Error&) {
       // The point itself will record why it cannot run.
     }

@@ -22,7 +22,7 @@
 namespace demcal::jobs {
 
 using dem::SceneSet;
-using dem::SpecimenSpec;
+using dem::SpecimenToPack;
 
 using json = nlohmann::json;
 
@@ -110,7 +110,7 @@ struct Setup {
   SceneSet scene;
   std::vector<std::string> design_columns;
   std::vector<PointSpec> points;
-  std::vector<SpecimenSpec> to_pack;
+  std::vector<SpecimenToPack> to_pack;
   std::size_t design_total = 0;
 };
 
@@ -131,11 +131,11 @@ void worker(const BatchOptions& options, const Setup& s) {
     if (task[0] == kStop) return;
     int status = 0;
     if (task[0] == kPack) {
-      const SpecimenSpec& spec = s.to_pack.at(static_cast<std::size_t>(task[1]));
+      const SpecimenToPack& spec = s.to_pack.at(static_cast<std::size_t>(task[1]));
       in_child(
           [&]() {
             try {
-              cached_specimen(spec, options.cache_dir);
+              spec.pack(options.cache_dir);
             } catch (const std::exception&) {
               // Reported by the points that need this specimen.
             }

@@ -38,6 +38,11 @@ def describe(scene_path, space_path=None):
     return ask("demcal-dem", "describe", "--scene", scene_path, *(["--space", space_path] if space_path else []))
 
 
+def registries():
+    """demcal-dem's registries: lab tests and contact models, each model's keys and its names in other programs."""
+    return ask("demcal-dem", "describe", "--registries")
+
+
 def design_kinds():
     """Every design kind of demcal-doe: {kind: {title, min_factors, max_factors (null: no limit), options, ...}}."""
     return ask("demcal-doe", "--list-kinds")["kinds"]

@@ -5,7 +5,8 @@
 The solution is any of demcal's (demcal-invert, make calibrate, a study), or the parameters.json a report writes
 beside itself: its `x` (or parameters) over the scene's defaults. For our
 DEM, each contact role's model parameters are evaluated from the scene's bindings (what demcal-dem describe lists)
-and written under the other program's names, SI units; for an external scene, its own parameters under their own
+and written under the other program's names, which each contact model declares (describe --registries,
+contact_model_peer_names), SI units; for an external scene, its own parameters under their own
 names (they are that program's already). What does not carry over is said in the file, never silently dropped:
 
 * our DEM is 2D (disks of unit thickness): PFC2D takes the moduli and strengths as they are; YADE and LIGGGHTS are 3D,
@@ -49,109 +50,129 @@ def parameter_values(description, solution, where):
     return values
 
 
+def dimension_key(dimension):
+    """describe's dimension (2, 3) as the registries key it ("2d", "3d"); a description without one is 2D."""
+    return f"{dimension or 2}d"
+
+
 def contact_roles(description):
-    """[(label, role, model, bindings)] of a scene or a test list, each distinct binding once."""
+    """[(label, role, model, bindings, dimension)] of a scene or a test list, each distinct binding once."""
     contacts = description.get("contacts", {})
     flat = []
     if description.get("test") == "list":
+        dims = {t["label"]: t.get("dimension") for t in description.get("tests", [])}
         for label, roles in contacts.items():  # {label: {role: ...}}; an external test's is empty
-            flat += [(label, role, c["model"], c.get("parameters", {})) for role, c in roles.items()]
+            flat += [(label, role, c["model"], c.get("parameters", {}), dimension_key(dims.get(label)))
+                     for role, c in roles.items()]
     else:
-        flat = [("", role, c["model"], c.get("parameters", {})) for role, c in contacts.items()]
+        flat = [("", role, c["model"], c.get("parameters", {}), dimension_key(description.get("dimension")))
+                for role, c in contacts.items()]
     seen, out = set(), []
-    for label, role, model, bindings in flat:
-        key = (role, model, json.dumps(bindings, sort_keys=True))
+    for label, role, model, bindings, dim in flat:
+        key = (role, model, dim, json.dumps(bindings, sort_keys=True))
         if key not in seen:
             seen.add(key)
-            out.append((label, role, model, bindings))
+            out.append((label, role, model, bindings, dim))
     return out
 
 
-# -- PFC2D 7 (contact model assignment table) ------------------------------------------------------------------
-def pfc_lines(role, model, p):
-    if model not in ("linear", "parallel_bond", "flat_joint", "contact_bond"):
-        return [f"# {role}: model {model} has no PFC counterpart in this exporter"]
-    if "modulus_pa" in p:
-        cmat = (f"contact cmat default model {{model}} method deformability emod {p['modulus_pa']:.10g} "
-                f"kratio {p['kn_ks']:.10g}")
-    else:  # linear springs given as stiffnesses
-        cmat = f"contact cmat default model {{model}} property kn {p['kn_n_m']:.10g} ks {p['ks_n_m']:.10g}"
-    notes = [f"# {k} = {v:.10g} Pa: PFC has no property for a strength's spread; draw per contact yourself"
-             for k, v in sorted(p.items()) if k.endswith("_std_pa") and v > 0]
-    rmul = p.get("radius_multiplier", 1.0)
-    if model == "linear":
-        cmd = cmat.format(model="linear") + f" property fric {p['friction']:.10g}"
-    elif model == "parallel_bond":
-        cmd = (cmat.format(model="linearpbond") +
-               f" pb_deformability emod {p['bond_modulus_pa']:.10g} kratio {p['bond_kn_ks']:.10g}"
-               f" property fric {p['friction']:.10g} pb_ten {p['tensile_strength_pa']:.10g}"
-               f" pb_coh {p['shear_strength_pa']:.10g} pb_fa 0 pb_rmul {rmul:.10g}")
-    elif model == "flat_joint":
-        cmd = (f"contact cmat default model flatjoint method deformability emod {p['joint_modulus_pa']:.10g}"
-               f" kratio {p['joint_kn_ks']:.10g} property fj_ten {p['tensile_strength_pa']:.10g}"
-               f" fj_coh {p['cohesion_pa']:.10g} fj_fa {p['friction_angle_deg']:.10g}"
-               f" fj_fric {p['joint_friction']:.10g} fj_nr {int(p.get('elements', 2))} fj_rmul {rmul:.10g}")
-        notes.append(f"# contacts that form later (unjoined) take the linear part: emod {p['modulus_pa']:.10g}, "
-                     f"kratio {p['kn_ks']:.10g}, fric {p['friction']:.10g}")
-    elif model == "contact_bond":
-        cmd = cmat.format(model="linearcbond") + f" property fric {p['friction']:.10g}"
-        # PFC multiplies cb_strength's stresses by the contact area 2 min(R) t, as our contact bond does.
-        notes.append("# after bonding (contact method bond gap ...), the strengths as stresses; PFC turns them into the "
-                     "forces cb_tenf and cb_shearf with the contact area 2 min(R) t, as demcal does:")
-        notes.append(f"# it.command(\"contact method cb_strength tensile {p['tensile_strength_pa']:.10g} "
-                     f"shear {p['shear_strength_pa']:.10g}\")")
-    return [f"# {role}: {model}"] + notes + [f"it.command(\"{cmd}\")"]
+# Each model's names in the other programs are its own (`demcal-dem describe --registries`, contact_model_peer_names):
+# what follows only renders them in each program's syntax and applies that program's conventions.
+PROGRAMS = {"pfc": "PFC", "yade": "YADE", "liggghts": "LIGGGHTS"}
 
 
-# -- YADE (3D) ----------------------------------------------------------------------------------------------------
-def yade_lines(role, model, p):
-    # YADE's FrictMat gives kn = 2 E R1 R2 / (R1 + R2) and ks = poisson x kn: its "poisson" is ks / kn.
-    lines = [f"# {role}: {model}"]
-    base = {"young": p.get("modulus_pa"), "poisson": 1.0 / p["kn_ks"] if p.get("kn_ks") else None,
-            "frictionAngle": math.atan(p["friction"]) if "friction" in p else None}
-    if model in ("parallel_bond", "contact_bond"):
-        base.update({"normalCohesion": p["tensile_strength_pa"], "shearCohesion": p["shear_strength_pa"],
-                     "isCohesive": True})
-        kind = "CohFrictMat"
-    elif model == "flat_joint":
-        base.update({"young": p["joint_modulus_pa"], "poisson": 1.0 / p["joint_kn_ks"],
-                     "frictionAngle": math.atan(p["joint_friction"]), "normalCohesion": p["tensile_strength_pa"],
-                     "shearCohesion": p["cohesion_pa"], "isCohesive": True})
-        kind = "CohFrictMat"
-        lines.append("# no flat joint in YADE: its elements, partial damage and friction angle phi_b "
-                     f"({p['friction_angle_deg']:.10g} deg) do not carry over; a cohesive-frictional bond is the nearest")
-    elif model == "linear":
-        kind = "FrictMat"
-    else:
-        return [f"# {role}: model {model} has no YADE counterpart in this exporter"]
-    fields = {k: v for k, v in base.items() if v is not None}
-    name = "".join(c if c.isalnum() else "_" for c in role)  # a Python name: "brazilian.disk-disk" -> brazilian_disk_disk
-    lines.append(f"{name} = dict(kind=\"{kind}\", " +
-                 ", ".join(f"{k}={v!r}" for k, v in fields.items()) + ")")
-    return lines
+def converted(keyword, p):
+    """(value, None) of one keyword at the bound parameters `p`, (None, why) when it cannot be written, (None, None)
+    when the scene does not give the key and the table has no default."""
+    if "value" in keyword:
+        return keyword["value"], None
+    key = keyword["key"]
+    if key not in p:
+        return (float(keyword["default"]), None) if "default" in keyword else (None, None)
+    v, kind = p[key], keyword.get("as", "same")
+    if kind == "same":
+        return v, None
+    if kind == "integer":
+        return int(round(v)), None
+    if kind == "reciprocal":  # YADE's FrictMat: kn = 2 E R1 R2 / (R1 + R2), ks = poisson x kn
+        return 1.0 / v, None
+    if kind == "atan":  # a friction coefficient as YADE's friction angle (radians)
+        return math.atan(v), None
+    if kind == "hertz_mindlin_poisson":  # Hertz-Mindlin's ks / kn = 2 (1 - nu) / (2 - nu), r = ks / kn
+        r = 1.0 / v
+        nu = (2 - 2 * r) / (2 - r)
+        if 0 <= nu < 0.5:
+            return nu, None
+        return None, f"{key} = {v:.10g} has no Hertz-Mindlin Poisson's ratio in [0, 0.5): choose one"
+    if kind == "youngs_modulus":  # E = 2 G (1 + nu)
+        other = keyword["with"]
+        if other not in p:
+            return None, f"{key} needs {other} to give a Young's modulus"
+        return 2 * v * (1 + p[other]), None
+    raise ValueError(f"unknown conversion {kind!r} in the peer names of {key}")
 
 
-# -- LIGGGHTS (3D, Hertz-Mindlin) ----------------------------------------------------------------------------------
-def liggghts_lines(role, model, p):
-    lines = [f"# {role}: {model}"]
-    if model not in ("linear", "parallel_bond", "contact_bond", "flat_joint"):
-        return lines + [f"# model {model} has no LIGGGHTS counterpart in this exporter"]
-    if model != "linear":
-        lines.append("# LIGGGHTS-PUBLIC has no bonds: only the contact's stiffness and friction carry over")
-    # Hertz-Mindlin's ks / kn = 2 (1 - nu) / (2 - nu), so nu = (2 - 2 r) / (2 - r) with r = ks / kn.
-    if "modulus_pa" not in p:
-        return lines + ["# springs given as stiffnesses (kn_n_m, ks_n_m): no Young's modulus to carry over"]
-    r = 1.0 / p["kn_ks"]
-    nu = (2 - 2 * r) / (2 - r)
+def translated(table, p):
+    """[(keyword, value)] the table writes, the comment lines of what it cannot, and the keys it used."""
+    written, comments, used = [], [], set()
+    for keyword in table.get("keywords", []):
+        used.add(keyword.get("key"))
+        value, why = converted(keyword, p)
+        if why:
+            comments.append(f"# {why}")
+        elif value is not None:
+            written.append((keyword, value))
+    return written, comments, used
+
+
+def number(v):
+    return repr(v) if isinstance(v, bool) else (str(v) if isinstance(v, int) else f"{v:.10g}")
+
+
+def not_carried(p, used, program):
+    return [f"# {key} = {p[key]:.10g}: no {program} counterpart; set it yourself if your version has one"
+            for key in sorted(p) if key not in used]
+
+
+def pfc_lines(role, model, p, table):
+    # PFC 7's contact model assignment: method groups (deformability, pb_deformability) and properties in one
+    # command; what PFC sets later (after bonding) or elsewhere is written as comments.
+    written, lines, used = translated(table, p)
+    later = table.get("later", {})
+    groups = {}
+    for keyword, value in written:
+        groups.setdefault(keyword["group"], []).append(f"{keyword['name']} {number(value)}")
+    cmd = f"contact cmat default model {table['model']}"
+    methods = [g for g in groups if g != "property" and g not in later]
+    if methods:
+        cmd += " method " + " ".join(f"{g} {' '.join(groups[g])}" for g in methods)
+    if "property" in groups:
+        cmd += " property " + " ".join(groups["property"])
+    for group, how in later.items():
+        if group not in groups:
+            continue
+        if "command" in how:
+            lines += [f"# {how['text']}:", f"# it.command(\"{how['command']} {' '.join(groups[group])}\")"]
+        else:
+            lines.append(f"# {how['text']}: " + ", ".join(groups[group]))
+    return lines + not_carried(p, used, "PFC") + [f"it.command(\"{cmd}\")"]
+
+
+def yade_lines(role, model, p, table):
+    written, lines, used = translated(table, p)
+    fields = ", ".join(f"{k['name']}={v!r}" for k, v in written)
+    name = "".join(c if c.isalnum() else "_" for c in role)  # a Python name: "brazilian.particle-particle" -> brazilian_particle_particle
+    return lines + not_carried(p, used, "YADE") + [f"{name} = dict(kind=\"{table['model']}\", {fields})"]
+
+
+def liggghts_lines(role, model, p, table):
+    written, lines, used = translated(table, p)
     # Fix ids named after the role: several roles (a test list) must not redefine one another's fixes.
     tag = "".join(c if c.isalnum() else "_" for c in role)
-    lines.append(f"fix m1_{tag} all property/global youngsModulus peratomtype {p['modulus_pa']:.10g}")
-    if 0 <= nu < 0.5:
-        lines.append(f"fix m2_{tag} all property/global poissonsRatio peratomtype {nu:.10g}")
-    else:
-        lines.append(f"# kn/ks = {p['kn_ks']:.10g} has no Hertz-Mindlin Poisson's ratio in [0, 0.5): choose one")
-    lines.append(f"fix m4_{tag} all property/global coefficientFriction peratomtypepair 1 {p['friction']:.10g}")
-    return lines
+    for keyword, value in written:
+        per = "peratomtypepair 1" if keyword.get("per") == "pair" else "peratomtype"
+        lines.append(f"fix {keyword['name']}_{tag} all property/global {keyword['name']} {per} {number(value)}")
+    return lines + not_carried(p, used, "LIGGGHTS")
 
 
 WRITERS = {"pfc": pfc_lines, "yade": yade_lines, "liggghts": liggghts_lines}
@@ -163,9 +184,18 @@ HEADERS = {
     "yade": ["# YADE material properties (Python dicts: O.materials.append(CohFrictMat(**{k: v for k, v in d.items()",
              "# if k != 'kind'})) ). SI units. CAUTION: our DEM is 2D (disks, unit thickness), YADE 3D (spheres): the",
              "# same numbers make another material; repeat the calibration in YADE (docs/howto/own_simulator.md)."],
-    "liggghts": ["# LIGGGHTS fix property/global lines (one atom type). SI units. CAUTION: our DEM is 2D with linear",
-                 "# springs, LIGGGHTS 3D Hertz-Mindlin: the same numbers make another material; repeat the calibration."],
+    "liggghts": ["# LIGGGHTS fix property/global lines (one atom type). SI units. CAUTION: our DEM is 2D, LIGGGHTS 3D",
+                 "# Hertz-Mindlin: the same numbers make another material; repeat the calibration there."],
 }
+
+
+def role_lines(to, role, model, bound, peer_names):
+    """`peer_names`: one engine's tables ({model: {program: table}})."""
+    table = peer_names.get(model, {}).get(to)
+    if table is None:
+        return [f"# {role}: model {model} has no {PROGRAMS[to]} counterpart in this exporter"]
+    return ([f"# {role}: {model} as {PROGRAMS[to]}'s {table['model']}"] + [f"# {n}" for n in table.get("notes", [])] +
+            WRITERS[to](role, model, bound, table))
 
 
 def external_lines(to, values):
@@ -176,7 +206,9 @@ def external_lines(to, values):
     return [f"variable {name} equal {value!r}" for name, value in sorted(values.items())]
 
 
-def export_text(description, solution, to, where="export"):
+def export_text(description, solution, to, peer_names, where="export"):
+    """The file for program `to`; `peer_names` is describe --registries' contact_model_peer_names (per engine: "2d",
+    "3d")."""
     if to not in TARGETS:
         fail(f"{where}: --to must be one of {', '.join(TARGETS)} (got {to})")
     values = parameter_values(description, solution, where)
@@ -187,9 +219,9 @@ def export_text(description, solution, to, where="export"):
         return "\n".join(lines + external_lines(to, values)) + "\n"
     lines += HEADERS[to]
     lines.append("# scene parameters: " + ", ".join(f"{k} = {v:.10g}" for k, v in sorted(values.items())))
-    for label, role, model, bindings in roles:
+    for label, role, model, bindings, dim in roles:
         bound = {k: evaluate(v, values, f"{where}: contacts.{role}.{k}") for k, v in bindings.items()}
-        lines += [""] + WRITERS[to](f"{label + '.' if label else ''}{role}", model, bound)
+        lines += [""] + role_lines(to, f"{label + '.' if label else ''}{role}", model, bound, peer_names.get(dim, {}))
     return "\n".join(lines) + "\n"
 
 
@@ -212,7 +244,10 @@ def as_solution(solution, where):
 
 def export(args):
     solution = as_solution(load_json(args.solution, "solution"), args.solution)
-    text = export_text(executables.describe(args.scene), solution, args.to, where=args.solution)
+    description = executables.describe(args.scene)
+    # Only a scene with contacts of ours needs the models' names (an external scene exports its own parameters).
+    peer_names = executables.registries()["contact_model_peer_names"] if contact_roles(description) else {}
+    text = export_text(description, solution, args.to, peer_names, where=args.solution)
     if args.out:
         os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
         with open(args.out, "w") as f:

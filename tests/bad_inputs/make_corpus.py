@@ -128,19 +128,19 @@ case("scene/unknown_test", run(write(S, "unknown_test.json", edited(scene, lambd
 case("scene/contacts_array", describe(write(S, "contacts_array.json", edited(scene, lambda d: d.update(contacts=[])))),
      path(S, "contacts_array.json"), "contacts")
 case("scene/missing_contact_role",
-     run(write(S, "missing_contact_role.json", edited(scene, lambda d: d["contacts"].pop("disk-platen")))),
-     path(S, "missing_contact_role.json"), "disk-platen")
+     run(write(S, "missing_contact_role.json", edited(scene, lambda d: d["contacts"].pop("particle-platen")))),
+     path(S, "missing_contact_role.json"), "particle-platen")
 case("scene/unknown_contact_model",
      describe(write(S, "unknown_contact_model.json",
-                    edited(scene, lambda d: d["contacts"]["disk-disk"].update(model="hertz")))),
+                    edited(scene, lambda d: d["contacts"]["particle-particle"].update(model="hertz")))),
      path(S, "unknown_contact_model.json"), "hertz")
 case("scene/expression_typo",
      run(write(S, "expression_typo.json",
-               edited(scene, lambda d: d["contacts"]["disk-disk"]["parameters"].update(modulus_pa="Ec_GPA*1e9")))),
+               edited(scene, lambda d: d["contacts"]["particle-particle"]["parameters"].update(modulus_pa="Ec_GPA*1e9")))),
      path(S, "expression_typo.json"), "Ec_GPA")
 case("scene/negative_friction",
      describe(write(S, "negative_friction.json",
-                    edited(scene, lambda d: d["contacts"]["disk-disk"]["parameters"].update(friction=-1)))),
+                    edited(scene, lambda d: d["contacts"]["particle-particle"]["parameters"].update(friction=-1)))),
      path(S, "negative_friction.json"), "friction")
 case("scene/parameter_value_string",
      describe(write(S, "parameter_value_string.json", edited(scene, lambda d: d["parameters"]["Ec_GPa"].update(value="16")))),

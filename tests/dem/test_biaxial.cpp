@@ -189,7 +189,7 @@ TEST(BiaxialTest, BadConfinementIsRefusedWithTheField) {
   EXPECT_NE(load({{"confining_stresses_MPa", {2, 2}}}, "biaxial").find("two different"), std::string::npos);
   EXPECT_NE(load(nlohmann::json::object(), "biaxial").find("s.json: loading.confining_stresses_MPa: missing"),
             std::string::npos);
-  EXPECT_NE(load({{"confining_stresses_MPa", {1}}}, "ucs").find("only the biaxial test"), std::string::npos);
+  EXPECT_NE(load({{"confining_stresses_MPa", {1}}}, "ucs").find("only a confined test (biaxial) has a confining stress (this scene's test: ucs)"), std::string::npos);
   EXPECT_EQ(load({{"confining_stresses_MPa", {3}}}, "biaxial"), "");
 }
 

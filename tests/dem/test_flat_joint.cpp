@@ -145,16 +145,16 @@ TEST(FlatJoint, BadParametersAreRefusedWithTheField) {
   nlohmann::json p = {{"modulus_pa", 1e9}, {"kn_ks", 2.0}, {"friction", 0.5}, {"joint_modulus_pa", 1e9},
                       {"joint_kn_ks", 2.0}, {"tensile_strength_pa", 1e6}, {"cohesion_pa", 1e6},
                       {"friction_angle_deg", 30}, {"joint_friction", 0.5}};
-  EXPECT_NO_THROW(ContactModelRegistry::instance().create("flat_joint", p, "s.json: contacts.disk-disk"));
+  EXPECT_NO_THROW(ContactModelRegistry::instance().create("flat_joint", p, "s.json: contacts.particle-particle"));
   for (auto [key, value] : std::vector<std::pair<std::string, double>>{{"elements", 7}, {"elements", 2.5},
                                                                        {"friction_angle_deg", 90}, {"cohesion_pa", -1}}) {
     nlohmann::json bad = p;
     bad[key] = value;
     try {
-      ContactModelRegistry::instance().create("flat_joint", bad, "s.json: contacts.disk-disk");
+      ContactModelRegistry::instance().create("flat_joint", bad, "s.json: contacts.particle-particle");
       ADD_FAILURE() << key << " " << value;
     } catch (const demcal::Error& e) {
-      EXPECT_NE(std::string(e.what()).find("s.json: contacts.disk-disk"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("s.json: contacts.particle-particle"), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
     }
   }

@@ -174,7 +174,7 @@ TEST(HertzMindlin, DensityScalingIsRefusedSinceTheDashpotUsesTheMasses) {
 }
 
 TEST(HertzMindlin, BadParametersNameTheParameter) {
-  auto create = [](nlohmann::json p) { ContactModelRegistry::instance().create("hertz_mindlin", p, "scene.json: contacts.disk-disk"); };
+  auto create = [](nlohmann::json p) { ContactModelRegistry::instance().create("hertz_mindlin", p, "scene.json: contacts.particle-particle"); };
   nlohmann::json p = hertz(0.5);
   p["restitution"] = 0.0;
   EXPECT_NE(demcal::test::error_of([&] { create(p); }).find("restitution"), std::string::npos);

@@ -9,6 +9,7 @@
 #include "../common/load_until_breaks.hpp"
 #include "../common/same_bits.hpp"
 #include "demcal/core/rng.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -40,7 +41,7 @@ TEST(Identity, ReorderedDisksGiveTheSameBitsForEveryDisk) {
   for (const char* file : {"tests/data/ucs_rock_cb_small.json", "tests/data/ucs_small.json"}) {
     Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/" + file);
     const auto parameters = scene.resolve({});
-    const Specimen s = cached_specimen(scene.specimen(parameters, 3), "");
+    const Specimen s = cached_specimen(specimen_spec(scene, parameters, 3), "");
     World platen = make_platen_world(scene, parameters, s, 3);
 
     std::vector<std::size_t> in_order(s.size()), shuffled(s.size());

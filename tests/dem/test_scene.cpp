@@ -17,6 +17,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/parameter_space.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/describe.hpp"
 #include "demcal/dem/lab_test.hpp"
@@ -82,8 +83,8 @@ TEST(Scene, ExtendsAppliesAMergePatchToItsBaseAlongAChain) {
   EXPECT_EQ(scene.parameters().at("mu").unit, "1");  // merged, not replaced
   EXPECT_DOUBLE_EQ(scene.parameters().at("Ec_GPa").value, 16);
   EXPECT_DOUBLE_EQ(scene.loading().platen_velocity_m_s, 0.04);
-  EXPECT_DOUBLE_EQ(scene.specimen(scene.resolve({}), 1).width_m, 0.012);
-  EXPECT_DOUBLE_EQ(scene.specimen(scene.resolve({}), 1).height_m, 0.02);
+  EXPECT_DOUBLE_EQ(specimen_spec(scene, scene.resolve({}), 1).width_m, 0.012);
+  EXPECT_DOUBLE_EQ(specimen_spec(scene, scene.resolve({}), 1).height_m, 0.02);
 
   // null deletes: a parameter removed by the patch, whose contacts still use it, fails to load.
   json removes = {{"extends", base_name}, {"parameters", {{"mu", nullptr}}}};
@@ -137,20 +138,20 @@ TEST(Scene, ElasticSpeedupIsCheckedAndOnlyForTheUcs) {
   json disc = Scene::resolved_json(source("data/scenes/brazilian_rock_pb.json"));
   disc["loading"]["elastic_speedup"] = 2;
   EXPECT_NE(error_of([&] { Scene::from_json(disc, "b.json"); })
-                .find("b.json: loading: elastic_speedup: only the ucs test uses it (this scene's test is brazilian)"),
+                .find("b.json: loading: elastic_speedup: only uniaxial compression uses it (this scene's test is brazilian)"),
             std::string::npos);
 }
 
 TEST(Scene, AggregateFillAndPlatenStartAreCheckedChoices) {
   json shipped = Scene::resolved_json(source("data/scenes/ucs_concrete.json"));
-  EXPECT_EQ(Scene::from_json(shipped, "c.json").aggregates()->fill, demcal::dem::AggregateFill::count);  // as Su et al.
+  EXPECT_EQ(scene_aggregates(Scene::from_json(shipped, "c.json"))->fill, demcal::dem::AggregateFill::count);  // as Su et al.
   json concrete = shipped;
   concrete["aggregates"].erase("fill");
-  EXPECT_EQ(Scene::from_json(concrete, "c.json").aggregates()->fill, demcal::dem::AggregateFill::area);  // the default
+  EXPECT_EQ(scene_aggregates(Scene::from_json(concrete, "c.json"))->fill, demcal::dem::AggregateFill::area);  // the default
   json count = concrete;
   count["aggregates"]["fill"] = "count";
   const Scene counted = Scene::from_json(count, "c.json");
-  EXPECT_EQ(counted.aggregates()->fill, demcal::dem::AggregateFill::count);
+  EXPECT_EQ(scene_aggregates(counted)->fill, demcal::dem::AggregateFill::count);
   EXPECT_NE(counted.fingerprint(), Scene::from_json(concrete, "c.json").fingerprint());
   json outer = concrete;
   outer["loading"]["platen_start"] = "outermost_disks";
@@ -229,20 +230,58 @@ TEST(Scene, TestsAndContactRolesComeFromTheRegistries) {
   EXPECT_NE(e.find("\"test\" must be one of \"ucs\", \"brazilian\", \"biaxial\", \"external\", \"heap\", \"wave_strip\" (got \"triaxial_3d\")"), std::string::npos) << e;
 
   json extra_role = small_scene();
-  extra_role["contacts"]["disk-wall"] = extra_role["contacts"]["disk-platen"];
+  extra_role["contacts"]["disk-wall"] = extra_role["contacts"]["particle-platen"];
   e = error_of([&] { Scene::from_json(extra_role, "s.json"); });
-  EXPECT_NE(e.find("unknown contact role \"disk-wall\" (this scene's roles: disk-disk, disk-platen)"), std::string::npos)
+  EXPECT_NE(e.find("unknown contact role \"disk-wall\" (this scene's roles: particle-particle, particle-platen)"),
+            std::string::npos)
       << e;
 
   json bad_model_parameter = small_scene();
-  bad_model_parameter["contacts"]["disk-disk"]["parameters"]["tensile_strenght_pa"] = 1;
+  bad_model_parameter["contacts"]["particle-particle"]["parameters"]["tensile_strenght_pa"] = 1;
   e = error_of([&] { Scene::from_json(bad_model_parameter, "s.json"); });
-  EXPECT_NE(e.find("s.json: contacts.disk-disk"), std::string::npos) << e;
+  EXPECT_NE(e.find("s.json: contacts.particle-particle"), std::string::npos) << e;
 
   Scene scene = Scene::from_json(small_scene(), "s");
   ASSERT_EQ(scene.contact_roles().size(), 2u);
-  EXPECT_EQ(scene.contact_roles()[0].name, "disk-disk");
-  EXPECT_EQ(scene.contact_roles()[1].name, "disk-platen");
+  EXPECT_EQ(scene.contact_roles()[0].name, "particle-particle");
+  EXPECT_EQ(scene.contact_roles()[1].name, "particle-platen");
+}
+
+// The roles' names from before 3D ("disk-disk", "disk-platen", "disk-wall")
+// still read, as the same roles: the same contacts and the same fingerprint
+// (stored results stay valid whichever spelling a file uses).
+TEST(Scene, OldRoleNamesReadAsTheDimensionNeutralOnes) {
+  json new_names = small_scene();
+  ASSERT_TRUE(new_names["contacts"].contains("particle-particle"));
+  json old_names = new_names;
+  old_names["contacts"] = {{"disk-disk", new_names["contacts"]["particle-particle"]},
+                           {"disk-platen", new_names["contacts"]["particle-platen"]}};
+  const Scene a = Scene::from_json(old_names, "old.json"), b = Scene::from_json(new_names, "new.json");
+  EXPECT_EQ(a.contacts().at("particle-particle").model, b.contacts().at("particle-particle").model);
+  EXPECT_EQ(a.contacts().at("particle-platen").parameters, b.contacts().at("particle-platen").parameters);
+  EXPECT_EQ(a.fingerprint(), b.fingerprint());
+  json both = old_names;
+  both["contacts"]["particle-particle"] = both["contacts"]["disk-disk"];
+  const std::string e = error_of([&] { Scene::from_json(both, "both.json"); });
+  EXPECT_NE(e.find("both.json: contacts: \"disk-disk\" and \"particle-particle\" name the same role (particle-particle); "
+                   "keep one"),
+            std::string::npos)
+      << e;
+  // A bad parameter is named under the spelling the file uses.
+  old_names["contacts"]["disk-disk"]["parameters"]["tensile_strenght_pa"] = 1;
+  EXPECT_NE(error_of([&] { Scene::from_json(old_names, "old.json"); }).find("old.json: contacts.disk-disk"),
+            std::string::npos);
+}
+
+// Each test names its engine; describe says it, and lists the contact models per engine.
+TEST(Scene, DescribeSaysTheDimensionOfEachTest) {
+  EXPECT_EQ(describe_scene(Scene::from_json(small_scene(), "s.json"))["dimension"], 2);
+  json registries = describe_registries();
+  EXPECT_EQ(registries["test_dimensions"]["ucs"], 2);
+  EXPECT_EQ(registries["test_dimensions"]["heap"], 2);
+  EXPECT_TRUE(registries["test_dimensions"]["external"].is_null());  // its own program decides
+  EXPECT_EQ(registries["contact_model_parameters"]["2d"]["linear"],
+            json({"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}));
 }
 
 TEST(LabTests, ARunReportsExactlyTheOutputsItsTestDeclares) {
@@ -267,7 +306,7 @@ TEST(Scene, FinerDisksDivideTheRadiiNumbersAndExpressions) {
   EXPECT_DOUBLE_EQ(fine["specimen"]["radius_max_m"].get<double>(), 2.25e-4);
   json expressions = Scene::resolved_json(source("tests/data/ucs_rock_cb_small.json"));
   Scene rock = Scene::from_json(Scene::with_finer_disks(expressions, 2.0, "x.json"), "x.json");
-  const SpecimenSpec s = rock.specimen(rock.resolve({}), 1);
+  const SpecimenSpec s = specimen_spec(rock, rock.resolve({}), 1);
   EXPECT_DOUBLE_EQ(s.radius_min_m, 0.00075 * 0.5);
   EXPECT_DOUBLE_EQ(s.radius_max_m, 0.00075 * 1.5 * 0.5);
   EXPECT_THROW(Scene::with_finer_disks(numbers, 0.5, "x.json"), demcal::Error);
@@ -282,7 +321,7 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   EXPECT_EQ(d["parameters"]["Ec_GPa"]["value"], 16.0);
   EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["unit"], "MPa");
   EXPECT_EQ(d["outputs"]["reached_strain_limit"]["optional"], true);
-  EXPECT_EQ(d["contacts"]["disk-disk"]["model"], "parallel_bond");
+  EXPECT_EQ(d["contacts"]["particle-particle"]["model"], "parallel_bond");
   EXPECT_EQ(d["parameters"]["Ec_GPa"]["shapes_specimen"], false);
   EXPECT_EQ(d["parameters"]["Ec_GPa"]["si_factor"], 1e9);
   EXPECT_EQ(d["outputs"]["sigma_u_MPa"]["stress_like"], true);
@@ -295,7 +334,8 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   EXPECT_EQ(rock["parameters"]["cb_sigma_c_mean_Pa"]["shapes_specimen"], false);
   json registries = describe_registries();
   EXPECT_EQ(registries["tests"], json({"ucs", "brazilian", "biaxial", "external", "heap", "wave_strip"}));
-  EXPECT_EQ(registries["contact_models"], json({"linear", "parallel_bond", "contact_bond", "flat_joint", "hertz_mindlin", "jkr"}));
+  EXPECT_EQ(registries["contact_models"],
+            json({{"2d", {"linear", "parallel_bond", "contact_bond", "flat_joint", "hertz_mindlin", "jkr"}}}));
 }
 
 // Each output says what values it can take (a target outside is refused
@@ -344,11 +384,11 @@ TEST(LabTests, DescribeFlagsHeadlinesModuliAndTheCurvesAxes) {
 // naming the allowed ones.
 TEST(LabTests, RegistriesListEveryModelsParameterKeys) {
   json registries = describe_registries();
-  for (const std::string& model : registries["contact_models"].get<std::vector<std::string>>())
-    EXPECT_FALSE(registries["contact_model_parameters"][model].empty()) << model;
-  EXPECT_EQ(registries["contact_model_parameters"]["linear"],
+  for (const std::string& model : registries["contact_models"]["2d"].get<std::vector<std::string>>())
+    EXPECT_FALSE(registries["contact_model_parameters"]["2d"][model].empty()) << model;
+  EXPECT_EQ(registries["contact_model_parameters"]["2d"]["linear"],
             json({"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}));
-  const auto keys = registries["contact_model_parameters"]["jkr"].get<std::vector<std::string>>();
+  const auto keys = registries["contact_model_parameters"]["2d"]["jkr"].get<std::vector<std::string>>();
   EXPECT_NE(std::find(keys.begin(), keys.end(), "work_of_adhesion_j_m2"), keys.end());
   EXPECT_NE(std::find(keys.begin(), keys.end(), "rolling_friction_epsd"), keys.end());
   EXPECT_EQ(registries["test_descriptions"].size(), registries["tests"].size());

@@ -13,6 +13,7 @@
 
 #include "../common/scratch.hpp"
 #include "demcal/core/error.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/describe.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/result_json.hpp"
@@ -187,8 +188,8 @@ TEST(SceneSet, AFinerListKeepsItsLabelsAndFindsItsScenesFromARelativeFolder) {
   ASSERT_EQ(finer_set.size(), 2u);
   EXPECT_EQ(finer_set.label(0), coarse_set.label(0));
   EXPECT_EQ(finer_set.label(1), "other");
-  EXPECT_NEAR(finer_set.scenes()[0].specimen(finer_set.resolve({}), 1).radius_min_m,
-              coarse_set.scenes()[0].specimen(coarse_set.resolve({}), 1).radius_min_m / 2, 1e-15);
+  EXPECT_NEAR(specimen_spec(finer_set.scenes()[0], finer_set.resolve({}), 1).radius_min_m,
+              specimen_spec(coarse_set.scenes()[0], coarse_set.resolve({}), 1).radius_min_m / 2, 1e-15);
   // A name that cannot label outputs is refused.
   ucs["name"] = "a/b";
   write("ucs_slash.json", ucs);

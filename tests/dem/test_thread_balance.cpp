@@ -6,6 +6,7 @@
 
 #include "../common/load_until_breaks.hpp"
 #include "../common/same_bits.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -65,7 +66,7 @@ TEST(ThreadBalance, NoPartFallsBelowAQuarterOfAnEqualShare) {
 TEST(ThreadBalance, UnequalAndMovingCutsKeepTheSerialBits) {
   Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json");
   const auto parameters = scene.resolve({});
-  const Specimen s = cached_specimen(scene.specimen(parameters, 2), "");
+  const Specimen s = cached_specimen(specimen_spec(scene, parameters, 2), "");
   World serial = make_platen_world(scene, parameters, s, 2);
   serial.settings().threads = 1;
   serial.refresh();

@@ -5,6 +5,7 @@
 
 #include "../common/load_until_breaks.hpp"
 #include "../common/same_bits.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -19,7 +20,7 @@ TEST(Threads, OneRunOnSeveralThreadsGivesTheSameBitsAsOnOne) {
        {"tests/data/ucs_rock_cb_small.json", "tests/data/ucs_small.json", "tests/data/ucs_concrete_small.json"}) {
     Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/" + file);
     const auto parameters = scene.resolve({});
-    const Specimen s = cached_specimen(scene.specimen(parameters, 2), "");
+    const Specimen s = cached_specimen(specimen_spec(scene, parameters, 2), "");
     World serial = make_platen_world(scene, parameters, s, 2);
     serial.settings().threads = 1;
     serial.refresh();
@@ -46,7 +47,7 @@ TEST(Threads, OneRunOnSeveralThreadsGivesTheSameBitsAsOnOne) {
 TEST(Threads, SmallRunsStayOnOneThread) {
   Scene scene = Scene::load(std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small.json");
   const auto parameters = scene.resolve({});
-  const Specimen s = cached_specimen(scene.specimen(parameters, 2), "");
+  const Specimen s = cached_specimen(specimen_spec(scene, parameters, 2), "");
   World world = make_platen_world(scene, parameters, s, 2);
   world.settings().threads = 4;
   world.settings().min_disks_per_thread = world.bodies.size() / 2 + 1;

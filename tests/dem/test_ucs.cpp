@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/brazilian_test.hpp"
 #include "demcal/dem/genesis.hpp"
@@ -203,7 +204,7 @@ TEST(UcsScene, ThePlatensStartAtTheVesselFacesTouchingItsDisksWithoutForce) {
   // force until the platens move.
   Scene scene = Scene::load(scene_path());
   const std::map<std::string, double> parameters = scene.resolve({});
-  const Specimen specimen = cached_specimen(scene.specimen(parameters, 1), "");
+  const Specimen specimen = cached_specimen(specimen_spec(scene, parameters, 1), "");
   std::map<std::string, double> info;
   World world = make_platen_world(scene, parameters, specimen, 1, nullptr, &info);
   ASSERT_EQ(world.walls.size(), 2u);
@@ -272,7 +273,7 @@ TEST(UcsScene, FasterPlatensWhileElasticTakeFewerStepsAndSlowBeforeTheModulusWin
 
 TEST(UcsScene, FasterPlatensNeedBondsThatReportTheirLoad) {
   nlohmann::json json = Scene::resolved_json(scene_path());
-  json["contacts"]["disk-disk"] = {{"model", "linear"}, {"parameters", {{"modulus_pa", "Ec_GPa*1e9"}, {"kn_ks", "kn_ks"}, {"friction", "mu"}}}};
+  json["contacts"]["particle-particle"] = {{"model", "linear"}, {"parameters", {{"modulus_pa", "Ec_GPa*1e9"}, {"kn_ks", "kn_ks"}, {"friction", "mu"}}}};
   json["loading"]["elastic_speedup"] = 2;
   const Scene scene = Scene::from_json(json, "linear.json");
   try {

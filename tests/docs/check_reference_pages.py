@@ -57,13 +57,15 @@ def help_options(bin_dir, program):
 def problems(bin_dir, source):
     out = []
     registries = json.loads(run([os.path.join(bin_dir, "demcal-dem"), "describe", "--registries"]))
-    for model in registries["contact_models"]:
-        path, text = page(source, "contact_models", model + ".md")
-        if text is None:
-            out.append(f"{os.path.relpath(path, source)}: missing (the contact model \"{model}\" is registered)")
-            continue
-        out += [f"{os.path.relpath(path, source)}: does not name the parameter `{key}`"
-                for key in registries["contact_model_parameters"][model] if not named(text, key)]
+    # Contact models per engine: a 2D model's page is NAME.md, a 3D one's NAME_3d.md.
+    for dim, models in registries["contact_models"].items():
+        for model in models:
+            path, text = page(source, "contact_models", model + (".md" if dim == "2d" else f"_{dim}.md"))
+            if text is None:
+                out.append(f"{os.path.relpath(path, source)}: missing (the {dim} contact model \"{model}\" is registered)")
+                continue
+            out += [f"{os.path.relpath(path, source)}: does not name the parameter `{key}`"
+                    for key in registries["contact_model_parameters"][dim][model] if not named(text, key)]
     scenes = shipped_scenes_by_test(bin_dir, source)
     for test in registries["tests"]:
         path, text = page(source, "lab_tests", test + ".md")

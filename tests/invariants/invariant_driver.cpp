@@ -38,6 +38,7 @@
 #include "../common/same_bits.hpp"
 #include "../common/scratch.hpp"
 #include "demcal/core/units.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/lab_test.hpp"
@@ -128,7 +129,7 @@ class ModelInvariants : public ::testing::TestWithParam<std::string> {
     options.threads = threads;
     options.min_disks_per_thread = 1;  // these specimens are small
     options.particle_order_seed = order_seed;
-    const Specimen s = cached_specimen(scene.specimen(parameters, kSeed), test::scratch_path("cache"));
+    const Specimen s = cached_specimen(specimen_spec(scene, parameters, kSeed), test::scratch_path("cache"));
     World w = make_platen_world(scene, parameters, s, kSeed, nullptr, nullptr, data_.value("side_walls", false),
                                 nullptr, &options);
     w.refresh();

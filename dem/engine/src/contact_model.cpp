@@ -1,5 +1,6 @@
 #include "demcal/dem/contact_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -21,7 +22,36 @@ void ContactModelRegistry::add(const std::string& name, std::vector<std::string>
                                ContactModelFactory factory) {
   for (const Entry& entry : entries_)
     if (entry.name == name) throw Error("contact model \"" + name + "\" is registered twice");
-  entries_.push_back({name, std::move(parameter_keys), std::move(factory)});
+  entries_.push_back({name, std::move(parameter_keys), std::move(factory),
+                      std::make_shared<const nlohmann::json>(nlohmann::json::object())});
+}
+
+ContactModelRegistry::Entry& ContactModelRegistry::find_mutable(const std::string& name) {
+  for (Entry& entry : entries_)
+    if (entry.name == name) return entry;
+  throw Error("contact model \"" + name + "\" is not registered");
+}
+
+void ContactModelRegistry::set_peer_names(const std::string& name, const nlohmann::json& peer_names) {
+  Entry& entry = find_mutable(name);
+  // Every key a table translates must be one the model takes: a renamed key
+  // fails here, at start-up, not as a silently missing line in an export.
+  for (const auto& [program, table] : peer_names.items())
+    for (const nlohmann::json& keyword : table.value("keywords", nlohmann::json::array())) {
+      if (!keyword.contains("key")) continue;  // a fixed value the program needs
+      for (const char* field : {"key", "with"}) {
+        if (!keyword.contains(field)) continue;
+        const std::string key = keyword.at(field).get<std::string>();
+        if (std::find(entry.parameter_keys.begin(), entry.parameter_keys.end(), key) == entry.parameter_keys.end())
+          throw Error("contact model \"" + name + "\": the " + program + " names translate \"" + key +
+                      "\", which is not one of its parameters");
+      }
+    }
+  entry.peer_names = std::make_shared<const nlohmann::json>(peer_names);
+}
+
+const nlohmann::json& ContactModelRegistry::peer_names(const std::string& name) const {
+  return *find(name, "contact model").peer_names;
 }
 
 const ContactModelRegistry::Entry& ContactModelRegistry::find(const std::string& name, const std::string& where) const {

@@ -10,6 +10,8 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/equilibrium.hpp"
+#include "demcal/dem/builtin_tests.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/ucs_test.hpp"
@@ -137,7 +139,7 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
   const auto start = std::chrono::steady_clock::now();
   const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
   if (confinements.empty()) throw Error(scene.origin() + ": loading.confining_stresses_MPa: missing");
-  Specimen specimen = cached_specimen(scene.specimen(parameters, options.seed), options.cache_dir);
+  Specimen specimen = cached_specimen(specimen_spec(scene, parameters, options.seed), options.cache_dir);
   TestResult series;
   series.particles = specimen.size();
   series.porosity = specimen.porosity;
@@ -215,7 +217,7 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
 
 namespace {
 
-class BiaxialTest : public LabTest {
+class BiaxialTest : public PackedTest {
  public:
   std::string name() const override { return "biaxial"; }
   // 1: a series also reports the Hoek-Brown hb_ outputs (2026-12-03).
@@ -231,9 +233,10 @@ class BiaxialTest : public LabTest {
            "frictionless platens approach; a series fits the Mohr-Coulomb and Hoek-Brown envelopes";
   }
   std::vector<BoundaryRole> boundary_roles() const override {
-    return {{"disk-platen", kPlatenGroup, "the specimen's disks against the platens and the confining side walls"}};
+    return {{"particle-platen", kPlatenGroup, "the specimen's disks against the platens and the confining side walls"}};
   }
   // A series: its envelope's parameters (one confinement: its peak).
+  bool confined() const override { return true; }
   std::vector<std::string> headline_outputs(const Scene& scene) const override {
     if (scene.loading().confining_stresses_pa.size() >= 2) return {"c_MPa", "phi_deg", "hb_m_i"};
     return {"q_peak_MPa_1"};

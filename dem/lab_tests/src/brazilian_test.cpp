@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "demcal/core/error.hpp"
+#include "demcal/dem/builtin_tests.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/brazilian_test.hpp"
@@ -15,7 +17,7 @@ namespace demcal::dem {
 TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const LoadingSpec& loading = scene.loading();
-  Specimen square = cached_specimen(scene.specimen(parameters, options.seed), options.cache_dir);
+  Specimen square = cached_specimen(specimen_spec(scene, parameters, options.seed), options.cache_dir);
   const double D = std::min(square.width_m, square.height_m);
   const double cx = 0.5 * square.width_m, cy = 0.5 * square.height_m;
   // The disc is flattened where the platens load it (a 2 x 10 degree chord
@@ -85,7 +87,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
 
 namespace {
 
-class BrazilianTest : public LabTest {
+class BrazilianTest : public PackedTest {
  public:
   std::string name() const override { return "brazilian"; }
   std::string description() const override {

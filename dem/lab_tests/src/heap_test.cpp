@@ -15,6 +15,8 @@
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/angle_of_repose.hpp"
 #include "demcal/dem/cohesion_number.hpp"
+#include "demcal/dem/builtin_tests.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/run_settings.hpp"
@@ -371,12 +373,15 @@ class HeapTest : public LabTest {
   bool exact_scaling() const override { return false; }  // gravity sets the stresses
   // 1: aor_fixed_base_deg joined the outputs (stored heaps without it run again).
   int results_version() const override { return 1; }
-  std::vector<SceneSection> own_sections() const override {
-    return {{"particles", "the powder: radii, density, thickness, clumps", true},
+  int dimension() const override { return 2; }
+  const ContactModelCatalog& contact_models() const override { return disk_contact_models(); }
+  // The heap makes its particles in the funnel as it runs: no packed specimen, no loading.
+  std::vector<SceneSection> sections() const override {
+    return {{"particles", "the powder: radii, density, thickness, clumps", true, true},
             {"funnel", "the funnel, the base and the domain", false},
             {"run", "time limits, the settling criterion, the angle's bins", false}};
   }
-  std::vector<ContactRole> particle_roles() const override {
+  std::vector<ContactRole> specimen_roles(const Scene&) const override {
     return {{"particle-particle", {{kPowderGroup, kPowderGroup}}, "particles against each other"}};
   }
   void check_scene(const Scene& scene) const override { HeapSpec::from_scene(scene, scene.resolve({})); }

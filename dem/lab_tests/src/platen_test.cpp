@@ -18,12 +18,12 @@
 
 namespace demcal::dem {
 
-BoundaryRole platen_role() { return {"disk-platen", kPlatenGroup, "the specimen's disks against the loading platens"}; }
+BoundaryRole platen_role() { return {"particle-platen", kPlatenGroup, "the specimen's disks against the loading platens"}; }
 
 std::vector<OutputSpec> platen_crack_outputs(const Scene& scene) {
   std::vector<OutputSpec> out = {{"cracks_tension", "1", "bonds broken in tension", true, kNonNegative},
                                  {"cracks_shear", "1", "bonds broken in shear", true, kNonNegative}};
-  if (scene.aggregates()) {
+  if (scene.has_section("aggregates")) {
     out.push_back({"cracks_mortar_tension", "1", "bonds broken in tension in the mortar", true, kNonNegative});
     out.push_back({"cracks_mortar_shear", "1", "bonds broken in shear in the mortar", true, kNonNegative});
     out.push_back({"cracks_itz_tension", "1", "bonds broken in tension in the interfacial transition zone", true,
@@ -59,8 +59,8 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
     r_min = std::min(r_min, specimen.radius[i]);
   }
   if (world.bodies.size() < 10) throw Error("the specimen holds fewer than 10 disks");
-  if (scene.aggregates()) {
-    const AggregateSpec& spec = *scene.aggregates();
+  if (const std::optional<AggregateSpec> aggregates = scene_aggregates(scene)) {
+    const AggregateSpec& spec = *aggregates;
     AggregatePlacement placement = place_aggregates(spec, specimen.width_m, specimen.height_m, seed);
     AggregateSummary s = make_aggregate_clumps(world, placement, spec.density_kg_m3, specimen.thickness_m);
     if (info) {
@@ -81,7 +81,7 @@ World make_platen_world(const Scene& scene, const std::map<std::string, double>&
   double solid_m2 = 0;
   for (std::size_t i = 0; i < world.bodies.size(); ++i) solid_m2 += M_PI * world.bodies.radius[i] * world.bodies.radius[i];
   const double area_m2 = solid_m2 / (1 - specimen.porosity);  // the specimen's own, a Brazilian disc's too
-  const double locked_in_pa = scene.specimen(parameters, seed).locked_in_stress_pa;
+  const double locked_in_pa = specimen_spec(scene, parameters, seed).locked_in_stress_pa;
   double locked_in_fraction = 0;
   if (locked_in_pa > 0) {
     for (const auto& [role, contact] : scene.contacts())

@@ -9,6 +9,8 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/progress.hpp"
+#include "demcal/dem/builtin_tests.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 
@@ -127,7 +129,7 @@ std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& cu
 TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const LoadingSpec& loading = scene.loading();
-  SpecimenSpec spec = scene.specimen(parameters, options.seed);
+  SpecimenSpec spec = specimen_spec(scene, parameters, options.seed);
   Specimen specimen = cached_specimen(spec, options.cache_dir);
 
   std::map<std::string, double> specimen_info;
@@ -219,7 +221,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
 
 namespace {
 
-class UcsTest : public LabTest {
+class UcsTest : public PackedTest {
  public:
   std::string name() const override { return "ucs"; }
   std::string description() const override {
@@ -248,6 +250,7 @@ class UcsTest : public LabTest {
     for (OutputSpec& o : platen_crack_outputs(scene)) out.push_back(o);
     return out;
   }
+  bool speeds_up_while_elastic() const override { return true; }
   std::vector<std::string> headline_outputs(const Scene&) const override { return {"sigma_u_MPa", "E_GPa", "nu"}; }
   std::vector<std::string> modulus_outputs(const Scene&) const override { return {"E_GPa", "E50_GPa"}; }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,

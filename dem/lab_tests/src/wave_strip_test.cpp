@@ -17,6 +17,8 @@
 #include "demcal/core/progress.hpp"
 #include "demcal/dem/boundary_forces.hpp"
 #include "demcal/dem/equilibrium.hpp"
+#include "demcal/dem/builtin_tests.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/wave_signals.hpp"
@@ -221,7 +223,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   const auto start = std::chrono::steady_clock::now();
   const WaveStripSpec s = WaveStripSpec::from_scene(scene, parameters);
   const std::string& origin = scene.origin();
-  Specimen specimen = cached_specimen(scene.specimen(parameters, options.seed), options.cache_dir);
+  Specimen specimen = cached_specimen(specimen_spec(scene, parameters, options.seed), options.cache_dir);
   const double W = specimen.width_m, H = specimen.height_m;
 
   TestResult result;
@@ -541,14 +543,14 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
 
 namespace {
 
-class WaveStripTest : public LabTest {
+class WaveStripTest : public PackedTest {
  public:
   std::string name() const override { return "wave_strip"; }
   std::string description() const override {
     return "wave strip: a pulse enters a bonded strip through an input boundary; recovery times, reflection, wave speeds";
   }
   std::vector<BoundaryRole> boundary_roles() const override {
-    return {{"disk-wall", kPlatenGroup, "the strip's disks against the vessel's walls, until the boundaries replace them"}};
+    return {{"particle-wall", kPlatenGroup, "the strip's disks against the vessel's walls, until the boundaries replace them"}};
   }
   bool exact_scaling() const override { return false; }  // a dynamic test: inertia and gravity set its numbers
   std::vector<SceneSection> extra_sections() const override {
@@ -558,7 +560,7 @@ class WaveStripTest : public LabTest {
             {"monitors", "monitoring points T1, T2, ... and the reflection point", false},
             {"run", "duration, gravity, recording, recovery threshold, quiet period", false}};
   }
-  void check_scene(const Scene& scene) const override { WaveStripSpec::from_scene(scene, scene.resolve({})); }
+  void check_extra_sections(const Scene& scene) const override { WaveStripSpec::from_scene(scene, scene.resolve({})); }
   std::vector<std::string> headline_outputs(const Scene&) const override { return {"total_recovery_time_s"}; }
   std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }  // velocity histories
   std::vector<OutputSpec> outputs(const Scene& scene) const override {

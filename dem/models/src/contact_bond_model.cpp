@@ -142,6 +142,26 @@ void register_contact_bond_model(ContactModelRegistry& registry) {
                                  "shear_strength_pa", "shear_strength_std_pa"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<ContactBondModel>(p, where);
   });
+  // PFC's linearcbond takes its strengths after bonding, as stresses it turns
+  // into forces with the contact area 2 min(R) t, as this model does.
+  registry.set_peer_names("contact_bond", nlohmann::json::parse(R"({
+    "pfc": {"model": "linearcbond",
+      "keywords": [{"key": "modulus_pa", "group": "deformability", "name": "emod"},
+                   {"key": "kn_ks", "group": "deformability", "name": "kratio"},
+                   {"key": "friction", "group": "property", "name": "fric"},
+                   {"key": "tensile_strength_pa", "group": "cb_strength", "name": "tensile"},
+                   {"key": "shear_strength_pa", "group": "cb_strength", "name": "shear"}],
+      "later": {"cb_strength": {"command": "contact method cb_strength",
+        "text": "after bonding (contact method bond gap ...), the strengths as stresses; PFC turns them into the forces cb_tenf and cb_shearf with the contact area 2 min(R) t, as demcal does"}}},
+    "yade": {"model": "CohFrictMat", "notes": [],
+      "keywords": [{"key": "modulus_pa", "name": "young"}, {"key": "kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "friction", "name": "frictionAngle", "as": "atan"},
+                   {"key": "tensile_strength_pa", "name": "normalCohesion"},
+                   {"key": "shear_strength_pa", "name": "shearCohesion"}, {"name": "isCohesive", "value": true}]},
+    "liggghts": {"model": "hertz", "notes": ["LIGGGHTS-PUBLIC has no bonds: only the contact's stiffness and friction carry over"],
+      "keywords": [{"key": "modulus_pa", "name": "youngsModulus"},
+                   {"key": "kn_ks", "name": "poissonsRatio", "as": "hertz_mindlin_poisson"},
+                   {"key": "friction", "name": "coefficientFriction", "per": "pair"}]}})"));
 }
 
 }  // namespace demcal::dem

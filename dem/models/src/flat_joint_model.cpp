@@ -260,6 +260,31 @@ void register_flat_joint_model(ContactModelRegistry& registry) {
                                "cohesion_pa", "cohesion_std_pa", "friction_angle_deg", "joint_friction"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<FlatJointModel>(p, where);
   });
+  // PFC's flatjoint (fj_nr elements across the joint); the linear part is
+  // what contacts formed later take. YADE has no flat joint.
+  registry.set_peer_names("flat_joint", nlohmann::json::parse(R"({
+    "pfc": {"model": "flatjoint",
+      "keywords": [{"key": "joint_modulus_pa", "group": "deformability", "name": "emod"},
+                   {"key": "joint_kn_ks", "group": "deformability", "name": "kratio"},
+                   {"key": "tensile_strength_pa", "group": "property", "name": "fj_ten"},
+                   {"key": "cohesion_pa", "group": "property", "name": "fj_coh"},
+                   {"key": "friction_angle_deg", "group": "property", "name": "fj_fa"},
+                   {"key": "joint_friction", "group": "property", "name": "fj_fric"},
+                   {"key": "elements", "group": "property", "name": "fj_nr", "as": "integer", "default": 2},
+                   {"key": "radius_multiplier", "group": "property", "name": "fj_rmul", "default": 1},
+                   {"key": "modulus_pa", "group": "unjoined", "name": "emod"},
+                   {"key": "kn_ks", "group": "unjoined", "name": "kratio"},
+                   {"key": "friction", "group": "unjoined", "name": "fric"}],
+      "later": {"unjoined": {"text": "contacts that form later (unjoined) take the linear part"}}},
+    "yade": {"model": "CohFrictMat", "notes": ["no flat joint in YADE: its elements, partial damage and friction angle do not carry over; a cohesive-frictional bond is the nearest"],
+      "keywords": [{"key": "joint_modulus_pa", "name": "young"}, {"key": "joint_kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "joint_friction", "name": "frictionAngle", "as": "atan"},
+                   {"key": "tensile_strength_pa", "name": "normalCohesion"},
+                   {"key": "cohesion_pa", "name": "shearCohesion"}, {"name": "isCohesive", "value": true}]},
+    "liggghts": {"model": "hertz", "notes": ["LIGGGHTS-PUBLIC has no bonds: only the contact's stiffness and friction carry over"],
+      "keywords": [{"key": "modulus_pa", "name": "youngsModulus"},
+                   {"key": "kn_ks", "name": "poissonsRatio", "as": "hertz_mindlin_poisson"},
+                   {"key": "friction", "name": "coefficientFriction", "per": "pair"}]}})"));
 }
 
 }  // namespace demcal::dem

@@ -51,6 +51,15 @@ void register_hertz_mindlin_model(ContactModelRegistry& registry) {
   registry.add("hertz_mindlin", hertz_parameter_keys({}), [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<HertzMindlinModel>(p, where);
   });
+  // LIGGGHTS's granular Hertz model; its rolling_friction cdt is the relative
+  // form. The wall's own material (the *_2 keys) is a second atom type there.
+  registry.set_peer_names("hertz_mindlin", nlohmann::json::parse(R"({
+    "liggghts": {"model": "hertz", "notes": ["the wall material (shear_modulus_2_pa, poisson_2) is a second atom type in LIGGGHTS: add its column yourself"],
+      "keywords": [{"key": "shear_modulus_pa", "name": "youngsModulus", "as": "youngs_modulus", "with": "poisson"},
+                   {"key": "poisson", "name": "poissonsRatio"},
+                   {"key": "restitution", "name": "coefficientRestitution", "per": "pair"},
+                   {"key": "friction", "name": "coefficientFriction", "per": "pair"},
+                   {"key": "rolling_friction_cdt_relative", "name": "coefficientRollingFriction", "per": "pair"}]}})"));
 }
 
 }  // namespace demcal::dem

@@ -124,6 +124,13 @@ void register_jkr_model(ContactModelRegistry& registry) {
   registry.add("jkr", hertz_parameter_keys({"work_of_adhesion_j_m2"}), [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<JkrModel>(p, where);
   });
+  registry.set_peer_names("jkr", nlohmann::json::parse(R"({
+    "liggghts": {"model": "hertz", "notes": ["the wall material (shear_modulus_2_pa, poisson_2) is a second atom type in LIGGGHTS: add its column yourself", "LIGGGHTS-PUBLIC has no JKR: its cohesion sjkr takes a cohesion energy density (J/m^3), not a work of adhesion"],
+      "keywords": [{"key": "shear_modulus_pa", "name": "youngsModulus", "as": "youngs_modulus", "with": "poisson"},
+                   {"key": "poisson", "name": "poissonsRatio"},
+                   {"key": "restitution", "name": "coefficientRestitution", "per": "pair"},
+                   {"key": "friction", "name": "coefficientFriction", "per": "pair"},
+                   {"key": "rolling_friction_cdt_relative", "name": "coefficientRollingFriction", "per": "pair"}]}})"));
 }
 
 }  // namespace demcal::dem

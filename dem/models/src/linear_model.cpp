@@ -74,6 +74,22 @@ void register_linear_model(ContactModelRegistry& registry) {
   registry.add("linear", {"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<LinearModel>(p, where);
   });
+  // PFC's linear model by the deformability method (or its kn and ks); YADE's
+  // FrictMat takes poisson as ks / kn; LIGGGHTS has Hertz-Mindlin, not springs.
+  registry.set_peer_names("linear", nlohmann::json::parse(R"({
+    "pfc": {"model": "linear",
+      "keywords": [{"key": "modulus_pa", "group": "deformability", "name": "emod"},
+                   {"key": "kn_ks", "group": "deformability", "name": "kratio"},
+                   {"key": "kn_n_m", "group": "property", "name": "kn"},
+                   {"key": "ks_n_m", "group": "property", "name": "ks"},
+                   {"key": "friction", "group": "property", "name": "fric"}]},
+    "yade": {"model": "FrictMat",
+      "keywords": [{"key": "modulus_pa", "name": "young"}, {"key": "kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "friction", "name": "frictionAngle", "as": "atan"}]},
+    "liggghts": {"model": "hertz", "notes": [],
+      "keywords": [{"key": "modulus_pa", "name": "youngsModulus"},
+                   {"key": "kn_ks", "name": "poissonsRatio", "as": "hertz_mindlin_poisson"},
+                   {"key": "friction", "name": "coefficientFriction", "per": "pair"}]}})"));
 }
 
 }  // namespace demcal::dem

@@ -171,6 +171,28 @@ void register_parallel_bond_model(ContactModelRegistry& registry) {
                                   "shear_strength_pa", "shear_strength_std_pa"}, [](const nlohmann::json& p, const std::string& where) {
     return std::make_unique<ParallelBondModel>(p, where);
   });
+  // PFC's linearpbond (pb_fa 0: this bond has no friction angle); YADE's
+  // nearest is a cohesive-frictional contact without the bond's own stiffness.
+  registry.set_peer_names("parallel_bond", nlohmann::json::parse(R"({
+    "pfc": {"model": "linearpbond",
+      "keywords": [{"key": "modulus_pa", "group": "deformability", "name": "emod"},
+                   {"key": "kn_ks", "group": "deformability", "name": "kratio"},
+                   {"key": "bond_modulus_pa", "group": "pb_deformability", "name": "emod"},
+                   {"key": "bond_kn_ks", "group": "pb_deformability", "name": "kratio"},
+                   {"key": "friction", "group": "property", "name": "fric"},
+                   {"key": "tensile_strength_pa", "group": "property", "name": "pb_ten"},
+                   {"key": "shear_strength_pa", "group": "property", "name": "pb_coh"},
+                   {"group": "property", "name": "pb_fa", "value": 0},
+                   {"key": "radius_multiplier", "group": "property", "name": "pb_rmul", "default": 1}]},
+    "yade": {"model": "CohFrictMat", "notes": [],
+      "keywords": [{"key": "modulus_pa", "name": "young"}, {"key": "kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "friction", "name": "frictionAngle", "as": "atan"},
+                   {"key": "tensile_strength_pa", "name": "normalCohesion"},
+                   {"key": "shear_strength_pa", "name": "shearCohesion"}, {"name": "isCohesive", "value": true}]},
+    "liggghts": {"model": "hertz", "notes": ["LIGGGHTS-PUBLIC has no bonds: only the contact's stiffness and friction carry over"],
+      "keywords": [{"key": "modulus_pa", "name": "youngsModulus"},
+                   {"key": "kn_ks", "name": "poissonsRatio", "as": "hertz_mindlin_poisson"},
+                   {"key": "friction", "name": "coefficientFriction", "per": "pair"}]}})"));
 }
 
 }  // namespace demcal::dem

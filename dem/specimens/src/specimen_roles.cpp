@@ -9,7 +9,7 @@ constexpr std::uint8_t kMortarGroup = 0;  // the disks of a one-phase specimen, 
 }
 
 std::vector<ContactRole> specimen_contact_roles(bool concrete) {
-  if (!concrete) return {{"disk-disk", {{kMortarGroup, kMortarGroup}}, "the specimen's disks against each other"}};
+  if (!concrete) return {{"particle-particle", {{kMortarGroup, kMortarGroup}}, "the specimen's disks against each other"}};
   return {{"mortar-mortar", {{kMortarGroup, kMortarGroup}}, "mortar disks against each other"},
           {"mortar-aggregate", {{kMortarGroup, kAggregateGroup}}, "the interfacial transition zone (ITZ)"},
           {"aggregate-aggregate", {{kAggregateGroup, kAggregateGroup}}, "two aggregates in contact"}};

@@ -56,7 +56,7 @@ std::vector<PointSpec> batch_points(const dem::SceneSet& scene, const BatchOptio
 
 // The distinct specimens the points need, in the points' order (points that
 // cannot run are skipped: they record why themselves).
-std::vector<dem::SpecimenSpec> distinct_specimens(const dem::SceneSet& scene, const std::vector<const PointSpec*>& points);
+std::vector<dem::SpecimenToPack> distinct_specimens(const dem::SceneSet& scene, const std::vector<const PointSpec*>& points);
 
 // The result files of a batch: its shard ("i/N") and the whole design's point count recorded.
 OutputFiles batch_output_files(const BatchOptions& options, std::size_t design_total);

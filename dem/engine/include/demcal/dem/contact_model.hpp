@@ -143,13 +143,22 @@ class ContactModelRegistry {
   std::vector<std::string> names() const;
   // The keys `name` accepts; throws like create() for an unknown model.
   const std::vector<std::string>& parameter_keys(const std::string& name) const;
+  // How other programs name the model and its keys, so that `export` keeps no
+  // copy of them: {"pfc"|"yade"|"liggghts": {"model", "keywords": [{"key",
+  // "name", ...}], ...}} (docs/reference/executables/demcal-dem.md). A model
+  // without a table for a program has no counterpart there.
+  void set_peer_names(const std::string& name, const nlohmann::json& peer_names);
+  // The table of `name` (an empty object when none was set).
+  const nlohmann::json& peer_names(const std::string& name) const;
 
  private:
   struct Entry {
     std::string name;
     std::vector<std::string> parameter_keys;
     ContactModelFactory factory;
+    std::shared_ptr<const nlohmann::json> peer_names;
   };
+  Entry& find_mutable(const std::string& name);
   const Entry& find(const std::string& name, const std::string& where) const;
   std::vector<Entry> entries_;
 };

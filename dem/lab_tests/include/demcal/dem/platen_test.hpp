@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "demcal/core/progress.hpp"
+#include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -20,7 +21,7 @@ namespace demcal::dem {
 
 constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
 
-// The platens' contact role: "disk-platen", every specimen group against the platens.
+// The platens' contact role: "particle-platen", every specimen group against the platens.
 BoundaryRole platen_role();
 // The crack counts every platen test reports (by mode; a concrete also by phase).
 std::vector<OutputSpec> platen_crack_outputs(const Scene& scene);

@@ -22,7 +22,7 @@
 //   "run":        {"duration_s", "gravity_m_s2", "record_every_s", "recovery_fraction", "quiet_time_s",
 //                  "equilibrium_ratio", "max_equilibrium_steps", "local_damping", "max_wall_s"}
 //
-// Contact roles: the specimen's own and "disk-wall" (the vessel's walls, until the boundaries replace them).
+// Contact roles: the specimen's own and "particle-wall" (the vessel's walls, until the boundaries replace them).
 #include <array>
 #include <map>
 #include <string>

@@ -1,20 +1,14 @@
 #pragma once
-// The contact roles of a specimen's own pairs, and the material groups of
-// its disks: a one-phase specimen has "disk-disk"; a concrete has
+// The contact roles of a 2D specimen's own pairs, and the material groups of
+// its disks: a one-phase specimen has "particle-particle"; a concrete has
 // "mortar-mortar", "mortar-aggregate" (the interfacial transition zone) and
 // "aggregate-aggregate". A lab test adds the roles of its boundaries.
 #include <cstdint>
-#include <string>
-#include <utility>
 #include <vector>
 
-namespace demcal::dem {
+#include "demcal/dem/contact_role.hpp"
 
-struct ContactRole {
-  std::string name;
-  std::vector<std::pair<std::uint8_t, std::uint8_t>> groups;  // the material groups it joins
-  std::string description;
-};
+namespace demcal::dem {
 
 std::vector<ContactRole> specimen_contact_roles(bool concrete);
 std::vector<std::uint8_t> specimen_groups(bool concrete);

@@ -58,9 +58,9 @@ class SceneSet {
   std::map<std::string, double> resolve(const std::map<std::string, double>& overrides) const;
   void check_space(const ParameterSpace& space, const std::string& space_path) const;
   bool shapes_specimen(const std::string& parameter) const;
-  // The specimens a point at `parameters` needs, one per scene that packs one
-  // (an external test packs its own).
-  std::vector<SpecimenSpec> specimens(const std::map<std::string, double>& parameters, std::uint64_t seed) const;
+  // The specimens a point at `parameters` needs packed, one per scene that
+  // packs one (LabTest::specimens_to_pack; an external test packs its own).
+  std::vector<SpecimenToPack> specimens(const std::map<std::string, double>& parameters, std::uint64_t seed) const;
 
   // Every output under its name in the set, in scene order.
   std::vector<OutputSpec> outputs() const;

@@ -173,10 +173,12 @@ bool SceneSet::shapes_specimen(const std::string& parameter) const {
   return std::any_of(scenes_.begin(), scenes_.end(), [&](const Scene& s) { return s.shapes_specimen(parameter); });
 }
 
-std::vector<SpecimenSpec> SceneSet::specimens(const std::map<std::string, double>& parameters, std::uint64_t seed) const {
-  std::vector<SpecimenSpec> out;
+std::vector<SpecimenToPack> SceneSet::specimens(const std::map<std::string, double>& parameters,
+                                                std::uint64_t seed) const {
+  std::vector<SpecimenToPack> out;
   for (const Scene& s : scenes_)
-    if (!s.is_external()) out.push_back(s.specimen(own_parameters(s, parameters), seed));  // a command packs its own
+    for (SpecimenToPack& p : s.lab_test().specimens_to_pack(s, own_parameters(s, parameters), seed))
+      out.push_back(std::move(p));
   return out;
 }
 

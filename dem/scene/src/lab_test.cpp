@@ -2,6 +2,8 @@
 
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "demcal/core/error.hpp"
 #include "demcal/dem/scene.hpp"
 
@@ -14,13 +16,29 @@ std::vector<std::string> LabTest::headline_outputs(const Scene& scene) const {
   return names;
 }
 
-LabTestRegistry& LabTestRegistry::instance() {
-  static LabTestRegistry registry = [] {
-    LabTestRegistry r;
-    register_builtin_tests(r);
-    return r;
-  }();
-  return registry;
+namespace {
+
+class NoContactModels : public ContactModelCatalog {
+ public:
+  std::string dimension() const override { return ""; }
+  std::vector<std::string> names() const override { return {}; }
+  const std::vector<std::string>& parameter_keys(const std::string& model) const override {
+    throw Error("contact model \"" + model + "\": this test has no contact models of demcal's");
+  }
+  const nlohmann::json& peer_names(const std::string& model) const override { return parameter_keys(model), empty_; }
+  void check(const std::string& model, const nlohmann::json&, const std::string& where) const override {
+    throw Error(where + ": contact model \"" + model + "\": this test has no contact models of demcal's");
+  }
+
+ private:
+  nlohmann::json empty_ = nlohmann::json::object();
+};
+
+}  // namespace
+
+const ContactModelCatalog& no_contact_models() {
+  static const NoContactModels none;
+  return none;
 }
 
 void LabTestRegistry::add(std::unique_ptr<LabTest> test) {
@@ -41,15 +59,6 @@ std::vector<std::string> LabTestRegistry::names() const {
   std::vector<std::string> out;
   for (const auto& t : tests_) out.push_back(t->name());
   return out;
-}
-
-void register_builtin_tests(LabTestRegistry& registry) {
-  register_ucs_test(registry);
-  register_brazilian_test(registry);
-  register_biaxial_test(registry);
-  register_external_test(registry);
-  register_heap_test(registry);
-  register_wave_strip_test(registry);
 }
 
 TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {

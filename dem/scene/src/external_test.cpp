@@ -265,7 +265,10 @@ class ExternalTest : public LabTest {
   std::string description() const override {
     return "an external command (another simulator) run per point: parameters in, outputs from its out.json";
   }
+  int dimension() const override { return 0; }  // the command's simulator decides
+  const ContactModelCatalog& contact_models() const override { return no_contact_models(); }
   std::vector<BoundaryRole> boundary_roles() const override { return {}; }
+  std::vector<ContactRole> specimen_roles(const Scene&) const override { return {}; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override { return scene.external().outputs; }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
                  const RunOptions& options) const override {

@@ -1,13 +1,15 @@
 #pragma once
-// A scene file: the test (ucs, ...), the specimen, the named parameters a
-// design varies, and the contact models whose parameters are bound to them.
+// A scene file: the test (ucs, ...), the sections the test reads (a packed
+// specimen's "specimen" and "loading", a heap's "funnel" ...), the named
+// parameters a design varies, and the contact models whose parameters are
+// bound to them.
 //
 //   {"name": "ucs_rock_pb", "test": "ucs",
 //    "specimen": {"width_m": 0.05, "height_m": 0.1, "porosity": 0.16,
 //                 "radius_min_m": 5e-4, "radius_max_m": "R_min_m*1.5", "density_kg_m3": 2650},
 //    "parameters": {"Ec_GPa": {"value": 16, "low": 1, "high": 200, "unit": "GPa"}, ...},
-//    "contacts": {"disk-disk":   {"model": "parallel_bond", "parameters": {"modulus_pa": "Ec_GPa*1e9", ...}},
-//                 "disk-platen": {"model": "linear", "parameters": {...}}},
+//    "contacts": {"particle-particle": {"model": "parallel_bond", "parameters": {"modulus_pa": "Ec_GPa*1e9", ...}},
+//                 "particle-platen":   {"model": "linear", "parameters": {...}}},
 //    "loading": {"platen_velocity_m_s": 0.02, "stop_fraction_of_peak": 0.7, "strain_limit": 0.02}}
 //
 // A bound value is a number or a product of parameter names and numbers
@@ -24,14 +26,13 @@
 // deletes.
 //
 // The contacts object binds a model to every contact role of the scene: the
-// specimen's own ("disk-disk", or a concrete's "mortar-mortar",
+// specimen's own ("particle-particle", or a concrete's "mortar-mortar",
 // "mortar-aggregate", "aggregate-aggregate") and the test's boundaries
-// ("disk-platen").
+// ("particle-platen"); the roles' older names ("disk-disk" ...) still read.
 //
-// Concrete: an "aggregates" object (Walraven gradation, polygon sides, gap,
-// density) makes the disks inside each placed polygon one rigid clump, and
-// the contacts are then "mortar-mortar", "mortar-aggregate" (the interfacial
-// transition zone), "aggregate-aggregate" and "disk-platen".
+// Nothing here depends on the dimension: the scene keeps each section as
+// JSON, and the test's engine reads it (a 2D specimen: packed_test.hpp) and
+// checks the contact models against its own registry (LabTest::contact_models).
 #include <map>
 #include <optional>
 #include <string>
@@ -40,10 +41,8 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/units.hpp"
-#include "demcal/dem/aggregates.hpp"
+#include "demcal/dem/contact_role.hpp"
 #include "demcal/dem/external_test.hpp"
-#include "demcal/dem/genesis.hpp"
-#include "demcal/dem/specimen_roles.hpp"
 
 namespace demcal {
 class ParameterSpace;
@@ -60,7 +59,6 @@ struct SceneParameter {
 };
 
 class LabTest;
-class World;
 
 struct ContactSpec {
   std::string model;
@@ -94,7 +92,7 @@ struct LoadingSpec {
   // outermost disks either way.
   enum class PlatenStart { vessel_faces, outermost_disks };
   PlatenStart platen_start = PlatenStart::vessel_faces;
-  // Biaxial test only: one specimen per confining stress (same seed), in
+  // A confined test only (LabTest::confined): one specimen per confining stress (same seed), in
   // this order; its outputs are numbered 1, 2, ... in it.
   std::vector<double> confining_stresses_pa;
 };
@@ -107,15 +105,17 @@ class Scene {
   static Scene from_json(const nlohmann::json& json, const std::string& origin);
   // The scene's JSON with every "extends" applied (what from_json takes).
   static nlohmann::json resolved_json(const std::string& path);
-  // A whole scene's JSON with the specimen's disk radii divided by `factor`
-  // (> 1: finer, about factor^2 more disks; aggregates keep their sizes), to
-  // check a calibration made on a coarse specimen at a finer resolution.
+  // A whole scene's JSON with the particles' radii (radius_min_m and
+  // radius_max_m of the section that shapes the specimen) divided by `factor`
+  // (> 1: finer; aggregates keep their sizes), to check a calibration made on
+  // a coarse specimen at a finer resolution.
   static nlohmann::json with_finer_disks(nlohmann::json scene, double factor, const std::string& origin);
 
   const std::string& name() const { return name_; }
   const std::string& test() const { return test_; }
   const LabTest& lab_test() const { return *lab_test_; }
-  // Every contact role the scene binds: the specimen's, then the test's boundaries'.
+  // Every contact role the scene binds: the specimen's, then the test's
+  // boundaries', under their canonical names (contacts() uses them too).
   const std::vector<ContactRole>& contact_roles() const { return roles_; }
   const std::map<std::string, SceneParameter>& parameters() const { return parameters_; }
   const std::map<std::string, ContactSpec>& contacts() const { return contacts_; }
@@ -124,11 +124,10 @@ class Scene {
   // such a scene has no specimen, contacts or loading. Throws for any other.
   bool is_external() const { return external_.has_value(); }
   const ExternalSpec& external() const;
-  // A section the scene's test reads itself (LabTest::own_sections), e.g. a
-  // heap's "particles"; an empty object when the file has none.
+  // A section the scene's test reads (LabTest::sections), e.g. "specimen"
+  // or a heap's "particles", as written; an empty object when the file has none.
   const nlohmann::json& section(const std::string& name) const;
-  // The aggregates of a concrete scene; empty for a one-phase specimen.
-  const std::optional<AggregateSpec>& aggregates() const { return aggregates_; }
+  bool has_section(const std::string& name) const { return sections_.contains(name); }
   const std::string& origin() const { return origin_; }
   // Identifies what a stored result was made with: what changes results
   // (test, specimen, aggregates, contacts, loading, parameter defaults) and
@@ -151,24 +150,21 @@ class Scene {
   // The contact model parameters with every expression evaluated.
   nlohmann::json bind(const ContactSpec& contact, const std::map<std::string, double>& parameters,
                       const std::string& where) const;
-  SpecimenSpec specimen(const std::map<std::string, double>& parameters, std::uint64_t seed) const;
-  // Whether the parameter enters the specimen (its size, radii, porosity,
-  // density): each value is then another packing, not the same specimen
-  // with other contacts. A calibration keeps such parameters fixed unless
-  // its space varies them.
+  // Whether the parameter enters the specimen (a section the test marks
+  // shapes_specimen: its size, radii, porosity, density): each value is then
+  // another packing, not the same specimen with other contacts. A
+  // calibration keeps such parameters fixed unless its space varies them.
   bool shapes_specimen(const std::string& parameter) const;
 
  private:
   std::string origin_, name_, test_, fingerprint_;
   const LabTest* lab_test_ = nullptr;
   std::vector<ContactRole> roles_;
-  nlohmann::json specimen_;
   std::map<std::string, SceneParameter> parameters_;
   std::map<std::string, ContactSpec> contacts_;
   LoadingSpec loading_;
-  std::optional<AggregateSpec> aggregates_;
   std::optional<ExternalSpec> external_;
-  nlohmann::json sections_ = nlohmann::json::object();  // the test's own sections
+  nlohmann::json sections_ = nlohmann::json::object();  // the test's sections, as written
 
   void read_parameters(const nlohmann::json& root);
 };
@@ -185,8 +181,5 @@ void read_section_number(const Scene& scene, const std::map<std::string, double>
                          const std::string& section, const nlohmann::json& object, const char* key, double& target,
                          bool required);
 
-// Creates a model for each of the scene's contact roles (in the order of
-// contact_roles(), bound to `parameters`) and assigns it to the role's groups.
-void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters);
 
 }  // namespace demcal::dem

@@ -16,9 +16,7 @@
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/parameter_space.hpp"
-#include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/lab_test.hpp"
-#include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
 namespace {
@@ -42,37 +40,6 @@ std::size_t choice_field(const json& object, const char* key, const std::vector<
   std::string allowed;
   for (const std::string& c : choices) allowed += (allowed.empty() ? "\"" : " or \"") + c + "\"";
   throw Error(where + ": \"" + key + "\" must be " + allowed + " (got " + v.dump() + ")");
-}
-
-// The aggregates object: sizes in mm as engineers give them.
-AggregateSpec aggregate_spec(const json& a, const std::string& where) {
-  require_known_fields(a, {"size_range_mm", "bins", "coarse_fraction", "sides", "min_gap_m", "density_kg_m3", "max_attempts",
-                           "fill", "note"},
-                       where);
-  AggregateSpec spec;
-  // area: Walraven's area per bin; count: its circle-equivalent count.
-  spec.fill = choice_field(a, "fill", {"area", "count"}, 0, where) == 0 ? AggregateFill::area : AggregateFill::count;
-  if (a.contains("size_range_mm")) {
-    const json& r = a.at("size_range_mm");
-    if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
-      throw Error(where + ": size_range_mm must be [d_min, d_max]");
-    spec.d_min_m = r[0].get<double>() / 1000;
-    spec.d_max_m = r[1].get<double>() / 1000;
-  }
-  if (a.contains("sides")) {
-    const json& r = a.at("sides");
-    if (!r.is_array() || r.size() != 2 || !r[0].is_number_integer() || !r[1].is_number_integer())
-      throw Error(where + ": sides must be [min, max] integers");
-    spec.sides_min = r[0].get<int>();
-    spec.sides_max = r[1].get<int>();
-  }
-  spec.bins = static_cast<int>(number_field(a, "bins", spec.bins, where));
-  spec.coarse_fraction = number_field(a, "coarse_fraction", spec.coarse_fraction, where);
-  spec.min_gap_m = number_field(a, "min_gap_m", spec.min_gap_m, where);
-  spec.density_kg_m3 = number_field(a, "density_kg_m3", spec.density_kg_m3, where);
-  spec.max_attempts = static_cast<int>(number_field(a, "max_attempts", spec.max_attempts, where));
-  spec.validate(where);
-  return spec;
 }
 
 }  // namespace
@@ -126,13 +93,15 @@ json Scene::with_finer_disks(json scene, double factor, const std::string& origi
   if (!(factor >= 1.0) || !std::isfinite(factor)) throw Error(origin + ": a finer resolution needs a factor >= 1");
   if (scene.value("test", json()) == "external")
     throw Error(origin + ": an external test has no disks of ours to make finer (its program sets its resolution)");
-  // The disks' radii are in "specimen", or in the section of a test's own
-  // particles (LabTest::own_sections, shapes_specimen).
-  std::string section_key = "specimen";
-  if (!scene.contains("specimen") && scene.contains("test") && scene.at("test").is_string())
-    for (const SceneSection& section : LabTestRegistry::instance().find(scene.at("test").get<std::string>(), origin).own_sections())
-      if (section.shapes_specimen && scene.contains(section.name)) section_key = section.name;
-  if (!scene.contains(section_key) || !scene.at(section_key).is_object()) throw Error(origin + ": no specimen");
+  // The radii are in the section that shapes the specimen (a packed
+  // specimen's "specimen", a heap's "particles").
+  if (!scene.contains("test") || !scene.at("test").is_string()) throw Error(origin + ": missing \"test\" (a string)");
+  std::string section_key;
+  for (const SceneSection& section : LabTestRegistry::instance().find(scene.at("test").get<std::string>(), origin).sections())
+    if (section_key.empty() && section.shapes_specimen && scene.contains(section.name) &&
+        scene.at(section.name).is_object() && scene.at(section.name).contains("radius_min_m"))
+      section_key = section.name;
+  if (section_key.empty()) throw Error(origin + ": no specimen (no section with radius_min_m)");
   json& specimen = scene[section_key];
   for (const char* key : {"radius_min_m", "radius_max_m"}) {
     if (!specimen.contains(key)) throw Error(origin + ": " + section_key + "." + key + " is missing");
@@ -159,11 +128,12 @@ constexpr int kResultsVersion = 4;
 
 // loading.confining_stresses_MPa, in Pa: the biaxial test's list, each > 0;
 // at least two different ones when there are several (the Mohr-Coulomb fit).
-std::vector<double> confining_stresses(const json& loading, const std::string& test, const std::string& where) {
+std::vector<double> confining_stresses(const json& loading, const LabTest& test, const std::string& where) {
   std::vector<double> out;
   if (!loading.contains("confining_stresses_MPa")) return out;
   const std::string field = where + ".confining_stresses_MPa";
-  if (test != "biaxial") throw Error(field + ": only the biaxial test has a confining stress (this scene's test: " + test + ")");
+  if (!test.confined())
+    throw Error(field + ": only a confined test (biaxial) has a confining stress (this scene's test: " + test.name() + ")");
   const json& list = loading.at("confining_stresses_MPa");
   if (!list.is_array() || list.empty()) throw Error(field + ": must be a non-empty list of stresses in MPa, e.g. [1, 2, 4, 8]");
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -188,17 +158,21 @@ void drop_notes(json& value) {
 // FNV-1a over the canonical dump (keys sorted) of what changes results: the
 // same physics gives the same fingerprint, whatever the file's layout, name,
 // descriptions, notes, units or parameter bounds.
-std::string scene_fingerprint(const json& root, int test_version, const std::vector<SceneSection>& own = {}) {
+std::string scene_fingerprint(const json& root, int test_version, const std::vector<SceneSection>& sections = {}) {
   json physics = root;
+  if (physics.contains("contacts") && physics.at("contacts").is_object()) {  // a role's old name is the same role
+    json canonical = json::object();
+    for (auto& [role, contact] : physics.at("contacts").items()) canonical[canonical_role_name(role)] = contact;
+    physics["contacts"] = canonical;
+  }
   for (const char* key : {"name", "description", "extends"}) physics.erase(key);
   if (physics.contains("parameters") && physics.at("parameters").is_object()) {
     json defaults = json::object();
     for (auto& [name, p] : physics.at("parameters").items()) defaults[name] = p.value("value", json());
     physics["parameters"] = defaults;
   }
-  for (const char* key : {"specimen", "aggregates", "contacts", "loading"})
-    if (physics.contains(key)) drop_notes(physics[key]);
-  for (const SceneSection& section : own)
+  if (physics.contains("contacts")) drop_notes(physics["contacts"]);
+  for (const SceneSection& section : sections)
     if (physics.contains(section.name)) drop_notes(physics[section.name]);
   std::string text = physics.dump() + "|results-v" + std::to_string(kResultsVersion);
   if (test_version > 0) text += "|test-v" + std::to_string(test_version);
@@ -235,58 +209,51 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     scene.fingerprint_ = scene_fingerprint(physics, scene.lab_test_->results_version());
     return scene;
   }
-  const std::vector<SceneSection> own = scene.lab_test_->own_sections();
-  if (!own.empty()) {
-    // A test that makes its own particles: its sections replace the packed
-    // specimen's "specimen", "aggregates" and "loading".
-    std::vector<std::string> known = {"name", "test", "description", "parameters", "contacts"};
-    for (const SceneSection& section : own) known.push_back(section.name);
-    require_known_fields(root, known, origin);
-    for (const SceneSection& section : own) {
-      if (!root.contains(section.name)) continue;
-      if (!root.at(section.name).is_object()) throw Error(origin + ": \"" + section.name + "\" must be an object");
-      scene.sections_[section.name] = root.at(section.name);
+  const std::vector<SceneSection> sections = scene.lab_test_->sections();
+  std::vector<std::string> known = {"name", "test", "description", "parameters", "contacts"};
+  for (const SceneSection& section : sections) known.push_back(section.name);
+  require_known_fields(root, known, origin);
+  for (const SceneSection& section : sections) {
+    if (!root.contains(section.name)) {
+      if (section.required) throw Error(origin + ": missing \"" + section.name + "\"");
+      continue;
     }
-  } else {
-    std::vector<std::string> known = {"name", "test", "description", "specimen", "aggregates", "parameters", "contacts",
-                                      "loading"};
-    for (const SceneSection& section : scene.lab_test_->extra_sections()) {
-      known.push_back(section.name);
-      if (!root.contains(section.name)) continue;
-      if (!root.at(section.name).is_object()) throw Error(origin + ": \"" + section.name + "\" must be an object");
-      scene.sections_[section.name] = root.at(section.name);
-    }
-    require_known_fields(root, known, origin);
-    if (!root.contains("specimen")) throw Error(origin + ": missing \"specimen\"");
-    scene.specimen_ = root.at("specimen");
-    require_known_fields(scene.specimen_, {"width_m", "height_m", "diameter_m", "thickness_m", "porosity", "radius_min_m",
-                                "radius_max_m", "density_kg_m3", "isotropic_stress_pa", "locked_in_stress_pa"},
-              origin + ": specimen");
-    if (root.contains("aggregates")) scene.aggregates_ = aggregate_spec(root.at("aggregates"), origin + ": aggregates");
+    if (!root.at(section.name).is_object()) throw Error(origin + ": \"" + section.name + "\" must be an object");
+    scene.sections_[section.name] = root.at(section.name);
   }
-  // The contact roles: the specimen's own (or the test's particles'), then
-  // the test's boundaries (each against every group of the specimen).
-  scene.roles_ = own.empty() ? specimen_contact_roles(scene.aggregates_.has_value()) : scene.lab_test_->particle_roles();
+  // The contact roles: the specimen's own (as its sections say), then the
+  // test's boundaries, each against every group of the specimen.
+  scene.roles_ = scene.lab_test_->specimen_roles(scene);
+  std::vector<std::uint8_t> groups;
+  for (const ContactRole& r : scene.roles_)
+    for (const auto& [a, b] : r.groups)
+      for (std::uint8_t g : {a, b})
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
   for (const BoundaryRole& b : scene.lab_test_->boundary_roles()) {
     ContactRole role{b.name, {}, b.description};
-    for (std::uint8_t g : specimen_groups(scene.aggregates_.has_value())) role.groups.emplace_back(g, b.group);
+    for (std::uint8_t g : groups) role.groups.emplace_back(g, b.group);
     scene.roles_.push_back(role);
   }
   std::string role_list;
   for (const ContactRole& r : scene.roles_) role_list += (role_list.empty() ? "" : ", ") + r.name;
   if (!root.contains("contacts") || !root.at("contacts").is_object())
     throw Error(origin + ": missing \"contacts\" (an object binding a model to each of: " + role_list + ")");
+  std::map<std::string, std::string> spelled;  // canonical role name -> the name the file gives it
   for (auto it = root.at("contacts").begin(); it != root.at("contacts").end(); ++it) {
-    bool known = false;
-    for (const ContactRole& r : scene.roles_) known = known || r.name == it.key();
-    if (!known)
-      throw Error(origin + ": contacts: unknown contact role \"" + it.key() + "\" (" +
-                  (scene.aggregates_ ? "the roles of a scene with aggregates: " : "this scene's roles: ") + role_list + ")");
+    const std::string& role_name = canonical_role_name(it.key());
+    bool known_role = false;
+    for (const ContactRole& r : scene.roles_) known_role = known_role || r.name == role_name;
+    if (!known_role)
+      throw Error(origin + ": contacts: unknown contact role \"" + it.key() + "\" (this scene's roles: " + role_list + ")");
+    if (spelled.count(role_name))
+      throw Error(origin + ": contacts: \"" + spelled[role_name] + "\" and \"" + it.key() + "\" name the same role (" +
+                  role_name + "); keep one");
+    spelled[role_name] = it.key();
   }
   for (const ContactRole& role : scene.roles_) {
-    const std::string where = origin + ": contacts." + role.name;
-    if (!root.at("contacts").contains(role.name)) throw Error(where + ": missing");
-    const json& c = root.at("contacts").at(role.name);
+    if (!spelled.count(role.name)) throw Error(origin + ": contacts." + role.name + ": missing");
+    const std::string where = origin + ": contacts." + spelled[role.name];
+    const json& c = root.at("contacts").at(spelled[role.name]);
     require_known_fields(c, {"model", "parameters"}, where);
     if (!c.contains("model") || !c.at("model").is_string()) throw Error(where + ": missing \"model\" (a string)");
     if (c.contains("parameters") && !c.at("parameters").is_object())
@@ -297,7 +264,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     scene.contacts_[role.name] = spec;
   }
 
-  if (own.empty() && root.contains("loading")) {
+  if (scene.has_section("loading")) {
     const json& l = root.at("loading");
     const std::string where = origin + ": loading";
     require_known_fields(l, {"platen_velocity_m_s", "stop_fraction_of_peak", "strain_limit", "record_strain", "max_wall_s",
@@ -330,7 +297,7 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
     if (!(s.strain_limit > 0 && s.strain_limit < 0.5)) throw Error(where + ": strain_limit must lie in (0, 0.5)");
     if (!(s.record_strain > 0 && s.record_strain < s.strain_limit))
       throw Error(where + ": record_strain must lie in (0, strain_limit)");
-    s.confining_stresses_pa = confining_stresses(l, scene.test_, where);
+    s.confining_stresses_pa = confining_stresses(l, *scene.lab_test_, where);
     s.elastic_speedup = number_field(l, "elastic_speedup", s.elastic_speedup, where);
     s.speedup_until_utilisation = number_field(l, "speedup_until_utilisation", s.speedup_until_utilisation, where);
     if (!(s.elastic_speedup >= 1 && s.elastic_speedup <= 20))
@@ -339,28 +306,21 @@ Scene Scene::from_json(const json& root, const std::string& origin) {
       throw Error(where + ": elastic_speedup x platen_velocity_m_s must be at most 10 m/s");
     if (!(s.speedup_until_utilisation > 0 && s.speedup_until_utilisation < 1))
       throw Error(where + ": speedup_until_utilisation must lie in (0, 1)");
-    if (s.elastic_speedup != 1 && scene.test_ != "ucs")
-      throw Error(where + ": elastic_speedup: only the ucs test uses it (this scene's test is " + scene.test_ + ")");
+    if (s.elastic_speedup != 1 && !scene.lab_test_->speeds_up_while_elastic())
+      throw Error(where + ": elastic_speedup: only uniaxial compression uses it (this scene's test is " + scene.test_ + ")");
   }
-  if (scene.test_ == "biaxial" && scene.loading_.confining_stresses_pa.empty())
-    throw Error(origin + ": loading.confining_stresses_MPa: missing (the biaxial test's confining stresses, MPa, e.g. [1, 2, 4, 8])");
+  if (scene.lab_test_->confined() && scene.loading_.confining_stresses_pa.empty())
+    throw Error(origin + ": loading.confining_stresses_MPa: missing (the " + scene.test_ +
+                " test's confining stresses, MPa, e.g. [1, 2, 4, 8])");
   // Evaluate everything once with the defaults, so a bad expression fails at load.
   std::map<std::string, double> defaults = scene.resolve({});
-  if (own.empty()) {
-    try {
-      scene.specimen(defaults, 1).validate();
-    } catch (const Error& e) {
-      throw Error(origin + ": " + e.what());
-    }
+  scene.lab_test_->check_scene(scene);
+  for (const auto& [role, contact] : scene.contacts_) {
+    // Building the model checks its parameters (names, signs) at load, not at
+    // the first run, against the test's own engine's models.
+    const std::string where = origin + ": contacts." + spelled[role];
+    scene.lab_test_->contact_models().check(contact.model, scene.bind(contact, defaults, where), where);
   }
-  for (const auto& [pair, contact] : scene.contacts_) {
-    // Building the model checks its parameters (names, signs) at load, not at the first run.
-    const std::string where = origin + ": contacts." + pair;
-    ContactModelRegistry::instance().create(contact.model, scene.bind(contact, defaults, where), where);
-  }
-  std::vector<SceneSection> sections = own;
-  for (const SceneSection& section : scene.lab_test_->extra_sections()) sections.push_back(section);
-  if (!sections.empty()) scene.lab_test_->check_scene(scene);
   scene.fingerprint_ = scene_fingerprint(root, scene.lab_test_->results_version(), sections);  // on the validated file
   return scene;
 }
@@ -437,16 +397,6 @@ void check_space_against(const std::map<std::string, SceneParameter>& parameters
   for (const TiedParameter& t : space.tied()) scene_parameter(t.name, "tied parameter");
 }
 
-void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters) {
-  for (const ContactRole& role : scene.contact_roles()) {
-    const ContactSpec& c = scene.contacts().at(role.name);
-    const std::string where = scene.origin() + ": contacts." + role.name;
-    const std::uint8_t model =
-        world.add_model(ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where), where));
-    for (const auto& [a, b] : role.groups) world.assign(a, b, model);
-  }
-}
-
 std::map<std::string, double> Scene::resolve(const std::map<std::string, double>& overrides) const {
   std::map<std::string, double> values;
   for (const auto& [name, p] : parameters_) values[name] = p.value;
@@ -494,45 +444,20 @@ json Scene::bind(const ContactSpec& contact, const std::map<std::string, double>
   return bound;
 }
 
-SpecimenSpec Scene::specimen(const std::map<std::string, double>& parameters, std::uint64_t seed) const {
-  SpecimenSpec spec;
-  auto field = [&](const char* key, double& target) {
-    if (specimen_.contains(key)) target = evaluate(specimen_.at(key), parameters, origin_ + ": specimen." + key);
-  };
-  field("width_m", spec.width_m);
-  field("height_m", spec.height_m);
-  if (specimen_.contains("diameter_m")) {  // a Brazilian disc is cut from a square packing
-    field("diameter_m", spec.width_m);
-    spec.height_m = spec.width_m;
-  }
-  field("thickness_m", spec.thickness_m);
-  field("porosity", spec.porosity);
-  field("radius_min_m", spec.radius_min_m);
-  field("radius_max_m", spec.radius_max_m);
-  field("density_kg_m3", spec.density_kg_m3);
-  field("isotropic_stress_pa", spec.isotropic_stress_pa);
-  field("locked_in_stress_pa", spec.locked_in_stress_pa);
-  spec.seed = seed;
-  return spec;
-}
-
 bool Scene::shapes_specimen(const std::string& parameter) const {
-  auto names_it = [&](const json& object) {
-    if (!object.is_object()) return false;
-    for (auto it = object.begin(); it != object.end(); ++it) {
-      // The locked-in stress is applied when bonding, after (and apart from) the packing.
-      if (!it.value().is_string() || it.key() == "locked_in_stress_pa") continue;
-      std::stringstream stream(it.value().get<std::string>());
+  if (!lab_test_) return false;
+  for (const SceneSection& section : lab_test_->sections()) {
+    if (!section.shapes_specimen || !has_section(section.name)) continue;
+    for (const auto& [key, value] : this->section(section.name).items()) {
+      const auto& after_packing = section.keys_not_shaping;
+      if (!value.is_string() || std::find(after_packing.begin(), after_packing.end(), key) != after_packing.end())
+        continue;
+      std::stringstream stream(value.get<std::string>());
       std::string factor;
       while (std::getline(stream, factor, '*'))
         if (factor == parameter) return true;
     }
-    return false;
-  };
-  if (names_it(specimen_)) return true;
-  if (lab_test_)
-    for (const SceneSection& section : lab_test_->own_sections())
-      if (section.shapes_specimen && names_it(this->section(section.name))) return true;
+  }
   return false;
 }
 

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "demcal/dem/contact_model.hpp"
 #include "demcal/dem/lab_test.hpp"
 
 namespace demcal::dem {
@@ -13,6 +12,11 @@ bool listed(const std::vector<std::string>& names, const std::string& name) {
   for (const std::string& n : names)
     if (n == name) return true;
   return false;
+}
+
+// 2 or 3; null for an external test (its own program decides).
+nlohmann::json dimension_json(const LabTest& test) {
+  return test.dimension() > 0 ? nlohmann::json(test.dimension()) : nlohmann::json(nullptr);
 }
 
 nlohmann::json axes_json(const LabTest& test) {
@@ -53,6 +57,7 @@ nlohmann::json describe_scene(const Scene& scene) {
   out["name"] = scene.name();
   out["test"] = scene.test();
   out["test_description"] = scene.lab_test().description();
+  out["dimension"] = dimension_json(scene.lab_test());
   out["fingerprint"] = scene.fingerprint();
   out["exact_scaling"] = scene.lab_test().exact_scaling() && (!scene.is_external() || scene.external().exact_scaling);
   out["parameters"] = json::object();
@@ -94,8 +99,12 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Scene& s = set.scenes()[k];
     out["tests"].push_back({{"scene", s.origin()}, {"name", s.name()}, {"test", s.test()}, {"label", set.label(k)},
-                            {"curve_axes", axes_json(s.lab_test())}});
+                            {"dimension", dimension_json(s.lab_test())}, {"curve_axes", axes_json(s.lab_test())}});
   }
+  // The list's dimension when its tests share one (null when they differ or none is ours).
+  out["dimension"] = out["tests"][0]["dimension"];
+  for (const json& t : out["tests"])
+    if (t["dimension"] != out["dimension"]) out["dimension"] = nullptr;
   out["parameters"] = json::object();
   for (const auto& [name, p] : set.parameters()) {
     out["parameters"][name] = {{"unit", p.unit}, {"quantity", quantity_name(p.quantity)},
@@ -121,16 +130,29 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
 }
 
 nlohmann::json describe_registries() {
-  const ContactModelRegistry& models = ContactModelRegistry::instance();
-  nlohmann::json keys = nlohmann::json::object();
-  for (const std::string& name : models.names()) keys[name] = models.parameter_keys(name);
-  nlohmann::json tests = nlohmann::json::object();
-  for (const std::string& name : LabTestRegistry::instance().names())
-    tests[name] = LabTestRegistry::instance().find(name, "registry").description();
+  // The contact models per engine ("2d", "3d"): each test names its engine's
+  // catalog, and the same model name may exist in both with its own keys.
+  nlohmann::json names = nlohmann::json::object(), keys = nlohmann::json::object(),
+                 peer_names = nlohmann::json::object();
+  nlohmann::json tests = nlohmann::json::object(), dimensions = nlohmann::json::object();
+  for (const std::string& name : LabTestRegistry::instance().names()) {
+    const LabTest& test = LabTestRegistry::instance().find(name, "registry");
+    tests[name] = test.description();
+    dimensions[name] = dimension_json(test);
+    const ContactModelCatalog& models = test.contact_models();
+    if (models.dimension().empty() || names.contains(models.dimension())) continue;
+    names[models.dimension()] = models.names();
+    for (const std::string& model : models.names()) {
+      keys[models.dimension()][model] = models.parameter_keys(model);
+      peer_names[models.dimension()][model] = models.peer_names(model);
+    }
+  }
   return {{"tests", LabTestRegistry::instance().names()},
-          {"contact_models", models.names()},
+          {"test_descriptions", tests},
+          {"test_dimensions", dimensions},
+          {"contact_models", names},
           {"contact_model_parameters", keys},
-          {"test_descriptions", tests}};
+          {"contact_model_peer_names", peer_names}};
 }
 
 }  // namespace demcal::dem

@@ -1,16 +1,21 @@
 #pragma once
 // Lab tests behind one interface and a registry by name, like the contact
-// models: a test declares what it measures (its outputs, with units) and the
-// contact roles of its boundaries, and runs a scene. A new test is one file
-// plus one line in register_builtin_tests (src/lab_test.cpp).
+// models: a test declares what it measures (its outputs, with units), the
+// scene sections it reads, its contact roles and the engine whose contact
+// models it runs (2D disks or 3D spheres), and runs a scene. Nothing here
+// depends on the dimension: each test's engine reads its own sections. A
+// new test is one file plus one line in register_builtin_tests
+// (dem/lab_tests/src/builtin_tests.cpp).
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "demcal/dem/specimen_roles.hpp"
+#include "demcal/dem/contact_model_catalog.hpp"
+#include "demcal/dem/contact_role.hpp"
 #include "demcal/dem/test_result.hpp"
 
 namespace demcal::dem {
@@ -38,19 +43,29 @@ struct OutputSpec {
   OutputRange range = kAnyValue;
 };
 
-// A contact role of a test's boundary ("disk-platen"): it joins every group
-// of the specimen to the boundary's group.
+// A contact role of a test's boundary ("particle-platen"): it joins every
+// group of the specimen to the boundary's group.
 struct BoundaryRole {
   std::string name;
   std::uint8_t group = 0;
   std::string description;
 };
 
-// A scene section a test reads itself (the heap's "particles", "funnel").
+// A scene section a test reads itself ("specimen", "loading", a heap's "funnel").
 struct SceneSection {
   std::string name;
   std::string description;
   bool shapes_specimen = false;  // its values make another particle set, not the same one with other contacts
+  bool required = false;
+  // Keys of a specimen-shaping section that act after the packing (a locked-in stress).
+  std::vector<std::string> keys_not_shaping = {};
+};
+
+// A specimen a run needs packed before it starts: a batch packs each distinct
+// one (by `cache_key`) once, in parallel, and the runs find it in the cache.
+struct SpecimenToPack {
+  std::string cache_key;
+  std::function<void(const std::string& cache_dir)> pack;
 };
 
 class LabTest {
@@ -58,19 +73,35 @@ class LabTest {
   virtual ~LabTest() = default;
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;
+  // 2 (disks) or 3 (spheres): the engine that runs the test; 0 for a test
+  // whose simulator is not ours (an external command).
+  virtual int dimension() const = 0;
+  // The contact models a scene of this test may name: its engine's registry.
+  virtual const ContactModelCatalog& contact_models() const = 0;
   virtual std::vector<BoundaryRole> boundary_roles() const = 0;
-  // A test that makes its own particles (a heap poured from a funnel) instead
-  // of loading a packed specimen names the scene sections it reads in place
-  // of "specimen" and "loading", and the contact roles of its particles
-  // (group 0; its boundaries join them). Empty for the tests of a packed specimen.
-  virtual std::vector<SceneSection> own_sections() const { return {}; }
-  virtual std::vector<ContactRole> particle_roles() const { return {}; }
-  // A test of a packed specimen that reads more than "specimen" and
-  // "loading" (a wave strip's "boundaries", "pulse") names those sections here.
-  virtual std::vector<SceneSection> extra_sections() const { return {}; }
-  // Checks the test's own (or extra) sections with the parameters' defaults at load;
-  // throws an Error naming the file and field.
+  // The scene sections the test reads besides name, test, description,
+  // parameters and contacts ("specimen", "aggregates", "loading"; a heap's
+  // "particles", "funnel", "run"). A file with any other section is refused.
+  virtual std::vector<SceneSection> sections() const { return {}; }
+  // The contact roles of the specimen's own pairs, read from the scene's
+  // sections (a concrete's aggregates add roles); the boundaries' roles join
+  // every group these name.
+  virtual std::vector<ContactRole> specimen_roles(const Scene& scene) const = 0;
+  // Whether "loading" may hold confining stresses (the biaxial series), and
+  // the elastic speed-up (uniaxial compression).
+  virtual bool confined() const { return false; }
+  virtual bool speeds_up_while_elastic() const { return false; }
+  // Checks the test's sections with the parameters' defaults at load; throws
+  // an Error naming the file and field.
   virtual void check_scene(const Scene& scene) const { (void)scene; }
+  // The specimens a run at `parameters` and `seed` packs (none for a test
+  // that makes its particles as it runs, or whose program packs its own).
+  virtual std::vector<SpecimenToPack> specimens_to_pack(const Scene& scene,
+                                                        const std::map<std::string, double>& parameters,
+                                                        std::uint64_t seed) const {
+    (void)scene, (void)parameters, (void)seed;
+    return {};
+  }
   // Raised when a change to this test alone changes its results (0: none
   // yet), so stored results of its scenes are run again and the other
   // tests' stay valid; enters the scene's fingerprint when nonzero.
@@ -99,7 +130,7 @@ class LabTest {
 
 class LabTestRegistry {
  public:
-  static LabTestRegistry& instance();  // holds the built-in tests
+  static LabTestRegistry& instance();  // holds the built-in tests (register_builtin_tests)
   void add(std::unique_ptr<LabTest> test);
   // Throws an Error "<where>: unknown test ... (known: ...)".
   const LabTest& find(const std::string& name, const std::string& where) const;
@@ -113,13 +144,9 @@ class LabTestRegistry {
 // only outputs it declares, and every output it always reports.
 TestResult run_test(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
 
-// One registration function per built-in test (each in its own file).
-void register_ucs_test(LabTestRegistry& registry);
-void register_brazilian_test(LabTestRegistry& registry);
-void register_biaxial_test(LabTestRegistry& registry);
-void register_external_test(LabTestRegistry& registry);
-void register_heap_test(LabTestRegistry& registry);
-void register_wave_strip_test(LabTestRegistry& registry);
+// Registers every built-in test: defined where the engines' tests are linked
+// (dem/lab_tests/src/builtin_tests.cpp), as ContactModelRegistry::instance()
+// is by the models, so this layer depends on no engine.
 void register_builtin_tests(LabTestRegistry& registry);
 
 }  // namespace demcal::dem

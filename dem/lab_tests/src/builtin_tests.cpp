@@ -1,0 +1,28 @@
+#include "demcal/dem/builtin_tests.hpp"
+
+#include "demcal/dem/external_test.hpp"
+#include "demcal/dem/lab_test.hpp"
+
+namespace demcal::dem {
+
+// The registry lives where the engines' tests are linked, so the scene layer
+// that declares it depends on no engine.
+LabTestRegistry& LabTestRegistry::instance() {
+  static LabTestRegistry registry = [] {
+    LabTestRegistry r;
+    register_builtin_tests(r);
+    return r;
+  }();
+  return registry;
+}
+
+void register_builtin_tests(LabTestRegistry& registry) {
+  register_ucs_test(registry);
+  register_brazilian_test(registry);
+  register_biaxial_test(registry);
+  register_external_test(registry);
+  register_heap_test(registry);
+  register_wave_strip_test(registry);
+}
+
+}  // namespace demcal::dem

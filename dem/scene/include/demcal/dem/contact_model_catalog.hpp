@@ -1,0 +1,31 @@
+#pragma once
+// What the scene layer needs of an engine's contact models, whatever the
+// dimension: their names, the keys each takes, how other programs name them,
+// and a check of a bound parameter set. Each lab test answers with its own
+// engine's catalog (LabTest::contact_models), so a 3D model named in a 2D
+// scene, or the reverse, is refused when the scene loads.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace demcal::dem {
+
+class ContactModelCatalog {
+ public:
+  virtual ~ContactModelCatalog() = default;
+  // "2d" or "3d": the engine the models run in (describe --registries groups by it).
+  virtual std::string dimension() const = 0;
+  virtual std::vector<std::string> names() const = 0;
+  // Throws an Error naming the known models for an unknown `model`.
+  virtual const std::vector<std::string>& parameter_keys(const std::string& model) const = 0;
+  virtual const nlohmann::json& peer_names(const std::string& model) const = 0;
+  // Builds the model from `bound` (numbers) and discards it: an Error naming
+  // `where` and the key for an unknown model, key or bad value.
+  virtual void check(const std::string& model, const nlohmann::json& bound, const std::string& where) const = 0;
+};
+
+// The catalog of a test without contact models of ours (an external command's).
+const ContactModelCatalog& no_contact_models();
+
+}  // namespace demcal::dem
