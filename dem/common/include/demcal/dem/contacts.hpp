@@ -1,6 +1,6 @@
 #pragma once
 // Pairs that may touch (within the neighbour-list skin) as contiguous arrays,
-// and each contact model's own per-pair state.
+// and each contact model's own per-pair state: the same for disks and spheres.
 //
 // Pairs are kept sorted by model, so the pairs of one model form one block
 // [begin(m), end(m)). A model declares the state columns it keeps per pair
@@ -35,6 +35,7 @@ struct BreakEvent {
   double x_m, y_m;
   BreakMode mode;
   std::uint8_t group_i, group_j;
+  double z_m = 0;  // 0 in 2D
 };
 
 // Most state columns one model may declare.

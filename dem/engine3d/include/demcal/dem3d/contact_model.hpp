@@ -1,0 +1,110 @@
+#pragma once
+// Contact models of the 3D engine behind one interface and a registry by
+// name, as the 2D engine's: a model computes the forces of its whole block of
+// pairs in one call and owns the per-pair state it declares (the contact set
+// of demcal/dem/contacts.hpp, shared with 2D). Unlike 2D, a model writes each
+// pair's force and moments into PairForces and the world sums them per sphere
+// in pair order, so any split of the pairs between threads gives the same bits.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "demcal/dem/contacts.hpp"
+#include "demcal/dem3d/spheres.hpp"
+#include "demcal/dem3d/walls.hpp"
+
+namespace demcal::dem3d {
+
+using dem::ConstPairBlock;
+using dem::PairBlock;
+
+struct StepContext {
+  double dt_s = 0;
+  double time_s = 0;
+};
+
+// Where a block's pair k puts what it gives: the force on sphere i (its
+// partner gets the opposite) and the moments about each centre. For a
+// sphere-wall pair, i is the sphere and the wall gets the opposite force.
+struct PairForces {
+  double *fx, *fy, *fz;
+  double *mix, *miy, *miz;
+  double *mjx, *mjy, *mjz;
+  // The same arrays from pair `first` on (a block's, or a thread's part of it).
+  PairForces from(std::size_t first) const {
+    return {fx + first, fy + first, fz + first, mix + first, miy + first, miz + first,
+            mjx + first, mjy + first, mjz + first};
+  }
+  void set(std::size_t k, Vec3 force, Vec3 moment_i, Vec3 moment_j) const {
+    fx[k] = force.x, fy[k] = force.y, fz[k] = force.z;
+    mix[k] = moment_i.x, miy[k] = moment_i.y, miz[k] = moment_i.z;
+    mjx[k] = moment_j.x, mjy[k] = moment_j.y, mjz[k] = moment_j.z;
+  }
+};
+
+// The two sides of a pair when it enters the neighbour list.
+struct PairInfo {
+  double radius_i = 0, radius_j = 0;  // radius_j = 0 for a wall
+  std::uint8_t group_i = 0, group_j = 0;
+  bool wall = false;
+  double mass_i_kg = 0, mass_j_kg = 0;  // 0 for a side that does not move
+};
+
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+  virtual std::string name() const = 0;
+  // The state kept per pair, one name per column with its unit in the name.
+  virtual std::vector<std::string> state_columns() const = 0;
+  // Sets the constants of the block's pair k when it enters the list.
+  virtual void initialise(PairBlock& c, std::size_t k, const PairInfo& pair) const = 0;
+  // The forces of a block of sphere pairs (c.i, c.j sphere indices), into `out` (block-local indices).
+  virtual void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const = 0;
+  // The forces of a block of sphere-plane pairs (c.j a wall index).
+  virtual void plane_forces(PairBlock& c, const Spheres& s, const std::vector<PlaneWall>& walls, const PairForces& out,
+                            const StepContext& step) const = 0;
+  // Translational and rotational stiffness the block's pair k adds to a
+  // sphere whose contact lies `arm_m` from its centre (for the time step).
+  virtual void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                         double& rotational_nm_rad) const = 0;
+  // The stiffer spring of a contact of two spheres of radius r, for a sphere
+  // that has no neighbour yet (time step bound).
+  virtual double stiffness_estimate(double radius_m) const = 0;
+  // The largest damping ratio its dashpots give any mode (0 without dashpots):
+  // the step shrinks by sqrt(1 + zeta^2) - zeta, as in 2D.
+  virtual double max_damping_ratio() const { return 0.0; }
+};
+
+using ContactModelFactory =
+    std::function<std::unique_ptr<ContactModel>(const nlohmann::json& parameters, const std::string& where)>;
+
+// The 3D models by name (a model of the same name in 2D is another law with
+// its own keys: each engine has its own registry).
+class ContactModelRegistry {
+ public:
+  // Holds the built-in 3D models; defined by the 3D models library.
+  static ContactModelRegistry& instance();
+  void add(const std::string& name, std::vector<std::string> parameter_keys, ContactModelFactory factory);
+  void set_peer_names(const std::string& name, const nlohmann::json& peer_names);
+  // Throws an Error naming the known models, or the allowed keys.
+  std::unique_ptr<ContactModel> create(const std::string& name, const nlohmann::json& parameters,
+                                       const std::string& where) const;
+  std::vector<std::string> names() const;
+  const std::vector<std::string>& parameter_keys(const std::string& name) const;
+  const nlohmann::json& peer_names(const std::string& name) const;
+
+ private:
+  struct Entry {
+    std::string name;
+    std::vector<std::string> parameter_keys;
+    ContactModelFactory factory;
+    std::shared_ptr<const nlohmann::json> peer_names;
+  };
+  const Entry& find(const std::string& name, const std::string& where) const;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace demcal::dem3d

@@ -1,0 +1,354 @@
+#include "demcal/dem3d/world.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "demcal/core/error.hpp"
+#include "world_internals.hpp"
+
+namespace demcal::dem3d {
+
+World::World(WorldSettings settings) : settings_(settings), internals_(std::make_unique<Internals>()) {
+  for (auto& row : table_) row.fill(kNoModel);
+}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+std::uint8_t World::add_model(std::unique_ptr<ContactModel> model) {
+  if (models_.size() >= kNoModel) throw Error("too many contact models in one world");
+  layout_.push_back(model->state_columns().size());
+  models_.push_back(std::move(model));
+  built_ = false;
+  return static_cast<std::uint8_t>(models_.size() - 1);
+}
+
+void World::assign(std::uint8_t group_a, std::uint8_t group_b, std::uint8_t model_index) {
+  if (model_index >= models_.size()) throw Error("assign: no contact model with that index");
+  table_[group_a][group_b] = table_[group_b][group_a] = model_index;
+  built_ = false;
+}
+
+std::uint8_t World::model_for(std::uint8_t a, std::uint8_t b) const { return table_[a][b]; }
+
+void World::refresh() { rebuild(); }
+
+void World::run(std::uint64_t steps) {
+  for (std::uint64_t s = 0; s < steps; ++s) step();
+}
+
+void World::rebuild() {
+  Internals& in = *internals_;
+  const std::size_t n = spheres.size();
+  if (skin_m_ <= 0) {
+    if (settings_.skin_m > 0) {
+      skin_m_ = settings_.skin_m;
+    } else {
+      double sum = 0;
+      for (double r : spheres.radius) sum += r;
+      skin_m_ = n > 0 ? 0.25 * sum / static_cast<double>(n) : 1e-3;
+    }
+  }
+  if (n > 0) reorder_spheres();
+  dem::ContactSet fresh, fresh_planes;
+  std::vector<std::uint64_t> keys, plane_keys;
+  fresh.set_layout(layout_);
+  fresh_planes.set_layout(layout_);
+  build_sphere_pairs(fresh, keys);
+  build_plane_pairs(fresh_planes, plane_keys);
+  carry_state(fresh, keys, pairs_, pair_keys_);
+  carry_state(fresh_planes, plane_keys, plane_pairs_, plane_keys_);
+  pairs_ = std::move(fresh);
+  plane_pairs_ = std::move(fresh_planes);
+  pair_keys_ = std::move(keys);
+  plane_keys_ = std::move(plane_keys);
+  run_models_.clear();
+  plane_run_models_.clear();
+  for (std::size_t m = 0; m < models_.size(); ++m) {
+    const auto model = static_cast<std::uint8_t>(m);
+    if (pairs_.end(model) > pairs_.begin(model)) run_models_.push_back(model);
+    if (plane_pairs_.end(model) > plane_pairs_.begin(model)) plane_run_models_.push_back(model);
+  }
+  in.sphere_pair_forces.resize(pairs_.size());
+  in.plane_pair_forces.resize(plane_pairs_.size());
+  build_sums();
+  in.x_built = spheres.x, in.y_built = spheres.y, in.z_built = spheres.z;
+  in.planes_built.clear();
+  for (const PlaneWall& p : planes) in.planes_built.push_back(p.point_m);
+  in.max_move2 = 0;
+  update_time_step();
+  const int wanted = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
+  const std::size_t most = std::max<std::size_t>(1, n / std::max<std::size_t>(1, settings_.min_spheres_per_thread));
+  threads_in_use_ = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(1, wanted)), most));
+  ++rebuilds_;
+  built_ = true;
+}
+
+void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>& fresh_keys,
+                        const dem::ContactSet& old, const std::vector<std::uint64_t>& old_keys) {
+  const bool planes_set = &old == &plane_pairs_;
+  // Each model's pairs, old and fresh, in key order: one walk matches them.
+  auto by_key = [](const std::vector<std::uint64_t>& keys, std::size_t begin, std::size_t end) {
+    std::vector<std::pair<std::uint64_t, std::size_t>> out;
+    out.reserve(end - begin);
+    for (std::size_t k = begin; k < end; ++k) out.emplace_back(keys[k], k);
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  for (std::size_t m = 0; m < models_.size(); ++m) {
+    const auto model = static_cast<std::uint8_t>(m);
+    const auto old_sorted = by_key(old_keys, old.begin(model), old.end(model));
+    const auto fresh_sorted = by_key(fresh_keys, fresh.begin(model), fresh.end(model));
+    std::size_t from = 0;
+    PairBlock block = fresh.block(model);
+    const std::size_t begin = fresh.begin(model);
+    for (const auto& [key, k] : fresh_sorted) {
+      while (from < old_sorted.size() && old_sorted[from].first < key) ++from;
+      if (from < old_sorted.size() && old_sorted[from].first == key) {
+        fresh.copy_state(k, old, old_sorted[from].second);
+        continue;
+      }
+      const auto i = static_cast<std::size_t>(fresh.i[k]);
+      PairInfo info;
+      info.radius_i = spheres.radius[i];
+      info.group_i = spheres.group[i];
+      info.mass_i_kg = spheres.fixed[i] ? 0.0 : spheres.mass[i];
+      if (planes_set) {
+        info.wall = true;
+        info.group_j = planes[static_cast<std::size_t>(fresh.j[k])].group;
+      } else {
+        const auto j = static_cast<std::size_t>(fresh.j[k]);
+        info.radius_j = spheres.radius[j];
+        info.group_j = spheres.group[j];
+        info.mass_j_kg = spheres.fixed[j] ? 0.0 : spheres.mass[j];
+      }
+      models_[m]->initialise(block, k - begin, info);
+    }
+  }
+}
+
+void World::build_sums() {
+  Internals& in = *internals_;
+  const std::size_t n = spheres.size();
+  in.sum_begin.assign(n + 1, 0);
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    ++in.sum_begin[static_cast<std::size_t>(pairs_.i[k]) + 1];
+    ++in.sum_begin[static_cast<std::size_t>(pairs_.j[k]) + 1];
+  }
+  for (std::size_t k = 0; k < plane_pairs_.size(); ++k) ++in.sum_begin[static_cast<std::size_t>(plane_pairs_.i[k]) + 1];
+  for (std::size_t i = 0; i < n; ++i) in.sum_begin[i + 1] += in.sum_begin[i];
+  in.sum_entry.assign(in.sum_begin[n], 0);
+  std::vector<std::uint32_t> next(in.sum_begin.begin(), in.sum_begin.end() - 1);
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const auto key = static_cast<std::uint32_t>(k) * 4;
+    in.sum_entry[next[static_cast<std::size_t>(pairs_.i[k])]++] = key + Internals::kAsI;
+    in.sum_entry[next[static_cast<std::size_t>(pairs_.j[k])]++] = key + Internals::kAsJ;
+  }
+  for (std::size_t k = 0; k < plane_pairs_.size(); ++k)
+    in.sum_entry[next[static_cast<std::size_t>(plane_pairs_.i[k])]++] = static_cast<std::uint32_t>(k) * 4 + Internals::kOnPlane;
+}
+
+void World::update_time_step() {
+  Internals& in = *internals_;
+  const std::size_t n = spheres.size();
+  in.inverse_mass.resize(n);
+  in.inverse_inertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    in.inverse_mass[i] = 1.0 / spheres.mass[i];
+    in.inverse_inertia[i] = 1.0 / spheres.inertia[i];
+  }
+  if (settings_.fixed_dt_s > 0) {
+    dt_s_ = settings_.fixed_dt_s;
+    return;
+  }
+  std::vector<double> kt(n, 0.0), kr(n, 0.0);
+  for (std::uint8_t m : run_models_) {
+    const dem::ConstPairBlock c = static_cast<const dem::ContactSet&>(pairs_).block(m);
+    for (std::size_t k = 0; k < c.size; ++k) {
+      for (const auto end : {static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k])}) {
+        double t = 0, r = 0;
+        models_[m]->stiffness(c, k, spheres.radius[end], t, r);
+        kt[end] += t;
+        kr[end] += r;
+      }
+    }
+  }
+  for (std::uint8_t m : plane_run_models_) {
+    const dem::ConstPairBlock c = static_cast<const dem::ContactSet&>(plane_pairs_).block(m);
+    for (std::size_t k = 0; k < c.size; ++k) {
+      const auto i = static_cast<std::size_t>(c.i[k]);
+      double t = 0, r = 0;
+      models_[m]->stiffness(c, k, spheres.radius[i], t, r);
+      kt[i] += t;
+      kr[i] += r;
+    }
+  }
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (spheres.fixed[i]) continue;
+    if (kt[i] <= 0) {  // no neighbour yet: one contact of the stiffest model
+      for (const auto& m : models_) kt[i] = std::max(kt[i], m->stiffness_estimate(spheres.radius[i]));
+      kr[i] = kt[i] * spheres.radius[i] * spheres.radius[i];
+    }
+    if (kt[i] > 0) dt = std::min(dt, std::sqrt(spheres.mass[i] / kt[i]));
+    if (kr[i] > 0) dt = std::min(dt, std::sqrt(spheres.inertia[i] / kr[i]));
+  }
+  if (!std::isfinite(dt) || dt <= 0) throw Error("cannot find a stable time step (no stiffness or no mass)");
+  double zeta = 0;
+  for (const auto& m : models_) zeta = std::max(zeta, m->max_damping_ratio());
+  dt_s_ = settings_.safety_factor * dt * (std::sqrt(1.0 + zeta * zeta) - zeta);
+}
+
+void World::step() {
+  Internals& in = *internals_;
+  bool stale = !built_ || in.x_built.size() != spheres.size();
+  const double half_skin2 = 0.25 * skin_m_ * skin_m_;
+  if (!stale) {
+    stale = in.max_move2 > half_skin2;
+    for (std::size_t w = 0; w < planes.size() && !stale; ++w) {
+      const Vec3 d = planes[w].point_m - in.planes_built[w];
+      stale = dot(d, d) > half_skin2;
+    }
+  }
+  if (stale) rebuild();
+  compute_pair_forces();
+  integrate();
+  for (PlaneWall& p : planes) p.point_m = p.point_m + dt_s_ * p.velocity_m_s;
+  time_s_ += dt_s_;
+  ++steps_;
+}
+
+void World::compute_pair_forces() {
+  Internals& in = *internals_;
+  const StepContext step{dt_s_, time_s_};
+  const PairForces sphere_out = in.sphere_pair_forces.view(), plane_out = in.plane_pair_forces.view();
+  const int team = threads_in_use_;
+  // Each thread takes the same share of every model's block: a pair's force
+  // depends on its own state alone, so any split gives the same numbers.
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+    for (std::uint8_t m : run_models_) {
+      PairBlock block = pairs_.block(m);
+      const std::size_t lo = block.size * t / parts, hi = block.size * (t + 1) / parts;
+      if (hi <= lo) continue;
+      PairBlock part = block.slice(lo, hi);
+      models_[m]->sphere_forces(part, spheres, sphere_out.from(pairs_.begin(m) + lo), step);
+    }
+    for (std::uint8_t m : plane_run_models_) {
+      PairBlock block = plane_pairs_.block(m);
+      const std::size_t lo = block.size * t / parts, hi = block.size * (t + 1) / parts;
+      if (hi <= lo) continue;
+      PairBlock part = block.slice(lo, hi);
+      models_[m]->plane_forces(part, spheres, planes, plane_out.from(plane_pairs_.begin(m) + lo), step);
+    }
+  }
+  // The planes' forces, in pair order.
+  for (PlaneWall& p : planes) p.force_n = {};
+  for (std::size_t k = 0; k < plane_pairs_.size(); ++k) {
+    PlaneWall& p = planes[static_cast<std::size_t>(plane_pairs_.j[k])];
+    p.force_n = p.force_n - Vec3{in.plane_pair_forces.fx[k], in.plane_pair_forces.fy[k], in.plane_pair_forces.fz[k]};
+  }
+}
+
+namespace {
+
+inline double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
+
+// One component of the velocity after a step under `force` with local damping alpha.
+inline double damped_velocity(double v, double force, double alpha, double to_velocity) {
+  return v + (force - alpha * std::abs(force) * sign_of(v)) * to_velocity;
+}
+
+}  // namespace
+
+void World::integrate() {
+  Internals& in = *internals_;
+  const std::size_t n = spheres.size();
+  const double dt = dt_s_, alpha = settings_.damping;
+  const Vec3 g = settings_.gravity_m_s2;
+  const PairForceArrays& sp = in.sphere_pair_forces;
+  const PairForceArrays& pp = in.plane_pair_forces;
+  Spheres& s = spheres;
+  double max_move2 = in.max_move2;
+  const int team = threads_in_use_;
+#pragma omp parallel for num_threads(team) if (team > 1) schedule(static) reduction(max : max_move2)
+  for (std::size_t i = 0; i < n; ++i) {
+    // The sphere's pairs in pair order: the same sum on any thread and in any storage order.
+    double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
+    for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
+      const std::uint32_t entry = in.sum_entry[e];
+      const std::size_t k = entry >> 2;
+      switch (entry & 3u) {
+        case Internals::kAsI:
+          fx += sp.fx[k], fy += sp.fy[k], fz += sp.fz[k];
+          mx += sp.mix[k], my += sp.miy[k], mz += sp.miz[k];
+          break;
+        case Internals::kAsJ:
+          fx -= sp.fx[k], fy -= sp.fy[k], fz -= sp.fz[k];
+          mx += sp.mjx[k], my += sp.mjy[k], mz += sp.mjz[k];
+          break;
+        default:
+          fx += pp.fx[k], fy += pp.fy[k], fz += pp.fz[k];
+          mx += pp.mix[k], my += pp.miy[k], mz += pp.miz[k];
+      }
+    }
+    if (s.fixed[i]) {
+      s.vx[i] = s.vy[i] = s.vz[i] = s.wx[i] = s.wy[i] = s.wz[i] = 0;
+      continue;
+    }
+    const double m = s.mass[i];
+    fx += m * g.x, fy += m * g.y, fz += m * g.z;
+    const double to_v = in.inverse_mass[i] * dt, to_w = in.inverse_inertia[i] * dt;
+    s.vx[i] = damped_velocity(s.vx[i], fx, alpha, to_v);
+    s.vy[i] = damped_velocity(s.vy[i], fy, alpha, to_v);
+    s.vz[i] = damped_velocity(s.vz[i], fz, alpha, to_v);
+    s.wx[i] = damped_velocity(s.wx[i], mx, alpha, to_w);
+    s.wy[i] = damped_velocity(s.wy[i], my, alpha, to_w);
+    s.wz[i] = damped_velocity(s.wz[i], mz, alpha, to_w);
+    s.x[i] += s.vx[i] * dt;
+    s.y[i] += s.vy[i] * dt;
+    s.z[i] += s.vz[i] * dt;
+    const double dx = s.x[i] - in.x_built[i], dy = s.y[i] - in.y_built[i], dz = s.z[i] - in.z_built[i];
+    max_move2 = std::max(max_move2, dx * dx + dy * dy + dz * dz);
+  }
+  in.max_move2 = max_move2;
+}
+
+double World::pair_state(std::size_t k, const std::string& column) const {
+  const std::vector<std::string> names = models_.at(pairs_.model.at(k))->state_columns();
+  for (std::size_t c = 0; c < names.size(); ++c)
+    if (names[c] == column) return pairs_.state(k, c);
+  throw Error("the pair's model " + models_[pairs_.model[k]]->name() + " has no state column " + column);
+}
+
+std::size_t World::touching_pairs() const {
+  std::size_t n = 0;
+  for (dem::PairFlags f : pairs_.flags) n += (f & dem::kTouching) != 0;
+  return n;
+}
+
+double World::kinetic_energy() const {
+  std::vector<std::size_t> order(spheres.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return spheres.id[a] < spheres.id[b]; });
+  double e = 0;
+  for (std::size_t i : order) {
+    const Vec3 v = spheres.velocity(i), w = spheres.spin(i);
+    e += 0.5 * spheres.mass[i] * dot(v, v) + 0.5 * spheres.inertia[i] * dot(w, w);
+  }
+  return e;
+}
+
+std::size_t World::index_of(std::uint32_t id) const {
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    if (spheres.id[i] == id) return i;
+  throw Error("no sphere with id " + std::to_string(id));
+}
+
+}  // namespace demcal::dem3d

@@ -1,0 +1,11 @@
+#pragma once
+// The registration function of each built-in 3D contact model (each in its
+// own file); ContactModelRegistry::instance() calls them.
+namespace demcal::dem3d {
+
+class ContactModelRegistry;
+
+void register_linear_model(ContactModelRegistry& registry);
+void register_builtin_models(ContactModelRegistry& registry);
+
+}  // namespace demcal::dem3d

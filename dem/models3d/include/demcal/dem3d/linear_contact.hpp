@@ -1,0 +1,40 @@
+#pragma once
+// The linear law of one 3D contact, shared by sphere-sphere and sphere-wall
+// pairs: a normal spring on the overlap, a shear force vector that turns with
+// the contact plane (PFC3D: projected onto the new plane and turned by the
+// pair's mean spin about the normal, its length kept), an increment ks vt dt,
+// and Coulomb's limit.
+#include <cmath>
+
+#include "demcal/dem3d/vec3.hpp"
+
+namespace demcal::dem3d {
+
+struct LinearContactInput {
+  Vec3 normal;        // unit, from i to j (to the wall for a wall pair)
+  double overlap_m;   // > 0 in contact
+  double arm_i_m;     // from i's centre to the contact point along the normal
+  Vec3 relative_velocity_m_s;  // of j's contact point relative to i's
+  Vec3 mean_spin_rad_s;        // (w_i + w_j) / 2 (w_j = 0 for a wall)
+  double kn_n_m, ks_n_m, friction, reference_overlap_m;
+  double dt_s;
+};
+
+// The new shear force (force on i), from the stored one; `normal_force_n` gets the normal force's size.
+inline Vec3 linear_shear_force(const LinearContactInput& in, Vec3 stored, double& normal_force_n) {
+  const Vec3 n = in.normal;
+  normal_force_n = in.kn_n_m * std::max(0.0, in.overlap_m - in.reference_overlap_m);
+  // The stored force onto the new contact plane, turned by the twist, its length kept.
+  const double length = norm(stored);
+  Vec3 fs = stored - dot(stored, n) * n;
+  fs = fs + (dot(in.mean_spin_rad_s, n) * in.dt_s) * cross(n, fs);
+  const double turned = norm(fs);
+  if (turned > 0) fs = (length / turned) * fs;
+  const Vec3 vt = in.relative_velocity_m_s - dot(in.relative_velocity_m_s, n) * n;
+  fs = fs + (in.ks_n_m * in.dt_s) * vt;
+  const double limit = in.friction * normal_force_n, size = norm(fs);
+  if (size > limit) fs = (size > 0 ? limit / size : 0.0) * fs;
+  return fs;
+}
+
+}  // namespace demcal::dem3d

@@ -1,0 +1,20 @@
+#include "demcal/dem3d/builtin_models.hpp"
+
+#include "demcal/dem3d/contact_model.hpp"
+
+namespace demcal::dem3d {
+
+// The registry lives with the models it holds: the engine declares it and
+// never fills it, so it depends on no model.
+ContactModelRegistry& ContactModelRegistry::instance() {
+  static ContactModelRegistry registry = [] {
+    ContactModelRegistry r;
+    register_builtin_models(r);
+    return r;
+  }();
+  return registry;
+}
+
+void register_builtin_models(ContactModelRegistry& registry) { register_linear_model(registry); }
+
+}  // namespace demcal::dem3d

@@ -1,0 +1,138 @@
+// The 3D world's reproducibility: the same bits on 1, 2 and 3 threads and
+// with the spheres added in another order; a neighbour list that keeps every
+// pair within the skin.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/dem3d/contact_model.hpp"
+#include "demcal/dem3d/world.hpp"
+
+using namespace demcal::dem3d;
+
+namespace {
+
+struct Placed {
+  Vec3 centre;
+  double radius;
+};
+
+// Spheres of radius 0.8-1.1 mm on a jittered 2.25 mm lattice in a 20 mm box,
+// each with a random velocity up to 0.3 m/s, so they collide at once.
+struct Cloud {
+  std::vector<Placed> placed;
+  std::vector<Vec3> velocity;
+};
+Cloud cloud(std::size_t count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Cloud out;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double x = 0.0012 + 0.00225 * static_cast<double>(k % 8), y = 0.0012 + 0.00225 * static_cast<double>(k / 8 % 8),
+                 z = 0.0012 + 0.00225 * static_cast<double>(k / 64);
+    out.placed.push_back({{x + 1e-4 * u(rng), y + 1e-4 * u(rng), z + 1e-4 * u(rng)}, 0.00095 + 0.00015 * u(rng)});
+    out.velocity.push_back({0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)});
+  }
+  return out;
+}
+
+World box_world(const Cloud& cloud, const std::vector<std::size_t>& order, int threads) {
+  WorldSettings settings;
+  settings.gravity_m_s2 = {0, 0, -1000};  // a hundred g: a packing forms within the test's steps
+  settings.threads = threads;
+  settings.min_spheres_per_thread = 50;
+  World world(settings);
+  world.assign(0, 0, world.add_model(ContactModelRegistry::instance().create(
+                         "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.5}}, "test")));
+  world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create(
+                         "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.3}}, "test")));
+  world.planes.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+  world.planes.push_back(make_plane({0, 0, 0}, {1, 0, 0}));
+  world.planes.push_back(make_plane({0.02, 0, 0}, {-1, 0, 0}));
+  world.planes.push_back(make_plane({0, 0, 0}, {0, 1, 0}));
+  world.planes.push_back(make_plane({0, 0.02, 0}, {0, -1, 0}));
+  for (std::size_t k : order) {
+    const std::size_t i =
+        world.spheres.add_sphere(cloud.placed[k].centre, cloud.placed[k].radius, 2650, 0, static_cast<std::int64_t>(k));
+    world.spheres.set_velocity(i, cloud.velocity[k]);
+  }
+  return world;
+}
+
+// Every sphere's state by id, as bits.
+std::map<std::uint32_t, std::vector<double>> state_by_id(const World& w) {
+  std::map<std::uint32_t, std::vector<double>> out;
+  const Spheres& s = w.spheres;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    out[s.id[i]] = {s.x[i], s.y[i], s.z[i], s.vx[i], s.vy[i], s.vz[i], s.wx[i], s.wy[i], s.wz[i]};
+  return out;
+}
+
+bool same_bits(const std::map<std::uint32_t, std::vector<double>>& a, const std::map<std::uint32_t, std::vector<double>>& b) {
+  if (a.size() != b.size()) return false;
+  for (const auto& [id, values] : a) {
+    const auto it = b.find(id);
+    if (it == b.end() || std::memcmp(values.data(), it->second.data(), values.size() * sizeof(double)) != 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(World3D, ThreadsAndSphereOrderGiveTheSameBits) {
+  const Cloud placed = cloud(576, 7);
+  std::vector<std::size_t> order(placed.placed.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::vector<std::size_t> shuffled = order;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(3));
+  constexpr int kSteps = 5000;
+  World reference = box_world(placed, order, 1);
+  reference.run(kSteps);
+  ASSERT_GT(reference.rebuilds(), 2u);
+  ASSERT_GT(reference.touching_pairs(), 200u);
+  const auto expected = state_by_id(reference);
+  for (const auto& [threads, sphere_order] :
+       {std::pair{2, &order}, std::pair{3, &order}, std::pair{1, &shuffled}, std::pair{3, &shuffled}}) {
+    World w = box_world(placed, *sphere_order, threads);
+    w.run(kSteps);
+    EXPECT_EQ(w.threads_in_use(), threads);
+    EXPECT_TRUE(same_bits(state_by_id(w), expected)) << threads << " threads, shuffled " << (sphere_order == &shuffled);
+    EXPECT_EQ(w.kinetic_energy(), reference.kinetic_energy());
+  }
+}
+
+// The list holds every pair closer than the skin: checked against all pairs.
+TEST(World3D, TheNeighbourListHoldsEveryPairWithinTheSkin) {
+  const Cloud placed = cloud(400, 11);
+  std::vector<std::size_t> order(placed.placed.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  World w = box_world(placed, order, 1);
+  w.refresh();
+  std::size_t expected = 0;
+  const Spheres& s = w.spheres;
+  for (std::size_t a = 0; a < s.size(); ++a)
+    for (std::size_t b = a + 1; b < s.size(); ++b) {
+      const Vec3 d = s.position(b) - s.position(a);
+      const double reach = s.radius[a] + s.radius[b] + w.skin_m();
+      expected += dot(d, d) < reach * reach;
+    }
+  EXPECT_EQ(w.pairs().size(), expected);
+}
+
+TEST(World3D, ModelsAreCheckedByTheirOwnRegistry) {
+  EXPECT_THROW(ContactModelRegistry::instance().create("parallel_bond", {}, "s.json: contacts.particle-particle"),
+               demcal::Error);
+  try {
+    ContactModelRegistry::instance().create("linear", {{"modulus_pa", 1e9}, {"kn_ks", 1}, {"friction", 0.5}, {"x", 1}},
+                                            "s.json: contacts.particle-particle");
+    FAIL();
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("s.json: contacts.particle-particle"), std::string::npos) << e.what();
+  }
+}
