@@ -85,14 +85,14 @@ TEST(LinearContact3D, ASphereRestsOnAPlaneAtTheStaticOverlap) {
   settings.damping = 0.7;
   World world(settings);
   world.assign(0, 1, world.add_model(linear()));
-  world.planes.push_back(make_plane({0, 0, 0}, {0, 0, 1}, 1));
+  world.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}, 1));
   world.spheres.add_sphere({0, 0, kRadius * 1.001}, kRadius, kDensity, 0);
   world.run(40000);
   const double m = world.spheres.mass[0];
   // A sphere on a wall: r = L = R, so kn = pi R E.
   const double kn = M_PI * kRadius * kModulus;
   EXPECT_NEAR(kRadius - world.spheres.z[0], m * 9.81 / kn, 1e-6 * m * 9.81 / kn);
-  EXPECT_NEAR(world.planes[0].force_n.z, -m * 9.81, 1e-6 * m * 9.81);
+  EXPECT_NEAR(world.walls[0].force_n.z, -m * 9.81, 1e-6 * m * 9.81);
 }
 
 // A pair turned rigidly (positions on a circle, velocities omega x r, spins

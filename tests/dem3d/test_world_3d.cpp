@@ -52,11 +52,11 @@ World box_world(const Cloud& cloud, const std::vector<std::size_t>& order, int t
                          "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.5}}, "test")));
   world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create(
                          "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.3}}, "test")));
-  world.planes.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
-  world.planes.push_back(make_plane({0, 0, 0}, {1, 0, 0}));
-  world.planes.push_back(make_plane({0.02, 0, 0}, {-1, 0, 0}));
-  world.planes.push_back(make_plane({0, 0, 0}, {0, 1, 0}));
-  world.planes.push_back(make_plane({0, 0.02, 0}, {0, -1, 0}));
+  world.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+  world.walls.push_back(make_plane({0, 0, 0}, {1, 0, 0}));
+  world.walls.push_back(make_plane({0.02, 0, 0}, {-1, 0, 0}));
+  world.walls.push_back(make_plane({0, 0, 0}, {0, 1, 0}));
+  world.walls.push_back(make_plane({0, 0.02, 0}, {0, -1, 0}));
   for (std::size_t k : order) {
     const std::size_t i =
         world.spheres.add_sphere(cloud.placed[k].centre, cloud.placed[k].radius, 2650, 0, static_cast<std::int64_t>(k));

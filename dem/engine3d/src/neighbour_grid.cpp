@@ -153,20 +153,20 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
   }
 }
 
-void World::build_plane_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {
+void World::build_wall_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {
   struct Found {
     std::uint8_t model;
     std::uint64_t key;
     std::int32_t i, wall;
   };
   std::vector<Found> found;
-  for (std::size_t w = 0; w < planes.size(); ++w) {
-    const PlaneWall& p = planes[w];
-    if (!p.active) continue;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const Wall& wall = walls[w];
+    if (!wall.active) continue;
     for (std::size_t i = 0; i < spheres.size(); ++i) {
-      const std::uint8_t model = model_for(spheres.group[i], p.group);
+      const std::uint8_t model = model_for(spheres.group[i], wall.group);
       if (model == kNoModel || spheres.fixed[i]) continue;
-      if (p.distance_m(spheres.position(i)) >= spheres.radius[i] + skin_m_) continue;
+      if (!(wall.contact(spheres.position(i), spheres.radius[i]).overlap_m > -skin_m_)) continue;
       found.push_back({model, static_cast<std::uint64_t>(spheres.id[i]) << 32 | w, static_cast<std::int32_t>(i),
                        static_cast<std::int32_t>(w)});
     }

@@ -54,31 +54,42 @@ void World::rebuild() {
     }
   }
   if (n > 0) reorder_spheres();
-  dem::ContactSet fresh, fresh_planes;
-  std::vector<std::uint64_t> keys, plane_keys;
+  dem::ContactSet fresh, fresh_walls;
+  std::vector<std::uint64_t> keys, wall_keys;
   fresh.set_layout(layout_);
-  fresh_planes.set_layout(layout_);
+  fresh_walls.set_layout(layout_);
   build_sphere_pairs(fresh, keys);
-  build_plane_pairs(fresh_planes, plane_keys);
+  build_wall_pairs(fresh_walls, wall_keys);
   carry_state(fresh, keys, pairs_, pair_keys_);
-  carry_state(fresh_planes, plane_keys, plane_pairs_, plane_keys_);
+  carry_state(fresh_walls, wall_keys, wall_pairs_, wall_keys_);
   pairs_ = std::move(fresh);
-  plane_pairs_ = std::move(fresh_planes);
+  wall_pairs_ = std::move(fresh_walls);
   pair_keys_ = std::move(keys);
-  plane_keys_ = std::move(plane_keys);
+  wall_keys_ = std::move(wall_keys);
   run_models_.clear();
-  plane_run_models_.clear();
+  wall_run_models_.clear();
   for (std::size_t m = 0; m < models_.size(); ++m) {
     const auto model = static_cast<std::uint8_t>(m);
     if (pairs_.end(model) > pairs_.begin(model)) run_models_.push_back(model);
-    if (plane_pairs_.end(model) > plane_pairs_.begin(model)) plane_run_models_.push_back(model);
+    if (wall_pairs_.end(model) > wall_pairs_.begin(model)) wall_run_models_.push_back(model);
   }
   in.sphere_pair_forces.resize(pairs_.size());
-  in.plane_pair_forces.resize(plane_pairs_.size());
+  in.wall_pair_forces.resize(wall_pairs_.size());
+  in.wall_geometry.resize(wall_pairs_.size());
   build_sums();
   in.x_built = spheres.x, in.y_built = spheres.y, in.z_built = spheres.z;
-  in.planes_built.clear();
-  for (const PlaneWall& p : planes) in.planes_built.push_back(p.point_m);
+  in.walls_point_built.clear();
+  in.walls_axis_built.clear();
+  for (const Wall& w : walls) in.walls_point_built.push_back(w.point_m), in.walls_axis_built.push_back(w.axis);
+  in.extent_m = 0;
+  if (n > 0) {
+    Vec3 low = spheres.position(0), high = low;
+    for (std::size_t i = 0; i < n; ++i) {
+      low = {std::min(low.x, spheres.x[i]), std::min(low.y, spheres.y[i]), std::min(low.z, spheres.z[i])};
+      high = {std::max(high.x, spheres.x[i]), std::max(high.y, spheres.y[i]), std::max(high.z, spheres.z[i])};
+    }
+    in.extent_m = norm(high - low);
+  }
   in.max_move2 = 0;
   update_time_step();
   const int wanted = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
@@ -90,7 +101,7 @@ void World::rebuild() {
 
 void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>& fresh_keys,
                         const dem::ContactSet& old, const std::vector<std::uint64_t>& old_keys) {
-  const bool planes_set = &old == &plane_pairs_;
+  const bool walls_set = &old == &wall_pairs_;
   // Each model's pairs, old and fresh, in key order: one walk matches them.
   auto by_key = [](const std::vector<std::uint64_t>& keys, std::size_t begin, std::size_t end) {
     std::vector<std::pair<std::uint64_t, std::size_t>> out;
@@ -117,9 +128,9 @@ void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>
       info.radius_i = spheres.radius[i];
       info.group_i = spheres.group[i];
       info.mass_i_kg = spheres.fixed[i] ? 0.0 : spheres.mass[i];
-      if (planes_set) {
+      if (walls_set) {
         info.wall = true;
-        info.group_j = planes[static_cast<std::size_t>(fresh.j[k])].group;
+        info.group_j = walls[static_cast<std::size_t>(fresh.j[k])].group;
       } else {
         const auto j = static_cast<std::size_t>(fresh.j[k]);
         info.radius_j = spheres.radius[j];
@@ -139,7 +150,7 @@ void World::build_sums() {
     ++in.sum_begin[static_cast<std::size_t>(pairs_.i[k]) + 1];
     ++in.sum_begin[static_cast<std::size_t>(pairs_.j[k]) + 1];
   }
-  for (std::size_t k = 0; k < plane_pairs_.size(); ++k) ++in.sum_begin[static_cast<std::size_t>(plane_pairs_.i[k]) + 1];
+  for (std::size_t k = 0; k < wall_pairs_.size(); ++k) ++in.sum_begin[static_cast<std::size_t>(wall_pairs_.i[k]) + 1];
   for (std::size_t i = 0; i < n; ++i) in.sum_begin[i + 1] += in.sum_begin[i];
   in.sum_entry.assign(in.sum_begin[n], 0);
   std::vector<std::uint32_t> next(in.sum_begin.begin(), in.sum_begin.end() - 1);
@@ -148,8 +159,8 @@ void World::build_sums() {
     in.sum_entry[next[static_cast<std::size_t>(pairs_.i[k])]++] = key + Internals::kAsI;
     in.sum_entry[next[static_cast<std::size_t>(pairs_.j[k])]++] = key + Internals::kAsJ;
   }
-  for (std::size_t k = 0; k < plane_pairs_.size(); ++k)
-    in.sum_entry[next[static_cast<std::size_t>(plane_pairs_.i[k])]++] = static_cast<std::uint32_t>(k) * 4 + Internals::kOnPlane;
+  for (std::size_t k = 0; k < wall_pairs_.size(); ++k)
+    in.sum_entry[next[static_cast<std::size_t>(wall_pairs_.i[k])]++] = static_cast<std::uint32_t>(k) * 4 + Internals::kOnWall;
 }
 
 void World::update_time_step() {
@@ -177,8 +188,8 @@ void World::update_time_step() {
       }
     }
   }
-  for (std::uint8_t m : plane_run_models_) {
-    const dem::ConstPairBlock c = static_cast<const dem::ContactSet&>(plane_pairs_).block(m);
+  for (std::uint8_t m : wall_run_models_) {
+    const dem::ConstPairBlock c = static_cast<const dem::ContactSet&>(wall_pairs_).block(m);
     for (std::size_t k = 0; k < c.size; ++k) {
       const auto i = static_cast<std::size_t>(c.i[k]);
       double t = 0, r = 0;
@@ -208,16 +219,19 @@ void World::step() {
   bool stale = !built_ || in.x_built.size() != spheres.size();
   const double half_skin2 = 0.25 * skin_m_ * skin_m_;
   if (!stale) {
-    stale = in.max_move2 > half_skin2;
-    for (std::size_t w = 0; w < planes.size() && !stale; ++w) {
-      const Vec3 d = planes[w].point_m - in.planes_built[w];
-      stale = dot(d, d) > half_skin2;
+    stale = in.max_move2 > half_skin2 || in.walls_point_built.size() != walls.size();
+    for (std::size_t w = 0; w < walls.size() && !stale; ++w) {
+      // A wall moves by its point's displacement plus, when it turns, at most
+      // its axis's change times the spheres' extent.
+      const double moved = norm(walls[w].point_m - in.walls_point_built[w]) +
+                           norm(walls[w].axis - in.walls_axis_built[w]) * in.extent_m;
+      stale = moved * moved > half_skin2;
     }
   }
   if (stale) rebuild();
   compute_pair_forces();
   integrate();
-  for (PlaneWall& p : planes) p.point_m = p.point_m + dt_s_ * p.velocity_m_s;
+  move_walls();
   time_s_ += dt_s_;
   ++steps_;
 }
@@ -225,7 +239,9 @@ void World::step() {
 void World::compute_pair_forces() {
   Internals& in = *internals_;
   const StepContext step{dt_s_, time_s_};
-  const PairForces sphere_out = in.sphere_pair_forces.view(), plane_out = in.plane_pair_forces.view();
+  compute_wall_geometry();
+  const PairForces sphere_out = in.sphere_pair_forces.view(), wall_out = in.wall_pair_forces.view();
+  const WallGeometry geometry = in.wall_geometry.view();
   const int team = threads_in_use_;
   // Each thread takes the same share of every model's block: a pair's force
   // depends on its own state alone, so any split gives the same numbers.
@@ -240,19 +256,55 @@ void World::compute_pair_forces() {
       PairBlock part = block.slice(lo, hi);
       models_[m]->sphere_forces(part, spheres, sphere_out.from(pairs_.begin(m) + lo), step);
     }
-    for (std::uint8_t m : plane_run_models_) {
-      PairBlock block = plane_pairs_.block(m);
+    for (std::uint8_t m : wall_run_models_) {
+      PairBlock block = wall_pairs_.block(m);
       const std::size_t lo = block.size * t / parts, hi = block.size * (t + 1) / parts;
       if (hi <= lo) continue;
       PairBlock part = block.slice(lo, hi);
-      models_[m]->plane_forces(part, spheres, planes, plane_out.from(plane_pairs_.begin(m) + lo), step);
+      const std::size_t first = wall_pairs_.begin(m) + lo;
+      models_[m]->wall_forces(part, spheres, geometry.from(first), wall_out.from(first), step);
     }
   }
-  // The planes' forces, in pair order.
-  for (PlaneWall& p : planes) p.force_n = {};
-  for (std::size_t k = 0; k < plane_pairs_.size(); ++k) {
-    PlaneWall& p = planes[static_cast<std::size_t>(plane_pairs_.j[k])];
-    p.force_n = p.force_n - Vec3{in.plane_pair_forces.fx[k], in.plane_pair_forces.fy[k], in.plane_pair_forces.fz[k]};
+  // The walls' forces and moments about their points, in pair order.
+  for (Wall& w : walls) w.force_n = w.moment_nm = {};
+  const WallGeometryArrays& g = in.wall_geometry;
+  for (std::size_t k = 0; k < wall_pairs_.size(); ++k) {
+    Wall& w = walls[static_cast<std::size_t>(wall_pairs_.j[k])];
+    const auto i = static_cast<std::size_t>(wall_pairs_.i[k]);
+    const Vec3 on_wall = -Vec3{in.wall_pair_forces.fx[k], in.wall_pair_forces.fy[k], in.wall_pair_forces.fz[k]};
+    const Vec3 contact = spheres.position(i) + (spheres.radius[i] - 0.5 * g.overlap[k]) * Vec3{g.nx[k], g.ny[k], g.nz[k]};
+    w.force_n = w.force_n + on_wall;
+    w.moment_nm = w.moment_nm + cross(contact - w.point_m, on_wall);
+  }
+}
+
+void World::move_walls() {
+  for (Wall& w : walls) {
+    w.point_m = w.point_m + dt_s_ * w.velocity_m_s;
+    const double rate = norm(w.spin_rad_s);
+    if (rate > 0) {  // the axis turns with the spin (Rodrigues); a cylinder spinning about its axis keeps it
+      const Vec3 u = (1.0 / rate) * w.spin_rad_s;
+      const double a = rate * dt_s_;
+      const Vec3 turned = std::cos(a) * w.axis + std::sin(a) * cross(u, w.axis) + ((1 - std::cos(a)) * dot(u, w.axis)) * u;
+      w.axis = (1.0 / norm(turned)) * turned;
+    }
+  }
+}
+
+void World::compute_wall_geometry() {
+  Internals& in = *internals_;
+  WallGeometryArrays& g = in.wall_geometry;
+  const std::size_t count = wall_pairs_.size();
+  const int team = threads_in_use_;
+#pragma omp parallel for num_threads(team) if (team > 1) schedule(static)
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(wall_pairs_.i[k]);
+    const Wall& w = walls[static_cast<std::size_t>(wall_pairs_.j[k])];
+    const WallContact c = w.active ? w.contact(spheres.position(i), spheres.radius[i]) : WallContact{};
+    const Vec3 v = w.velocity_at(c.point_m);
+    g.nx[k] = c.normal.x, g.ny[k] = c.normal.y, g.nz[k] = c.normal.z;
+    g.overlap[k] = c.overlap_m;
+    g.vx[k] = v.x, g.vy[k] = v.y, g.vz[k] = v.z;
   }
 }
 
@@ -273,7 +325,7 @@ void World::integrate() {
   const double dt = dt_s_, alpha = settings_.damping;
   const Vec3 g = settings_.gravity_m_s2;
   const PairForceArrays& sp = in.sphere_pair_forces;
-  const PairForceArrays& pp = in.plane_pair_forces;
+  const PairForceArrays& pp = in.wall_pair_forces;
   Spheres& s = spheres;
   double max_move2 = in.max_move2;
   const int team = threads_in_use_;
@@ -284,7 +336,7 @@ void World::integrate() {
     for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
       const std::uint32_t entry = in.sum_entry[e];
       const std::size_t k = entry >> 2;
-      switch (entry & 3u) {
+      switch (entry & 3u) {  // kOnWall in default
         case Internals::kAsI:
           fx += sp.fx[k], fy += sp.fy[k], fz += sp.fz[k];
           mx += sp.mix[k], my += sp.miy[k], mz += sp.miz[k];

@@ -20,15 +20,30 @@ struct PairForceArrays {
   }
 };
 
+// The contact geometry of every wall pair at this step.
+struct WallGeometryArrays {
+  std::vector<double> nx, ny, nz, overlap, vx, vy, vz;
+  void resize(std::size_t n) {
+    for (auto* v : {&nx, &ny, &nz, &overlap, &vx, &vy, &vz}) v->assign(n, 0.0);
+  }
+  WallGeometry view() const {
+    return {nx.data(), ny.data(), nz.data(), overlap.data(), vx.data(), vy.data(), vz.data()};
+  }
+};
+
 struct World::Internals {
-  PairForceArrays sphere_pair_forces, plane_pair_forces;
-  // Per sphere, its pairs in pair order (sphere pairs, then plane pairs):
+  PairForceArrays sphere_pair_forces, wall_pair_forces;
+  WallGeometryArrays wall_geometry;
+  // Per sphere, its pairs in pair order (sphere pairs, then wall pairs):
   // entries [sum_begin[i], sum_begin[i + 1]) of sum_entry, each a pair index
-  // times 4 plus how the sphere takes part (kAsI, kAsJ, kOnPlane).
+  // times 4 plus how the sphere takes part (kAsI, kAsJ, kOnWall).
   std::vector<std::uint32_t> sum_begin, sum_entry;
-  static constexpr std::uint32_t kAsI = 0, kAsJ = 1, kOnPlane = 2;
+  static constexpr std::uint32_t kAsI = 0, kAsJ = 1, kOnWall = 2;
   std::vector<double> x_built, y_built, z_built;
-  std::vector<Vec3> planes_built;
+  // Each wall's point and axis at the last build, and the spheres' extent then
+  // (a turning wall moves by its angle times that extent at most).
+  std::vector<Vec3> walls_point_built, walls_axis_built;
+  double extent_m = 0;
   std::vector<double> inverse_mass, inverse_inertia;
   double max_move2 = 0;
 };

@@ -79,20 +79,20 @@ class LinearModel : public ContactModel {
       touch(c, k, out, {n, overlap, arm_i, vj - vi, mean_spin, 0, 0, 0, 0, step.dt_s}, arm_j);
     }
   }
-  void plane_forces(PairBlock& c, const Spheres& s, const std::vector<PlaneWall>& walls, const PairForces& out,
-                    const StepContext& step) const override {
+  void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
+                   const StepContext& step) const override {
     for (std::size_t k = 0; k < c.size; ++k) {
       const auto i = static_cast<std::size_t>(c.i[k]);
-      const PlaneWall& w = walls[static_cast<std::size_t>(c.j[k])];
-      const double overlap = s.radius[i] - w.distance_m(s.position(i));
-      if (!(overlap > 0) || !w.active) {
+      const double overlap = g.overlap_m[k];
+      if (!(overlap > 0)) {
         leave(c, k, out);
         continue;
       }
-      const Vec3 n = -w.normal;
+      const Vec3 n = {g.nx[k], g.ny[k], g.nz[k]};
       const double arm_i = s.radius[i] - 0.5 * overlap;
       const Vec3 vi = s.velocity(i) + cross(s.spin(i), arm_i * n);
-      touch(c, k, out, {n, overlap, arm_i, w.velocity_m_s - vi, 0.5 * s.spin(i), 0, 0, 0, 0, step.dt_s}, 0.0);
+      touch(c, k, out, {n, overlap, arm_i, Vec3{g.vx[k], g.vy[k], g.vz[k]} - vi, 0.5 * s.spin(i), 0, 0, 0, 0, step.dt_s},
+            0.0);
     }
   }
   void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,

@@ -45,6 +45,17 @@ struct PairForces {
   }
 };
 
+// The contact geometry of sphere-wall pairs at this step, computed by the
+// world from each wall's shape, so models never see the shapes.
+struct WallGeometry {
+  const double *nx, *ny, *nz;  // unit normal from the sphere towards the wall
+  const double* overlap_m;     // > 0 in contact
+  const double *vx, *vy, *vz;  // the wall's velocity at the contact point
+  WallGeometry from(std::size_t first) const {
+    return {nx + first, ny + first, nz + first, overlap_m + first, vx + first, vy + first, vz + first};
+  }
+};
+
 // The two sides of a pair when it enters the neighbour list.
 struct PairInfo {
   double radius_i = 0, radius_j = 0;  // radius_j = 0 for a wall
@@ -63,9 +74,9 @@ class ContactModel {
   virtual void initialise(PairBlock& c, std::size_t k, const PairInfo& pair) const = 0;
   // The forces of a block of sphere pairs (c.i, c.j sphere indices), into `out` (block-local indices).
   virtual void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const = 0;
-  // The forces of a block of sphere-plane pairs (c.j a wall index).
-  virtual void plane_forces(PairBlock& c, const Spheres& s, const std::vector<PlaneWall>& walls, const PairForces& out,
-                            const StepContext& step) const = 0;
+  // The forces of a block of sphere-wall pairs (c.j a wall index), from their geometry `g` (block-local).
+  virtual void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
+                           const StepContext& step) const = 0;
   // Translational and rotational stiffness the block's pair k adds to a
   // sphere whose contact lies `arm_m` from its centre (for the time step).
   virtual void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,

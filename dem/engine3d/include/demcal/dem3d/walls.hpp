@@ -1,8 +1,12 @@
 #pragma once
-// Walls of the 3D engine. A plane: a point and a unit normal pointing into
-// the domain (the side the spheres are on), moving at a set velocity; it
-// collects the forces the spheres exert on it. (Cylinders and triangle
-// meshes join here.)
+// Walls of the 3D engine: planes and cylinders (triangle meshes join here),
+// each moving at a set velocity and spinning about its reference point at a
+// set rate, and collecting the force and moment the spheres exert on it.
+//
+// A contact model never sees a wall's shape: the world turns every
+// sphere-wall pair into a contact geometry (WallContact: the normal from the
+// sphere to the wall, the overlap, the wall's velocity at the contact point),
+// so a new wall shape needs no change in any model.
 #include <cstdint>
 #include <vector>
 
@@ -10,20 +14,44 @@
 
 namespace demcal::dem3d {
 
-struct PlaneWall {
-  Vec3 point_m;
-  Vec3 normal;  // unit, into the domain
-  Vec3 velocity_m_s;
-  std::uint8_t group = 1;
-  bool active = true;
-  Vec3 force_n;  // the spheres' force on the wall at the last step
-
-  // Signed distance of `p` from the plane, positive on the domain's side, m.
-  double distance_m(Vec3 p) const { return dot(p - point_m, normal); }
+enum class WallShape : std::uint8_t {
+  plane,            // through point_m, axis = unit normal into the domain
+  cylinder_inside,  // spheres inside: axis through point_m, radius_m, length_m along axis (0: unbounded)
+  cylinder_outside  // spheres outside (a rod)
 };
 
-// A plane through `point_m` with normal `normal` (normalised here; an Error
-// when it has no length).
-PlaneWall make_plane(Vec3 point_m, Vec3 normal, std::uint8_t group = 1);
+// What a sphere sees of a wall.
+struct WallContact {
+  double overlap_m = -1e300;  // > 0 in contact; the gap when negative
+  Vec3 normal;                // unit, from the sphere's centre towards the wall
+  Vec3 point_m;               // the contact point (middle of the overlap)
+};
+
+struct Wall {
+  WallShape shape = WallShape::plane;
+  Vec3 point_m;
+  Vec3 axis;  // unit
+  double radius_m = 0;
+  double length_m = 0;
+  Vec3 velocity_m_s;
+  Vec3 spin_rad_s;  // about point_m
+  std::uint8_t group = 1;
+  bool active = true;
+  Vec3 force_n;    // the spheres' force on the wall at the last step
+  Vec3 moment_nm;  // and their moment about point_m
+
+  WallContact contact(Vec3 centre_m, double radius_m) const;
+  // The wall's velocity at `p` (its translation and its spin about point_m).
+  Vec3 velocity_at(Vec3 p) const { return velocity_m_s + cross(spin_rad_s, p - point_m); }
+};
+
+// A plane through `point_m` with inward normal `normal` (normalised here; an
+// Error when it has no length).
+Wall make_plane(Vec3 point_m, Vec3 normal, std::uint8_t group = 1);
+// A cylinder whose axis runs from `base_m` along `axis` for `length_m` (0:
+// unbounded), radius `radius_m` (an Error when not > 0); spheres inside it,
+// or outside when `inside` is false.
+Wall make_cylinder(Vec3 base_m, Vec3 axis, double radius_m, double length_m, bool inside = true,
+                   std::uint8_t group = 1);
 
 }  // namespace demcal::dem3d

@@ -1,5 +1,5 @@
 #pragma once
-// A 3D DEM model and its time stepping: spheres, plane walls, contact models
+// A 3D DEM model and its time stepping: spheres, walls (walls.hpp), contact models
 // per pair of material groups, a cell-grid neighbour list with a skin,
 // explicit central differences with PFC3D's local non-viscous damping.
 //
@@ -47,7 +47,7 @@ class World {
   World& operator=(World&&) noexcept;
 
   Spheres spheres;
-  std::vector<PlaneWall> planes;
+  std::vector<Wall> walls;
 
   // Takes a model and returns its index; assign() binds it to a pair of
   // material groups (order does not matter; walls have groups too).
@@ -71,7 +71,7 @@ class World {
   const WorldSettings& settings() const { return settings_; }
 
   const dem::ContactSet& pairs() const { return pairs_; }
-  const dem::ContactSet& plane_pairs() const { return plane_pairs_; }
+  const dem::ContactSet& wall_pairs() const { return wall_pairs_; }
   // State column `column` (a name the pair's model declares) of sphere pair k.
   double pair_state(std::size_t k, const std::string& column) const;
   // Pairs whose spheres touch now (kTouching set by their model).
@@ -85,11 +85,13 @@ class World {
   void rebuild();
   void reorder_spheres();
   void build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys);
-  void build_plane_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys);
+  void build_wall_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys);
+  void move_walls();
   void carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>& fresh_keys, const dem::ContactSet& old,
                    const std::vector<std::uint64_t>& old_keys);
   void build_sums();
   void update_time_step();
+  void compute_wall_geometry();
   void compute_pair_forces();
   void integrate();
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
@@ -97,12 +99,12 @@ class World {
   WorldSettings settings_;
   std::vector<std::unique_ptr<ContactModel>> models_;
   std::array<std::array<std::uint8_t, 256>, 256> table_;
-  dem::ContactSet pairs_, plane_pairs_;
-  // Each pair's (id_i << 32 | id_j), or (id << 32 | wall) for a plane pair:
+  dem::ContactSet pairs_, wall_pairs_;
+  // Each pair's (id_i << 32 | id_j), or (id << 32 | wall) for a wall pair:
   // the key that carries a pair's state across rebuilds and reorderings.
-  std::vector<std::uint64_t> pair_keys_, plane_keys_;
+  std::vector<std::uint64_t> pair_keys_, wall_keys_;
   std::vector<std::size_t> layout_;
-  std::vector<std::uint8_t> run_models_, plane_run_models_;
+  std::vector<std::uint8_t> run_models_, wall_run_models_;
   struct Internals;  // per-pair force arrays, the per-sphere sums, positions at the last build
   std::unique_ptr<Internals> internals_;
   int threads_in_use_ = 1;
