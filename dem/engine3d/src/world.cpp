@@ -372,6 +372,42 @@ void World::integrate() {
   in.max_move2 = max_move2;
 }
 
+double World::force_ratio() const {
+  const Internals& in = *internals_;
+  const PairForceArrays& sp = in.sphere_pair_forces;
+  const PairForceArrays& wp = in.wall_pair_forces;
+  if (sp.fx.size() != pairs_.size() || wp.fx.size() != wall_pairs_.size()) return 0.0;
+  double contact_sum = 0;
+  std::size_t touching = 0;
+  auto add_contact = [&](const PairForceArrays& f, const dem::ContactSet& set) {
+    for (std::size_t k = 0; k < set.size(); ++k)
+      if (set.flags[k] & dem::kTouching) {
+        contact_sum += norm(Vec3{f.fx[k], f.fy[k], f.fz[k]});
+        ++touching;
+      }
+  };
+  add_contact(sp, pairs_);
+  add_contact(wp, wall_pairs_);
+  if (touching == 0) return 0.0;
+  double unbalanced_sum = 0;
+  std::size_t free_spheres = 0;
+  for (std::size_t i = 0; i + 1 < in.sum_begin.size(); ++i) {
+    if (spheres.fixed[i]) continue;
+    Vec3 f = spheres.mass[i] * settings_.gravity_m_s2;
+    for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
+      const std::uint32_t entry = in.sum_entry[e];
+      const std::size_t k = entry >> 2;
+      const PairForceArrays& a = (entry & 3u) == Internals::kOnWall ? wp : sp;
+      const Vec3 pair_force = {a.fx[k], a.fy[k], a.fz[k]};
+      f = (entry & 3u) == Internals::kAsJ ? f - pair_force : f + pair_force;
+    }
+    unbalanced_sum += norm(f);
+    ++free_spheres;
+  }
+  if (free_spheres == 0) return 0.0;
+  return (unbalanced_sum / static_cast<double>(free_spheres)) / (contact_sum / static_cast<double>(touching));
+}
+
 double World::pair_state(std::size_t k, const std::string& column) const {
   const std::vector<std::string> names = models_.at(pairs_.model.at(k))->state_columns();
   for (std::size_t c = 0; c < names.size(); ++c)

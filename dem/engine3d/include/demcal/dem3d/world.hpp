@@ -76,6 +76,11 @@ class World {
   double pair_state(std::size_t k, const std::string& column) const;
   // Pairs whose spheres touch now (kTouching set by their model).
   std::size_t touching_pairs() const;
+  // PFC's equilibrium measure after a step: the mean unbalanced force over the
+  // free spheres (contacts, walls and gravity) over the mean force of the
+  // touching pairs; 0 when nothing touches. Summed in storage order (set by
+  // the state alone), so a stop on it is the same on any number of threads.
+  double force_ratio() const;
   // Kinetic energy (translational + rotational), summed in id order, J.
   double kinetic_energy() const;
   // Index of the sphere with id `id` now (the world reorders the arrays).
