@@ -15,6 +15,9 @@ ContactModelRegistry& ContactModelRegistry::instance() {
   return registry;
 }
 
-void register_builtin_models(ContactModelRegistry& registry) { register_linear_model(registry); }
+void register_builtin_models(ContactModelRegistry& registry) {
+  register_linear_model(registry);
+  register_hertz_mindlin_model(registry);
+}
 
 }  // namespace demcal::dem3d

@@ -6,6 +6,7 @@ namespace demcal::dem3d {
 class ContactModelRegistry;
 
 void register_linear_model(ContactModelRegistry& registry);
+void register_hertz_mindlin_model(ContactModelRegistry& registry);
 void register_builtin_models(ContactModelRegistry& registry);
 
 }  // namespace demcal::dem3d

@@ -20,16 +20,23 @@ struct LinearContactInput {
   double dt_s;
 };
 
+// A stored shear vector carried to the contact plane of normal `n`: projected
+// onto it, turned about it by the pair's mean spin over the step, its length
+// kept (first order in the step's angle; objective under a rigid rotation of
+// the pair).
+inline Vec3 turned_shear(Vec3 stored, Vec3 n, Vec3 mean_spin_rad_s, double dt_s) {
+  const double length = norm(stored);
+  Vec3 fs = stored - dot(stored, n) * n;
+  fs = fs + (dot(mean_spin_rad_s, n) * dt_s) * cross(n, fs);
+  const double turned = norm(fs);
+  return turned > 0 ? (length / turned) * fs : fs;
+}
+
 // The new shear force (force on i), from the stored one; `normal_force_n` gets the normal force's size.
 inline Vec3 linear_shear_force(const LinearContactInput& in, Vec3 stored, double& normal_force_n) {
   const Vec3 n = in.normal;
   normal_force_n = in.kn_n_m * std::max(0.0, in.overlap_m - in.reference_overlap_m);
-  // The stored force onto the new contact plane, turned by the twist, its length kept.
-  const double length = norm(stored);
-  Vec3 fs = stored - dot(stored, n) * n;
-  fs = fs + (dot(in.mean_spin_rad_s, n) * in.dt_s) * cross(n, fs);
-  const double turned = norm(fs);
-  if (turned > 0) fs = (length / turned) * fs;
+  Vec3 fs = turned_shear(stored, n, in.mean_spin_rad_s, in.dt_s);
   const Vec3 vt = in.relative_velocity_m_s - dot(in.relative_velocity_m_s, n) * n;
   fs = fs + (in.ks_n_m * in.dt_s) * vt;
   const double limit = in.friction * normal_force_n, size = norm(fs);
