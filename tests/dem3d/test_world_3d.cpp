@@ -42,7 +42,7 @@ Cloud cloud(std::size_t count, std::uint64_t seed) {
   return out;
 }
 
-World box_world(const Cloud& cloud, const std::vector<std::size_t>& order, int threads) {
+World box_world(const Cloud& cloud, const std::vector<std::size_t>& order, int threads, bool clumped = false) {
   WorldSettings settings;
   settings.gravity_m_s2 = {0, 0, -1000};  // a hundred g: a packing forms within the test's steps
   settings.threads = threads;
@@ -61,6 +61,13 @@ World box_world(const Cloud& cloud, const std::vector<std::size_t>& order, int t
     const std::size_t i =
         world.spheres.add_sphere(cloud.placed[k].centre, cloud.placed[k].radius, 2650, 0, static_cast<std::int64_t>(k));
     world.spheres.set_velocity(i, cloud.velocity[k]);
+  }
+  // Dumbbells: spheres of ids 2k and 2k + 1 (neighbours on the lattice) as one clump, added in id order.
+  for (std::size_t k = 0; clumped && k + 1 < cloud.placed.size(); k += 2) {
+    const std::size_t a = world.index_of(static_cast<std::uint32_t>(k)), b = world.index_of(static_cast<std::uint32_t>(k + 1));
+    const ClumpShape shape = clump_of_spheres({world.spheres.position(a), world.spheres.position(b)},
+                                              {world.spheres.radius[a], world.spheres.radius[b]}, 2650);
+    world.add_clump({a, b}, shape.mass_kg, shape.principal_inertia_kg_m2, shape.orientation, shape.centre_m);
   }
   return world;
 }
@@ -104,6 +111,24 @@ TEST(World3D, ThreadsAndSphereOrderGiveTheSameBits) {
     EXPECT_EQ(w.threads_in_use(), threads);
     EXPECT_TRUE(same_bits(state_by_id(w), expected)) << threads << " threads, shuffled " << (sphere_order == &shuffled);
     EXPECT_EQ(w.kinetic_energy(), reference.kinetic_energy());
+  }
+}
+
+TEST(World3D, ClumpsGiveTheSameBitsOnAnyThreadsAndOrder) {
+  const Cloud placed = cloud(576, 5);
+  std::vector<std::size_t> order(placed.placed.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::vector<std::size_t> shuffled = order;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937_64(9));
+  World reference = box_world(placed, order, 1, true);
+  reference.run(4000);
+  ASSERT_EQ(reference.clumps().size(), 288u);
+  ASSERT_GT(reference.touching_pairs(), 100u);
+  const auto expected = state_by_id(reference);
+  for (const auto& [threads, sphere_order] : {std::pair{2, &order}, std::pair{3, &shuffled}}) {
+    World w = box_world(placed, *sphere_order, threads, true);
+    w.run(4000);
+    EXPECT_TRUE(same_bits(state_by_id(w), expected)) << threads << " threads";
   }
 }
 

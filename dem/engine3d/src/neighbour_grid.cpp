@@ -126,6 +126,7 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
               if (b <= a) continue;  // each pair once
               const std::uint8_t model = model_for(s.group[a], s.group[b]);
               if (model == kNoModel || (s.fixed[a] && s.fixed[b])) continue;
+              if (s.clump[a] >= 0 && s.clump[a] == s.clump[b]) continue;  // one rigid body
               const double ddx = s.x[b] - s.x[a], ddy = s.y[b] - s.y[a], ddz = s.z[b] - s.z[a];
               const double reach = s.radius[a] + s.radius[b] + skin_m_;
               if (ddx * ddx + ddy * ddy + ddz * ddz >= reach * reach) continue;

@@ -28,18 +28,19 @@ std::size_t Spheres::add_sphere(Vec3 centre_m, double radius_m, double density_k
   inertia.push_back(0.4 * m * radius_m * radius_m);
   group.push_back(material_group);
   fixed.push_back(0);
+  clump.push_back(-1);
   id.push_back(static_cast<std::uint32_t>(stable_id >= 0 ? stable_id : static_cast<std::int64_t>(x.size() - 1)));
   return x.size() - 1;
 }
 
 void Spheres::reserve(std::size_t n) {
   for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz, &radius, &mass, &inertia}) v->reserve(n);
-  group.reserve(n), fixed.reserve(n), id.reserve(n);
+  group.reserve(n), fixed.reserve(n), clump.reserve(n), id.reserve(n);
 }
 
 void Spheres::permute(const std::vector<std::size_t>& order) {
   for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz, &radius, &mass, &inertia}) permute_array(*v, order);
-  permute_array(group, order), permute_array(fixed, order), permute_array(id, order);
+  permute_array(group, order), permute_array(fixed, order), permute_array(clump, order), permute_array(id, order);
 }
 
 }  // namespace demcal::dem3d

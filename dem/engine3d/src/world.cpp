@@ -54,6 +54,20 @@ void World::rebuild() {
     }
   }
   if (n > 0) reorder_spheres();
+  // The clumps' members at their new places.
+  {
+    std::vector<std::size_t> index_by_id;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (spheres.id[i] >= index_by_id.size()) index_by_id.resize(spheres.id[i] + std::size_t{1}, n);
+      index_by_id[spheres.id[i]] = i;
+    }
+    in.member_index.assign(clumps_.size(), {});
+    for (std::size_t k = 0; k < clumps_.size(); ++k)
+      for (std::uint32_t id : clumps_[k].member_ids) in.member_index[k].push_back(index_by_id[id]);
+    for (auto* v : {&in.member_fx, &in.member_fy, &in.member_fz, &in.member_mx, &in.member_my, &in.member_mz})
+      v->assign(clumps_.empty() ? 0 : n, 0.0);
+    in.clump_force.assign(clumps_.size(), Vec3{});
+  }
   dem::ContactSet fresh, fresh_walls;
   std::vector<std::uint64_t> keys, wall_keys;
   fresh.set_layout(layout_);
@@ -205,8 +219,24 @@ void World::update_time_step() {
       for (const auto& m : models_) kt[i] = std::max(kt[i], m->stiffness_estimate(spheres.radius[i]));
       kr[i] = kt[i] * spheres.radius[i] * spheres.radius[i];
     }
+    if (spheres.clump[i] >= 0) continue;  // bounded through its clump below
     if (kt[i] > 0) dt = std::min(dt, std::sqrt(spheres.mass[i] / kt[i]));
     if (kr[i] > 0) dt = std::min(dt, std::sqrt(spheres.inertia[i] / kr[i]));
+  }
+  // A clump: the stiffness of all its members' contacts, the rotational one
+  // about its centre, against its own mass and smallest principal moment.
+  for (std::size_t k = 0; k < clumps_.size(); ++k) {
+    const Clump& c = clumps_[k];
+    double ct = 0, cr = 0;
+    for (std::size_t m = 0; m < in.member_index[k].size(); ++m) {
+      const std::size_t i = in.member_index[k][m];
+      const Vec3 offset = c.member_offsets_body_m[m];
+      ct += kt[i];
+      cr += kr[i] + kt[i] * dot(offset, offset);
+    }
+    const Vec3 inertia = c.principal_inertia_kg_m2;
+    if (ct > 0) dt = std::min(dt, std::sqrt(c.mass_kg / ct));
+    if (cr > 0) dt = std::min(dt, std::sqrt(std::min({inertia.x, inertia.y, inertia.z}) / cr));
   }
   if (!std::isfinite(dt) || dt <= 0) throw Error("cannot find a stable time step (no stiffness or no mass)");
   double zeta = 0;
@@ -354,6 +384,11 @@ void World::integrate() {
       s.vx[i] = s.vy[i] = s.vz[i] = s.wx[i] = s.wy[i] = s.wz[i] = 0;
       continue;
     }
+    if (s.clump[i] >= 0) {  // its clump moves it (integrate_clumps)
+      in.member_fx[i] = fx, in.member_fy[i] = fy, in.member_fz[i] = fz;
+      in.member_mx[i] = mx, in.member_my[i] = my, in.member_mz[i] = mz;
+      continue;
+    }
     const double m = s.mass[i];
     fx += m * g.x, fy += m * g.y, fz += m * g.z;
     const double to_v = in.inverse_mass[i] * dt, to_w = in.inverse_inertia[i] * dt;
@@ -369,6 +404,7 @@ void World::integrate() {
     const double dx = s.x[i] - in.x_built[i], dy = s.y[i] - in.y_built[i], dz = s.z[i] - in.z_built[i];
     max_move2 = std::max(max_move2, dx * dx + dy * dy + dz * dz);
   }
+  if (!clumps_.empty()) integrate_clumps(max_move2);
   in.max_move2 = max_move2;
 }
 
@@ -391,8 +427,9 @@ double World::force_ratio() const {
   if (touching == 0) return 0.0;
   double unbalanced_sum = 0;
   std::size_t free_spheres = 0;
+  for (const Vec3& f : in.clump_force) unbalanced_sum += norm(f), ++free_spheres;
   for (std::size_t i = 0; i + 1 < in.sum_begin.size(); ++i) {
-    if (spheres.fixed[i]) continue;
+    if (spheres.fixed[i] || spheres.clump[i] >= 0) continue;
     Vec3 f = spheres.mass[i] * settings_.gravity_m_s2;
     for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
       const std::uint32_t entry = in.sum_entry[e];
@@ -426,7 +463,9 @@ double World::kinetic_energy() const {
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return spheres.id[a] < spheres.id[b]; });
   double e = 0;
+  for (const Clump& c : clumps_) e += c.kinetic_energy();
   for (std::size_t i : order) {
+    if (spheres.clump[i] >= 0) continue;  // counted with its clump
     const Vec3 v = spheres.velocity(i), w = spheres.spin(i);
     e += 0.5 * spheres.mass[i] * dot(v, v) + 0.5 * spheres.inertia[i] * dot(w, w);
   }

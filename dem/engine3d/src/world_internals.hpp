@@ -46,6 +46,12 @@ struct World::Internals {
   double extent_m = 0;
   std::vector<double> inverse_mass, inverse_inertia;
   double max_move2 = 0;
+  // Clumps: each clump's members as sphere indices now (refreshed at every
+  // rebuild, which reorders the spheres), the members' summed forces and
+  // moments of the step (by sphere index), and each clump's net force.
+  std::vector<std::vector<std::size_t>> member_index;
+  std::vector<double> member_fx, member_fy, member_fz, member_mx, member_my, member_mz;
+  std::vector<Vec3> clump_force;
 };
 
 }  // namespace demcal::dem3d

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "demcal/dem/contacts.hpp"
+#include "demcal/dem3d/clump.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/spheres.hpp"
 #include "demcal/dem3d/walls.hpp"
@@ -49,6 +50,16 @@ class World {
   Spheres spheres;
   std::vector<Wall> walls;
 
+  // Makes the spheres `members` (indices now) one rigid clump with the given
+  // mass, principal moments of inertia (about its centre of mass), the
+  // orientation of its principal axes and its centre; returns its index. The
+  // members' own masses stop mattering; pairs inside the clump are dropped.
+  // An Error when a member is fixed, already in a clump, or given twice.
+  std::size_t add_clump(const std::vector<std::size_t>& members, double mass_kg, Vec3 principal_inertia_kg_m2,
+                        Quaternion orientation, Vec3 centre_m);
+  const std::vector<Clump>& clumps() const { return clumps_; }
+  std::vector<Clump>& clumps() { return clumps_; }
+
   // Takes a model and returns its index; assign() binds it to a pair of
   // material groups (order does not matter; walls have groups too).
   std::uint8_t add_model(std::unique_ptr<ContactModel> model);
@@ -69,6 +80,7 @@ class World {
   double skin_m() const { return skin_m_; }
   int threads_in_use() const { return threads_in_use_; }
   const WorldSettings& settings() const { return settings_; }
+  WorldSettings& settings() { return settings_; }
 
   const dem::ContactSet& pairs() const { return pairs_; }
   const dem::ContactSet& wall_pairs() const { return wall_pairs_; }
@@ -99,6 +111,7 @@ class World {
   void compute_wall_geometry();
   void compute_pair_forces();
   void integrate();
+  void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
 
   WorldSettings settings_;
@@ -110,6 +123,7 @@ class World {
   std::vector<std::uint64_t> pair_keys_, wall_keys_;
   std::vector<std::size_t> layout_;
   std::vector<std::uint8_t> run_models_, wall_run_models_;
+  std::vector<Clump> clumps_;
   struct Internals;  // per-pair force arrays, the per-sphere sums, positions at the last build
   std::unique_ptr<Internals> internals_;
   int threads_in_use_ = 1;
