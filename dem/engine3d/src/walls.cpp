@@ -1,5 +1,6 @@
 #include "demcal/dem3d/walls.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "demcal/core/error.hpp"
@@ -17,9 +18,50 @@ Vec3 unit(Vec3 v, const char* what) {
 
 }  // namespace
 
+namespace {
+
+// The point of triangle (a, b, c) closest to p, and which feature it lies on
+// (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 closest_on_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, WallFeature& feature) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  feature = WallFeature::vertex;
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  feature = WallFeature::edge;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  feature = WallFeature::face;
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + (vb * denominator) * ab + (vc * denominator) * ac;
+}
+
+}  // namespace
+
 WallContact Wall::contact(Vec3 centre_m, double r) const {
   WallContact c;
   const Vec3 from_point = centre_m - point_m;
+  if (shape == WallShape::triangle) {
+    WallFeature feature;
+    const Vec3 closest = closest_on_triangle(centre_m, vertices[0], vertices[1], vertices[2], feature);
+    const Vec3 towards = closest - centre_m;
+    const double distance = norm(towards);
+    if (!(distance > 0)) return c;  // the centre on the facet: no direction to push along
+    c.overlap_m = r - distance;
+    c.normal = (1.0 / distance) * towards;
+    c.feature = feature;
+    c.point_m = centre_m + (r - 0.5 * c.overlap_m) * c.normal;
+    return c;
+  }
   if (shape == WallShape::plane) {
     const double distance = dot(from_point, axis);
     c.overlap_m = r - distance;
@@ -48,6 +90,29 @@ Wall make_plane(Vec3 point_m, Vec3 normal, std::uint8_t group) {
   w.shape = WallShape::plane;
   w.point_m = point_m;
   w.axis = unit(normal, "a plane wall");
+  w.group = group;
+  return w;
+}
+
+Vec3 closest_point_on_triangle(const Wall& t, Vec3 p) {
+  WallFeature feature;
+  return closest_on_triangle(p, t.vertices[0], t.vertices[1], t.vertices[2], feature);
+}
+
+Wall make_triangle(Vec3 a, Vec3 b, Vec3 c, std::int32_t mesh, Vec3 pivot_m, std::uint8_t group) {
+  for (const Vec3& v : {a, b, c})
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+      throw Error("a triangle has a corner that is not a finite point");
+  const Vec3 normal = cross(b - a, c - a);
+  const double twice_area = norm(normal);
+  if (!(twice_area > 1e-12 * std::max({dot(b - a, b - a), dot(c - a, c - a), 1e-300})))
+    throw Error("a triangle spans no area (its corners are in a line)");
+  Wall w;
+  w.shape = WallShape::triangle;
+  w.vertices[0] = a, w.vertices[1] = b, w.vertices[2] = c;
+  w.axis = (1.0 / twice_area) * normal;
+  w.mesh = mesh;
+  w.point_m = pivot_m;
   w.group = group;
   return w;
 }

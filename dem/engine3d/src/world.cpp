@@ -92,9 +92,8 @@ void World::rebuild() {
   in.wall_geometry.resize(wall_pairs_.size());
   build_sums();
   in.x_built = spheres.x, in.y_built = spheres.y, in.z_built = spheres.z;
-  in.walls_point_built.clear();
-  in.walls_axis_built.clear();
-  for (const Wall& w : walls) in.walls_point_built.push_back(w.point_m), in.walls_axis_built.push_back(w.axis);
+  in.walls_built = walls;
+  any_mesh_ = std::any_of(walls.begin(), walls.end(), [](const Wall& w) { return w.mesh >= 0; });
   in.extent_m = 0;
   if (n > 0) {
     Vec3 low = spheres.position(0), high = low;
@@ -249,12 +248,17 @@ void World::step() {
   bool stale = !built_ || in.x_built.size() != spheres.size();
   const double half_skin2 = 0.25 * skin_m_ * skin_m_;
   if (!stale) {
-    stale = in.max_move2 > half_skin2 || in.walls_point_built.size() != walls.size();
+    stale = in.max_move2 > half_skin2 || in.walls_built.size() != walls.size();
     for (std::size_t w = 0; w < walls.size() && !stale; ++w) {
-      // A wall moves by its point's displacement plus, when it turns, at most
-      // its axis's change times the spheres' extent.
-      const double moved = norm(walls[w].point_m - in.walls_point_built[w]) +
-                           norm(walls[w].axis - in.walls_axis_built[w]) * in.extent_m;
+      // A triangle moves as far as its farthest corner; a plane or a cylinder
+      // by its point's displacement plus, when it turns, at most its axis's
+      // change times the spheres' extent.
+      const Wall &now = walls[w], &then = in.walls_built[w];
+      double moved = 0;
+      if (now.shape == WallShape::triangle)
+        for (int v = 0; v < 3; ++v) moved = std::max(moved, norm(now.vertices[v] - then.vertices[v]));
+      else
+        moved = norm(now.point_m - then.point_m) + norm(now.axis - then.axis) * in.extent_m;
       stale = moved * moved > half_skin2;
     }
   }
@@ -310,14 +314,20 @@ void World::compute_pair_forces() {
 
 void World::move_walls() {
   for (Wall& w : walls) {
-    w.point_m = w.point_m + dt_s_ * w.velocity_m_s;
     const double rate = norm(w.spin_rad_s);
-    if (rate > 0) {  // the axis turns with the spin (Rodrigues); a cylinder spinning about its axis keeps it
+    if (rate > 0) {  // the axis (and a triangle's corners, about the pivot) turn with the spin (Rodrigues)
       const Vec3 u = (1.0 / rate) * w.spin_rad_s;
-      const double a = rate * dt_s_;
-      const Vec3 turned = std::cos(a) * w.axis + std::sin(a) * cross(u, w.axis) + ((1 - std::cos(a)) * dot(u, w.axis)) * u;
+      const double a = rate * dt_s_, cos_a = std::cos(a), sin_a = std::sin(a);
+      const auto turn = [&](Vec3 v) { return cos_a * v + sin_a * cross(u, v) + ((1 - cos_a) * dot(u, v)) * u; };
+      const Vec3 turned = turn(w.axis);
       w.axis = (1.0 / norm(turned)) * turned;
+      if (w.shape == WallShape::triangle)
+        for (Vec3& v : w.vertices) v = w.point_m + turn(v - w.point_m);
     }
+    const Vec3 step = dt_s_ * w.velocity_m_s;
+    w.point_m = w.point_m + step;
+    if (w.shape == WallShape::triangle)
+      for (Vec3& v : w.vertices) v = v + step;
   }
 }
 
@@ -335,7 +345,9 @@ void World::compute_wall_geometry() {
     g.nx[k] = c.normal.x, g.ny[k] = c.normal.y, g.nz[k] = c.normal.z;
     g.overlap[k] = c.overlap_m;
     g.vx[k] = v.x, g.vy[k] = v.y, g.vz[k] = v.z;
+    g.feature[k] = c.feature;
   }
+  if (any_mesh_) keep_one_contact_per_mesh_point();
 }
 
 namespace {

@@ -23,8 +23,10 @@ struct PairForceArrays {
 // The contact geometry of every wall pair at this step.
 struct WallGeometryArrays {
   std::vector<double> nx, ny, nz, overlap, vx, vy, vz;
+  std::vector<WallFeature> feature;
   void resize(std::size_t n) {
     for (auto* v : {&nx, &ny, &nz, &overlap, &vx, &vy, &vz}) v->assign(n, 0.0);
+    feature.assign(n, WallFeature::face);
   }
   WallGeometry view() const {
     return {nx.data(), ny.data(), nz.data(), overlap.data(), vx.data(), vy.data(), vz.data()};
@@ -40,9 +42,9 @@ struct World::Internals {
   std::vector<std::uint32_t> sum_begin, sum_entry;
   static constexpr std::uint32_t kAsI = 0, kAsJ = 1, kOnWall = 2;
   std::vector<double> x_built, y_built, z_built;
-  // Each wall's point and axis at the last build, and the spheres' extent then
-  // (a turning wall moves by its angle times that extent at most).
-  std::vector<Vec3> walls_point_built, walls_axis_built;
+  // The walls as they were at the last build, and the spheres' extent then
+  // (a turning plane or cylinder moves by its angle times that extent at most).
+  std::vector<Wall> walls_built;
   double extent_m = 0;
   std::vector<double> inverse_mass, inverse_inertia;
   double max_move2 = 0;

@@ -1,7 +1,8 @@
 #pragma once
-// Walls of the 3D engine: planes and cylinders (triangle meshes join here),
-// each moving at a set velocity and spinning about its reference point at a
-// set rate, and collecting the force and moment the spheres exert on it.
+// Walls of the 3D engine: planes, cylinders and the triangles of meshes (read
+// from STL: stl_mesh.hpp), each moving at a set velocity and spinning about
+// its reference point at a set rate, and collecting the force and moment the
+// spheres exert on it.
 //
 // A contact model never sees a wall's shape: the world turns every
 // sphere-wall pair into a contact geometry (WallContact: the normal from the
@@ -17,22 +18,32 @@ namespace demcal::dem3d {
 enum class WallShape : std::uint8_t {
   plane,            // through point_m, axis = unit normal into the domain
   cylinder_inside,  // spheres inside: axis through point_m, radius_m, length_m along axis (0: unbounded)
-  cylinder_outside  // spheres outside (a rod)
+  cylinder_outside,  // spheres outside (a rod)
+  triangle           // one facet of a mesh: vertices[0..2], axis = its unit normal; touched from either side
 };
+
+// Where on a wall element the closest point lies: a triangle's face, an edge
+// or a vertex (planes and cylinders: always the face). A sphere touching a
+// mesh keeps every face contact but only one contact per shared edge or
+// vertex point (World, mesh_contacts.cpp).
+enum class WallFeature : std::uint8_t { face, edge, vertex };
 
 // What a sphere sees of a wall.
 struct WallContact {
   double overlap_m = -1e300;  // > 0 in contact; the gap when negative
   Vec3 normal;                // unit, from the sphere's centre towards the wall
   Vec3 point_m;               // the contact point (middle of the overlap)
+  WallFeature feature = WallFeature::face;
 };
 
 struct Wall {
   WallShape shape = WallShape::plane;
-  Vec3 point_m;
-  Vec3 axis;  // unit
+  Vec3 point_m;  // a plane's point, a cylinder's base; a mesh's pivot (it spins about it)
+  Vec3 axis;     // unit
   double radius_m = 0;
   double length_m = 0;
+  Vec3 vertices[3];       // a triangle's corners, m
+  std::int32_t mesh = -1;  // the mesh a triangle belongs to (-1: none)
   Vec3 velocity_m_s;
   Vec3 spin_rad_s;  // about point_m
   std::uint8_t group = 1;
@@ -53,5 +64,11 @@ Wall make_plane(Vec3 point_m, Vec3 normal, std::uint8_t group = 1);
 // or outside when `inside` is false.
 Wall make_cylinder(Vec3 base_m, Vec3 axis, double radius_m, double length_m, bool inside = true,
                    std::uint8_t group = 1);
+// The point of triangle `t` (a WallShape::triangle) closest to p.
+Vec3 closest_point_on_triangle(const Wall& t, Vec3 p);
+
+// A triangle of mesh `mesh` with corners a, b, c (an Error when they are not
+// finite or span no area); it spins about `pivot_m`.
+Wall make_triangle(Vec3 a, Vec3 b, Vec3 c, std::int32_t mesh, Vec3 pivot_m, std::uint8_t group = 1);
 
 }  // namespace demcal::dem3d

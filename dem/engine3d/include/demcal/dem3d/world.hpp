@@ -109,6 +109,7 @@ class World {
   void build_sums();
   void update_time_step();
   void compute_wall_geometry();
+  void keep_one_contact_per_mesh_point();
   void compute_pair_forces();
   void integrate();
   void integrate_clumps(double& max_move2);
@@ -133,6 +134,7 @@ class World {
   std::uint64_t steps_ = 0;
   std::uint64_t rebuilds_ = 0;
   bool built_ = false;
+  bool any_mesh_ = false;  // some wall is a mesh's triangle (set at rebuild)
 };
 
 }  // namespace demcal::dem3d
