@@ -106,3 +106,44 @@ TEST(Walls3D, VtkSnapshotsHoldEverySphereAndWall) {
   EXPECT_NE(b.str().find("POLYGONS 33 "), std::string::npos);
   EXPECT_NE(b.str().find("POINTS 68 double"), std::string::npos);
 }
+
+// Servo walls: a plane pressing a column of spheres onto a floor, and a
+// cylinder confining a packing, each bring the stress they feel to the target.
+TEST(Walls3D, ServoWallsHoldTheirStress) {
+  WorldSettings settings;
+  World world(settings);
+  world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create(
+                         "linear", {{"modulus_pa", 1e9}, {"kn_ks", 1.5}, {"friction", 0.3}}, "test")));
+  world.assign(0, 0, 0);
+  for (int k = 0; k < 3; ++k) world.spheres.add_sphere({0, 0, kRadius * (1 + 2 * k)}, kRadius, kDensity, 0);
+  world.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+  world.walls.push_back(make_plane({0, 0, 6.2 * kRadius}, {0, 0, -1}));  // a gap: the servo closes it
+  Wall& top = world.walls[1];
+  top.servo = true;
+  top.servo_area_m2 = 4 * kRadius * kRadius;  // a square column of side 2R
+  top.servo_target_stress_pa = 1e5;
+  top.servo_max_speed_m_s = 0.05;
+  world.run(40000);
+  EXPECT_NEAR(world.walls[1].normal_force_n / world.walls[1].servo_area_m2, 1e5, 1e-3 * 1e5);
+  EXPECT_NEAR(-world.walls[0].force_n.z, 1e5 * 4 * kRadius * kRadius, 1e-3 * 0.4);
+
+  // A cylinder of radius 6 R round a packing of 19 spheres in a layer, squeezed to 2e5 Pa on its 2 R height.
+  World ring(settings);
+  ring.assign(0, 1, ring.add_model(ContactModelRegistry::instance().create(
+                        "linear", {{"modulus_pa", 1e9}, {"kn_ks", 1.5}, {"friction", 0.0}}, "test")));
+  ring.assign(0, 0, 0);
+  for (int a = -2; a <= 2; ++a)
+    for (int b = -2; b <= 2; ++b)
+      if (std::abs(a + b) <= 2) ring.spheres.add_sphere({2.1 * kRadius * (a + 0.5 * b), 2.1 * kRadius * 0.866 * b, kRadius},
+                                                        kRadius, kDensity, 0);
+  ring.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+  ring.walls.push_back(make_plane({0, 0, 2 * kRadius}, {0, 0, -1}));
+  ring.walls.push_back(make_cylinder({0, 0, 0}, {0, 0, 1}, 6 * kRadius, 2 * kRadius));
+  Wall& cylinder = ring.walls[2];
+  cylinder.servo = true;
+  cylinder.servo_target_stress_pa = 2e5;
+  cylinder.servo_max_speed_m_s = 0.05;
+  ring.run(60000);
+  EXPECT_NEAR(ring.walls[2].normal_force_n / ring.walls[2].loaded_area_m2(), 2e5, 1e-2 * 2e5);
+  EXPECT_LT(ring.walls[2].radius_m, 6 * kRadius);  // it closed in on the packing
+}

@@ -94,6 +94,23 @@ Wall make_plane(Vec3 point_m, Vec3 normal, std::uint8_t group) {
   return w;
 }
 
+Vec3 Wall::velocity_at(Vec3 p) const {
+  Vec3 v = velocity_m_s + cross(spin_rad_s, p - point_m);
+  if (radial_speed_m_s != 0 && (shape == WallShape::cylinder_inside || shape == WallShape::cylinder_outside)) {
+    const Vec3 from_axis = (p - point_m) - dot(p - point_m, axis) * axis;
+    const double rho = norm(from_axis);
+    if (rho > 0) v = v + (radial_speed_m_s / rho) * from_axis;
+  }
+  return v;
+}
+
+double Wall::loaded_area_m2() const {
+  if (servo_area_m2 > 0) return servo_area_m2;
+  if ((shape == WallShape::cylinder_inside || shape == WallShape::cylinder_outside) && length_m > 0)
+    return 2 * M_PI * radius_m * length_m;
+  return 0;
+}
+
 Vec3 closest_point_on_triangle(const Wall& t, Vec3 p) {
   WallFeature feature;
   return closest_on_triangle(p, t.vertices[0], t.vertices[1], t.vertices[2], feature);

@@ -258,7 +258,8 @@ void World::step() {
       if (now.shape == WallShape::triangle)
         for (int v = 0; v < 3; ++v) moved = std::max(moved, norm(now.vertices[v] - then.vertices[v]));
       else
-        moved = norm(now.point_m - then.point_m) + norm(now.axis - then.axis) * in.extent_m;
+        moved = norm(now.point_m - then.point_m) + norm(now.axis - then.axis) * in.extent_m +
+                std::abs(now.radius_m - then.radius_m);
       stale = moved * moved > half_skin2;
     }
   }
@@ -300,7 +301,7 @@ void World::compute_pair_forces() {
     }
   }
   // The walls' forces and moments about their points, in pair order.
-  for (Wall& w : walls) w.force_n = w.moment_nm = {};
+  for (Wall& w : walls) w.force_n = w.moment_nm = {}, w.normal_force_n = 0;
   const WallGeometryArrays& g = in.wall_geometry;
   for (std::size_t k = 0; k < wall_pairs_.size(); ++k) {
     Wall& w = walls[static_cast<std::size_t>(wall_pairs_.j[k])];
@@ -309,11 +310,33 @@ void World::compute_pair_forces() {
     const Vec3 contact = spheres.position(i) + (spheres.radius[i] - 0.5 * g.overlap[k]) * Vec3{g.nx[k], g.ny[k], g.nz[k]};
     w.force_n = w.force_n + on_wall;
     w.moment_nm = w.moment_nm + cross(contact - w.point_m, on_wall);
+    w.normal_force_n += dot(on_wall, Vec3{g.nx[k], g.ny[k], g.nz[k]});
   }
 }
 
 void World::move_walls() {
-  for (Wall& w : walls) {
+  for (std::size_t index = 0; index < walls.size(); ++index) {
+    Wall& w = walls[index];
+    if (w.servo && w.active) {
+      const double area = w.loaded_area_m2();
+      if (!(area > 0)) throw Error("a servo wall needs its loaded area (servo_area_m2, or a cylinder's length)");
+      if (!(w.servo_max_speed_m_s > 0)) throw Error("a servo wall needs servo_max_speed_m_s > 0");
+      const double error = w.normal_force_n / area - w.servo_target_stress_pa;
+      const double k = wall_contact_stiffness_n_m(index);
+      const double gain = w.servo_gain_m_s_per_pa > 0 ? w.servo_gain_m_s_per_pa : (k > 0 ? 0.5 * area / (k * dt_s_) : 1e300);
+      // Away from the spheres while the stress is above the target.
+      const double speed = std::clamp(gain * error, -w.servo_max_speed_m_s, w.servo_max_speed_m_s);
+      if (w.shape == WallShape::plane) {
+        w.velocity_m_s = w.velocity_m_s - dot(w.velocity_m_s, w.axis) * w.axis - speed * w.axis;
+      } else if (w.shape == WallShape::cylinder_inside) {
+        w.radial_speed_m_s = speed;
+      } else if (w.shape == WallShape::cylinder_outside) {
+        w.radial_speed_m_s = -speed;
+      } else {
+        throw Error("a servo wall must be a plane or a cylinder");
+      }
+    }
+    w.radius_m += dt_s_ * w.radial_speed_m_s;
     const double rate = norm(w.spin_rad_s);
     if (rate > 0) {  // the axis (and a triangle's corners, about the pivot) turn with the spin (Rodrigues)
       const Vec3 u = (1.0 / rate) * w.spin_rad_s;
@@ -455,6 +478,20 @@ double World::force_ratio() const {
   }
   if (free_spheres == 0) return 0.0;
   return (unbalanced_sum / static_cast<double>(free_spheres)) / (contact_sum / static_cast<double>(touching));
+}
+
+double World::wall_contact_stiffness_n_m(std::size_t w) const {
+  double k = 0;
+  for (std::uint8_t m : wall_run_models_) {
+    const dem::ConstPairBlock c = static_cast<const dem::ContactSet&>(wall_pairs_).block(m);
+    for (std::size_t p = 0; p < c.size; ++p) {
+      if (static_cast<std::size_t>(c.j[p]) != w || !(c.flags[p] & dem::kTouching)) continue;
+      double t = 0, r = 0;
+      models_[m]->stiffness(c, p, spheres.radius[static_cast<std::size_t>(c.i[p])], t, r);
+      k += t;
+    }
+  }
+  return k;
 }
 
 double World::pair_state(std::size_t k, const std::string& column) const {

@@ -50,10 +50,28 @@ struct Wall {
   bool active = true;
   Vec3 force_n;    // the spheres' force on the wall at the last step
   Vec3 moment_nm;  // and their moment about point_m
+  // The sum of the spheres' pushes along each contact's normal at the last
+  // step, N: what a servo measures (a cylinder's radial forces cancel in force_n).
+  double normal_force_n = 0;
+
+  // Servo control to a stress: a plane moves along its axis, a cylinder
+  // changes its radius, at speed gain x (measured - target) stress away from
+  // the spheres (towards them when below), capped at servo_max_speed_m_s. A
+  // gain of 0 takes PFC's rule each step: half the stress error closed
+  // against the stiffness of the contacts on the wall, 0.5 A / (k dt).
+  bool servo = false;
+  double servo_target_stress_pa = 0;
+  double servo_area_m2 = 0;  // a plane's loaded area; 0 for a cylinder: 2 pi R L (its length must be set)
+  double servo_gain_m_s_per_pa = 0;
+  double servo_max_speed_m_s = 0;
+  double radial_speed_m_s = 0;  // a cylinder's radius grows at this rate (a servo sets it)
 
   WallContact contact(Vec3 centre_m, double radius_m) const;
-  // The wall's velocity at `p` (its translation and its spin about point_m).
-  Vec3 velocity_at(Vec3 p) const { return velocity_m_s + cross(spin_rad_s, p - point_m); }
+  // The wall's velocity at `p` (its translation, its spin about point_m and a
+  // cylinder's radial growth).
+  Vec3 velocity_at(Vec3 p) const;
+  // The area a servo divides its force by.
+  double loaded_area_m2() const;
 };
 
 // A plane through `point_m` with inward normal `normal` (normalised here; an

@@ -86,6 +86,9 @@ class World {
   const dem::ContactSet& wall_pairs() const { return wall_pairs_; }
   // State column `column` (a name the pair's model declares) of sphere pair k.
   double pair_state(std::size_t k, const std::string& column) const;
+  // The translational stiffness of the contacts touching wall `w` now, N/m:
+  // what a stress servo on it pushes against (PFC's rule for its gain).
+  double wall_contact_stiffness_n_m(std::size_t w) const;
   // Pairs whose spheres touch now (kTouching set by their model).
   std::size_t touching_pairs() const;
   // PFC's equilibrium measure after a step: the mean unbalanced force over the
