@@ -78,6 +78,19 @@ TEST(Genesis3D, BadSpecsAreRefusedNamingTheField) {
   spec = small(Vessel::box);
   spec.porosity = 0.1;
   EXPECT_NE(message(spec).find("porosity must lie in (0.2, 0.6)"), std::string::npos);
+  // More spheres than the machine's memory holds: refused before packing, with the estimate.
+  spec = small(Vessel::box);
+  spec.width_m = spec.depth_m = 0.1;
+  spec.height_m = 0.2;  // about 650k spheres: 1.2 GiB
+  try {
+    check_packing_memory(spec, 1e9);
+    ADD_FAILURE() << "a packing larger than the machine was not refused";
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("652943 spheres need about 1.2 GiB to pack, more than this machine's 0.9 GiB allow"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(check_packing_memory(spec, 64e9));
   spec = small(Vessel::box);
   spec.radius_min_m = 1e-5;
   spec.radius_max_m = 1e-5;

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/progress.hpp"
 #include "demcal/core/rng.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/world.hpp"
@@ -158,9 +160,23 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
     world.refresh();
   };
   const int stages = 10;
+  // A large packing takes minutes: a progress line over the expansion stages
+  // and the floater passes (with the particle-steps done).
+  std::unique_ptr<Progress> progress;
+  if (n >= 20000) {
+    progress = std::make_unique<Progress>("genesis (" + std::to_string(n) + " spheres)", stages + 4);
+    progress->set_units_name("particle-steps");
+  }
+  std::uint64_t steps_before = 0;
+  auto advance = [&]() {
+    if (!progress) return;
+    progress->advance(1, static_cast<double>(n) * static_cast<double>(world.steps_done() - steps_before));
+    steps_before = world.steps_done();
+  };
   for (int stage = 1; stage <= stages; ++stage) {
     scale_radii(start_scale + (1 - start_scale) * stage / stages);
     cycle_to_equilibrium(world, stage < stages ? 2e-2 : 1e-3, 20000);
+    advance();
   }
 
   // Floaters: grow them a little at a time; drop the few that still float,
@@ -192,7 +208,9 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
       if (count[i] >= spec.min_contacts) set_radius(world.spheres, i, s.radius[i] * grow, spec.density_kg_m3);
     world.refresh();
     cycle_to_equilibrium(world, 1e-3, 20000);
+    advance();
   }
+  if (progress) progress->finish();
 
   // The kept spheres, numbered in the world's order (a Morton curve of their
   // positions: neighbours close in memory when a test loads them).

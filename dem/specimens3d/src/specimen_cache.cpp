@@ -66,8 +66,40 @@ SphereSpecimen load_sphere_specimen(const std::string& path, const std::string& 
   return s;
 }
 
+namespace {
+
+// Packing takes about 1.9 kB of memory per sphere (the development machine:
+// 187 MB at 100k spheres, docs/benchmarks.md). A packing that would not fit in
+// this machine's memory is refused before it starts, and a large one says what
+// it will take.
+constexpr double kPackingBytesPerSphere = 1.9e3;
+
+}  // namespace
+
+void check_packing_memory(const SphereSpecimenSpec& spec, double machine_bytes) {
+  const double spheres = static_cast<double>(spec.sphere_count());
+  const double needed = spheres * kPackingBytesPerSphere;
+  const double machine = machine_bytes > 0 ? machine_bytes
+                                           : static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                                                 static_cast<double>(::sysconf(_SC_PAGESIZE));
+  char text[300];
+  if (machine > 0 && needed > 0.8 * machine) {
+    std::snprintf(text, sizeof text,
+                  "specimen: %.0f spheres need about %.1f GiB to pack, more than this machine's %.1f GiB allow; use "
+                  "larger radii or a smaller specimen",
+                  spheres, needed / 1073741824.0, machine / 1073741824.0);
+    throw Error(text);
+  }
+  if (spheres >= 100000) {
+    std::snprintf(text, sizeof text, "a large 3D specimen: %.0f spheres need about %.2f GiB to pack (cached after)",
+                  spheres, needed / 1073741824.0);
+    log::info(text);
+  }
+}
+
 SphereSpecimen cached_sphere_specimen(const SphereSpecimenSpec& spec, const std::string& cache_dir) {
   spec.validate();
+  check_packing_memory(spec);
   if (cache_dir.empty()) return pack_sphere_specimen(spec);
   std::error_code failed;
   std::filesystem::create_directories(cache_dir, failed);

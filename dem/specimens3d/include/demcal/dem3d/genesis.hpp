@@ -55,8 +55,14 @@ struct SphereSpecimen {
 // than 0.005 from the one asked is an Error.
 SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec);
 
+// Refuses (an Error) a packing that would need more than 80 % of the
+// machine's memory (`machine_bytes`, or this machine's when 0), estimated at
+// 1.9 kB per sphere, and says what a packing of 100k spheres or more will take.
+void check_packing_memory(const SphereSpecimenSpec& spec, double machine_bytes = 0);
+
 // The cached packing for `spec` under `cache_dir` (HDF5), packing and storing
-// it first when absent. An empty cache_dir packs without caching.
+// it first when absent (after check_packing_memory). An empty cache_dir packs
+// without caching.
 SphereSpecimen cached_sphere_specimen(const SphereSpecimenSpec& spec, const std::string& cache_dir);
 void save_sphere_specimen(const SphereSpecimen& specimen, const std::string& key, const std::string& path);
 // Throws when the file's key differs from `key` (a stale or foreign cache).
