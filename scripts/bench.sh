@@ -50,6 +50,9 @@ done
 # The same specimens against LAMMPS (installed on demand), same contact law and steps.
 echo
 /usr/bin/python3 scripts/bench_lammps.py --build "$build"
+# The 3D engine against LAMMPS (3D granular Hooke with history), and its cost against the sphere count.
+echo
+/usr/bin/python3 scripts/bench_lammps_3d.py --build "$build"
 # And YADE's CPM concrete in compression (another model, 3D): per particle-step only.
 echo
 /usr/bin/python3 scripts/bench_yade.py --build "$build"

@@ -101,3 +101,29 @@ TEST(Clumps3D, ClumpsAreRefusedWhenTheyCannotBe) {
   EXPECT_THROW(world.add_clump({2}, 0, {1, 1, 1}, {}, {}), demcal::Error);
   EXPECT_THROW(world.add_clump({}, 1, {1, 1, 1}, {}, {}), demcal::Error);
 }
+
+// Density scaling raises the masses and inertias of spheres and clumps (never
+// lowers them) until the step is the one asked; a restitution-damped model refuses it.
+TEST(Clumps3D, DensityScalingReachesTheAskedStepWithClumps) {
+  World world = two_sphere_clump_world({0, 0, 1.2 * kRadius}, {1, 0, 0}, 1.3);
+  world.spheres.add_sphere({0.01, 0, 1.001 * kRadius}, kRadius, kDensity, 0);
+  world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create(
+                         "linear", {{"modulus_pa", 1e9}, {"kn_ks", 1.5}, {"friction", 0.5}}, "test")));
+  world.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+  world.refresh();
+  const double unscaled = world.dt_s(), clump_mass = world.clumps()[0].mass_kg, sphere_mass = world.spheres.mass[2];
+  world.settings().density_scaling_dt_s = 10 * unscaled;
+  world.refresh();
+  EXPECT_NEAR(world.dt_s(), 10 * unscaled, 1e-9 * unscaled);
+  EXPECT_GT(world.clumps()[0].mass_kg, 10 * clump_mass);
+  EXPECT_GT(world.spheres.mass[world.index_of(2)], 10 * sphere_mass);
+  world.run(1000);  // and it runs stably at that step
+  EXPECT_TRUE(std::isfinite(world.spheres.z[0]));
+
+  World hertz = two_sphere_clump_world({0, 0, 0}, {1, 0, 0}, 1.3);
+  hertz.assign(0, 1, hertz.add_model(ContactModelRegistry::instance().create(
+                         "hertz_mindlin", {{"shear_modulus_pa", 1e8}, {"poisson", 0.25}, {"restitution", 0.5}, {"friction", 0.5}},
+                         "test")));
+  hertz.settings().density_scaling_dt_s = 1e-4;
+  EXPECT_THROW(hertz.refresh(), demcal::Error);
+}

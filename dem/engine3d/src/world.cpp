@@ -212,6 +212,13 @@ void World::update_time_step() {
     }
   }
   double dt = std::numeric_limits<double>::infinity();
+  // The critical step each body must reach under density scaling.
+  const double scaled_step = settings_.density_scaling_dt_s / settings_.safety_factor;
+  if (scaled_step > 0)
+    for (const auto& m : models_)
+      if (m->depends_on_masses())
+        throw Error("density scaling would change the masses contact model " + m->name() +
+                    " set its damping from (its coefficient of restitution); run it without density scaling");
   for (std::size_t i = 0; i < n; ++i) {
     if (spheres.fixed[i]) continue;
     if (kt[i] <= 0) {  // no neighbour yet: one contact of the stiffest model
@@ -219,19 +226,32 @@ void World::update_time_step() {
       kr[i] = kt[i] * spheres.radius[i] * spheres.radius[i];
     }
     if (spheres.clump[i] >= 0) continue;  // bounded through its clump below
+    if (scaled_step > 0) {
+      spheres.mass[i] = std::max(spheres.mass[i], kt[i] * scaled_step * scaled_step);
+      spheres.inertia[i] = std::max(spheres.inertia[i], kr[i] * scaled_step * scaled_step);
+      in.inverse_mass[i] = 1.0 / spheres.mass[i];
+      in.inverse_inertia[i] = 1.0 / spheres.inertia[i];
+    }
     if (kt[i] > 0) dt = std::min(dt, std::sqrt(spheres.mass[i] / kt[i]));
     if (kr[i] > 0) dt = std::min(dt, std::sqrt(spheres.inertia[i] / kr[i]));
   }
   // A clump: the stiffness of all its members' contacts, the rotational one
   // about its centre, against its own mass and smallest principal moment.
   for (std::size_t k = 0; k < clumps_.size(); ++k) {
-    const Clump& c = clumps_[k];
+    Clump& c = clumps_[k];
     double ct = 0, cr = 0;
     for (std::size_t m = 0; m < in.member_index[k].size(); ++m) {
       const std::size_t i = in.member_index[k][m];
       const Vec3 offset = c.member_offsets_body_m[m];
       ct += kt[i];
       cr += kr[i] + kt[i] * dot(offset, offset);
+    }
+    if (scaled_step > 0) {
+      // The clump's own mass and principal moments (its members' never count).
+      c.mass_kg = std::max(c.mass_kg, ct * scaled_step * scaled_step);
+      Vec3& moments = c.principal_inertia_kg_m2;
+      const double least = cr * scaled_step * scaled_step;
+      moments = {std::max(moments.x, least), std::max(moments.y, least), std::max(moments.z, least)};
     }
     const Vec3 inertia = c.principal_inertia_kg_m2;
     if (ct > 0) dt = std::min(dt, std::sqrt(c.mass_kg / ct));

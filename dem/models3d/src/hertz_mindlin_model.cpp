@@ -130,6 +130,7 @@ class HertzMindlinModel : public ContactModel {
   // wall (1/m_t = 1/m_i + 1/m_j + R_i^2/I_i + R_j^2/I_j, I = 2/5 m R^2), so
   // its zeta is sqrt(3.5) times that.
   double max_damping_ratio() const override { return std::sqrt(3.5) * 0.5 * damping_; }
+  bool depends_on_masses() const override { return true; }
 
  private:
   static void leave(PairBlock& c, std::size_t k, const PairForces& out) {

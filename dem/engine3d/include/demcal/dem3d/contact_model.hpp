@@ -87,6 +87,9 @@ class ContactModel {
   // The largest damping ratio its dashpots give any mode (0 without dashpots):
   // the step shrinks by sqrt(1 + zeta^2) - zeta, as in 2D.
   virtual double max_damping_ratio() const { return 0.0; }
+  // True when the model's forces depend on the masses it was given in
+  // PairInfo (a damping set for a restitution): density scaling is then refused.
+  virtual bool depends_on_masses() const { return false; }
 };
 
 using ContactModelFactory =

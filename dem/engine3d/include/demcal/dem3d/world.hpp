@@ -30,6 +30,11 @@ struct WorldSettings {
   double skin_m = 0.0;         // neighbour-list skin; 0: 0.25 x the mean radius at the first build
   Vec3 gravity_m_s2;
   double fixed_dt_s = 0.0;  // > 0 replaces the computed time step
+  // Density scaling for quasi-static tests: > 0 raises each sphere's (and
+  // clump's) mass and inertia, never lowers them, until the time step is this
+  // value. It changes the dynamics: results must be checked against an
+  // unscaled run. Refused with a model whose damping is set from the masses.
+  double density_scaling_dt_s = 0.0;
   // Threads one run's loops may use (OpenMP): 0 takes OpenMP's default.
   // Results do not depend on it.
   int threads = 0;
