@@ -115,8 +115,8 @@ TEST(LinearContact3D, ARigidRotationTurnsTheForceWithThePair) {
     PairInfo info;
     info.radius_i = info.radius_j = kRadius;
     model->initialise(block, 0, info);
-    std::vector<double> f(9);
-    const PairForces out{&f[0], &f[1], &f[2], &f[3], &f[4], &f[5], &f[6], &f[7], &f[8]};
+    std::vector<double> f(9);  // the force on i, then the moments of i and j per component
+    const PairForces out{&f[0], &f[1], &f[2], &f[3], &f[5], &f[7]};
     // First a shear: sphere 1 slides along y for 100 steps of 1e-7 s at 1 mm/s.
     const double dt = 1e-7;
     s.set_velocity(1, {0, 1e-3, 0});

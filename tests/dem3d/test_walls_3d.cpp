@@ -56,7 +56,7 @@ TEST(Walls3D, ASphereInATurningDrumRollsWithoutSlip) {
   EXPECT_NEAR(spin.x, drum_rate * drum_radius / kRadius, 1e-3 * drum_rate * drum_radius / kRadius);
   EXPECT_NEAR(spin.y, 0.0, 1e-6);
   EXPECT_NEAR(norm(world.spheres.velocity(0)), 0.0, 1e-6);
-  EXPECT_NEAR(world.spheres.y[0], 0.0, 1e-6 * drum_radius);  // back at the bottom, no friction left
+  EXPECT_NEAR(world.spheres.y[0], 0.0, 1e-5 * drum_radius);  // back at the bottom (its rolling sway decays slowly)
   // The drum feels the sphere's weight and no torque about its axis once it rolls.
   EXPECT_NEAR(world.walls[0].moment_nm.x, 0.0, 1e-6 * world.spheres.mass[0] * 9.81 * drum_radius);
 }

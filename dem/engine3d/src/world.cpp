@@ -158,22 +158,26 @@ void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>
 void World::build_sums() {
   Internals& in = *internals_;
   const std::size_t n = spheres.size();
-  in.sum_begin.assign(n + 1, 0);
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    ++in.sum_begin[static_cast<std::size_t>(pairs_.i[k]) + 1];
-    ++in.sum_begin[static_cast<std::size_t>(pairs_.j[k]) + 1];
-  }
-  for (std::size_t k = 0; k < wall_pairs_.size(); ++k) ++in.sum_begin[static_cast<std::size_t>(wall_pairs_.i[k]) + 1];
-  for (std::size_t i = 0; i < n; ++i) in.sum_begin[i + 1] += in.sum_begin[i];
-  in.sum_entry.assign(in.sum_begin[n], 0);
-  std::vector<std::uint32_t> next(in.sum_begin.begin(), in.sum_begin.end() - 1);
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto key = static_cast<std::uint32_t>(k) * 4;
-    in.sum_entry[next[static_cast<std::size_t>(pairs_.i[k])]++] = key + Internals::kAsI;
-    in.sum_entry[next[static_cast<std::size_t>(pairs_.j[k])]++] = key + Internals::kAsJ;
-  }
-  for (std::size_t k = 0; k < wall_pairs_.size(); ++k)
-    in.sum_entry[next[static_cast<std::size_t>(wall_pairs_.i[k])]++] = static_cast<std::uint32_t>(k) * 4 + Internals::kOnWall;
+  auto fill = [n](std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& entry, std::size_t count,
+                  const auto& each) {
+    begin.assign(n + 1, 0);
+    each([&](std::size_t sphere, std::uint32_t) { ++begin[sphere + 1]; });
+    for (std::size_t i = 0; i < n; ++i) begin[i + 1] += begin[i];
+    entry.assign(begin[n], 0);
+    std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
+    each([&](std::size_t sphere, std::uint32_t value) { entry[next[sphere]++] = value; });
+    (void)count;
+  };
+  fill(in.sum_begin, in.sum_entry, pairs_.size(), [&](const auto& put) {
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      put(static_cast<std::size_t>(pairs_.i[k]), static_cast<std::uint32_t>(2 * k));
+      put(static_cast<std::size_t>(pairs_.j[k]), static_cast<std::uint32_t>(2 * k + 1));
+    }
+  });
+  fill(in.wall_begin, in.wall_entry, wall_pairs_.size(), [&](const auto& put) {
+    for (std::size_t k = 0; k < wall_pairs_.size(); ++k)
+      put(static_cast<std::size_t>(wall_pairs_.i[k]), static_cast<std::uint32_t>(k));
+  });
 }
 
 void World::update_time_step() {
@@ -295,9 +299,18 @@ void World::compute_pair_forces() {
   Internals& in = *internals_;
   const StepContext step{dt_s_, time_s_};
   compute_wall_geometry();
-  const PairForces sphere_out = in.sphere_pair_forces.view(), wall_out = in.wall_pair_forces.view();
-  const WallGeometry geometry = in.wall_geometry.view();
   const int team = threads_in_use_;
+  in.direct = team == 1;
+  PairForces sphere_out = in.sphere_pair_forces.view();
+  const PairForces wall_out = in.wall_pair_forces.view();
+  if (in.direct) {
+    for (auto* v : {&in.sum_fx, &in.sum_fy, &in.sum_fz, &in.sum_mx, &in.sum_my, &in.sum_mz})
+      v->assign(spheres.size(), 0.0);
+    sphere_out.sum_fx = in.sum_fx.data(), sphere_out.sum_fy = in.sum_fy.data(), sphere_out.sum_fz = in.sum_fz.data();
+    sphere_out.sum_mx = in.sum_mx.data(), sphere_out.sum_my = in.sum_my.data(), sphere_out.sum_mz = in.sum_mz.data();
+    sphere_out.i = pairs_.i.data(), sphere_out.j = pairs_.j.data();
+  }
+  const WallGeometry geometry = in.wall_geometry.view();
   // Each thread takes the same share of every model's block: a pair's force
   // depends on its own state alone, so any split gives the same numbers.
 #pragma omp parallel num_threads(team) if (team > 1)
@@ -395,7 +408,9 @@ void World::compute_wall_geometry() {
 
 namespace {
 
-inline double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
+// Without a branch: a velocity's sign is as likely either way, and a
+// mispredicted branch per component cost a fifth of the step.
+inline double sign_of(double v) { return static_cast<double>((v > 0) - (v < 0)); }
 
 // One component of the velocity after a step under `force` with local damping alpha.
 inline double damped_velocity(double v, double force, double alpha, double to_velocity) {
@@ -411,29 +426,31 @@ void World::integrate() {
   const Vec3 g = settings_.gravity_m_s2;
   const PairForceArrays& sp = in.sphere_pair_forces;
   const PairForceArrays& pp = in.wall_pair_forces;
+  const bool direct = in.direct;
   Spheres& s = spheres;
   double max_move2 = in.max_move2;
   const int team = threads_in_use_;
 #pragma omp parallel for num_threads(team) if (team > 1) schedule(static) reduction(max : max_move2)
   for (std::size_t i = 0; i < n; ++i) {
-    // The sphere's pairs in pair order: the same sum on any thread and in any storage order.
+    // The sphere's pairs in pair order, then its wall pairs: the same sum on
+    // any thread and in any storage order. The force's sign by the entry's low
+    // bit (a product by +-1 is exact), the moment at the entry itself.
     double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
-    for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
-      const std::uint32_t entry = in.sum_entry[e];
-      const std::size_t k = entry >> 2;
-      switch (entry & 3u) {  // kOnWall in default
-        case Internals::kAsI:
-          fx += sp.fx[k], fy += sp.fy[k], fz += sp.fz[k];
-          mx += sp.mix[k], my += sp.miy[k], mz += sp.miz[k];
-          break;
-        case Internals::kAsJ:
-          fx -= sp.fx[k], fy -= sp.fy[k], fz -= sp.fz[k];
-          mx += sp.mjx[k], my += sp.mjy[k], mz += sp.mjz[k];
-          break;
-        default:
-          fx += pp.fx[k], fy += pp.fy[k], fz += pp.fz[k];
-          mx += pp.mix[k], my += pp.miy[k], mz += pp.miz[k];
+    if (direct) {
+      fx = in.sum_fx[i], fy = in.sum_fy[i], fz = in.sum_fz[i], mx = in.sum_mx[i], my = in.sum_my[i], mz = in.sum_mz[i];
+    } else {
+      for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
+        const std::uint32_t entry = in.sum_entry[e];
+        const std::size_t k = entry >> 1;
+        const double sign = 1.0 - 2.0 * static_cast<double>(entry & 1u);
+        fx += sign * sp.fx[k], fy += sign * sp.fy[k], fz += sign * sp.fz[k];
+        mx += sp.mx[entry], my += sp.my[entry], mz += sp.mz[entry];
       }
+    }
+    for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
+      const std::size_t k = in.wall_entry[e];
+      fx += pp.fx[k], fy += pp.fy[k], fz += pp.fz[k];
+      mx += pp.mx[2 * k], my += pp.my[2 * k], mz += pp.mz[2 * k];
     }
     if (s.fixed[i]) {
       s.vx[i] = s.vy[i] = s.vz[i] = s.wx[i] = s.wy[i] = s.wz[i] = 0;
@@ -487,11 +504,13 @@ double World::force_ratio() const {
     if (spheres.fixed[i] || spheres.clump[i] >= 0) continue;
     Vec3 f = spheres.mass[i] * settings_.gravity_m_s2;
     for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
-      const std::uint32_t entry = in.sum_entry[e];
-      const std::size_t k = entry >> 2;
-      const PairForceArrays& a = (entry & 3u) == Internals::kOnWall ? wp : sp;
-      const Vec3 pair_force = {a.fx[k], a.fy[k], a.fz[k]};
-      f = (entry & 3u) == Internals::kAsJ ? f - pair_force : f + pair_force;
+      const std::size_t k = in.sum_entry[e] >> 1;
+      const Vec3 pair_force = {sp.fx[k], sp.fy[k], sp.fz[k]};
+      f = (in.sum_entry[e] & 1u) ? f - pair_force : f + pair_force;
+    }
+    for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
+      const std::size_t k = in.wall_entry[e];
+      f = f + Vec3{wp.fx[k], wp.fy[k], wp.fz[k]};
     }
     unbalanced_sum += norm(f);
     ++free_spheres;

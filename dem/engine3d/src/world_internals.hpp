@@ -9,15 +9,14 @@
 
 namespace demcal::dem3d {
 
-// Nine values per pair: the force on i and the moments about both centres.
+// Nine values per pair: the force on i, and the moments about both centres (i's at 2k, j's at 2k + 1).
 struct PairForceArrays {
-  std::vector<double> fx, fy, fz, mix, miy, miz, mjx, mjy, mjz;
+  std::vector<double> fx, fy, fz, mx, my, mz;
   void resize(std::size_t n) {
-    for (auto* v : {&fx, &fy, &fz, &mix, &miy, &miz, &mjx, &mjy, &mjz}) v->assign(n, 0.0);
+    for (auto* v : {&fx, &fy, &fz}) v->assign(n, 0.0);
+    for (auto* v : {&mx, &my, &mz}) v->assign(2 * n, 0.0);
   }
-  PairForces view() {
-    return {fx.data(), fy.data(), fz.data(), mix.data(), miy.data(), miz.data(), mjx.data(), mjy.data(), mjz.data()};
-  }
+  PairForces view() { return {fx.data(), fy.data(), fz.data(), mx.data(), my.data(), mz.data()}; }
 };
 
 // The contact geometry of every wall pair at this step.
@@ -36,11 +35,15 @@ struct WallGeometryArrays {
 struct World::Internals {
   PairForceArrays sphere_pair_forces, wall_pair_forces;
   WallGeometryArrays wall_geometry;
-  // Per sphere, its pairs in pair order (sphere pairs, then wall pairs):
-  // entries [sum_begin[i], sum_begin[i + 1]) of sum_entry, each a pair index
-  // times 4 plus how the sphere takes part (kAsI, kAsJ, kOnWall).
-  std::vector<std::uint32_t> sum_begin, sum_entry;
-  static constexpr std::uint32_t kAsI = 0, kAsJ = 1, kOnWall = 2;
+  // Per sphere, its sphere pairs in pair order: entries [sum_begin[i],
+  // sum_begin[i + 1]) of sum_entry, each 2 k for pair k's i, 2 k + 1 for its j
+  // (the moment's index; the force's sign); then its wall pairs likewise in
+  // wall_begin and wall_entry (entries k).
+  std::vector<std::uint32_t> sum_begin, sum_entry, wall_begin, wall_entry;
+  // On one thread the sphere pairs add straight into these per-sphere sums
+  // (PairForces direct), in pair order: the same sums as the stored path.
+  std::vector<double> sum_fx, sum_fy, sum_fz, sum_mx, sum_my, sum_mz;
+  bool direct = false;
   std::vector<double> x_built, y_built, z_built;
   // The walls as they were at the last build, and the spheres' extent then
   // (a turning plane or cylinder moves by its angle times that extent at most).

@@ -115,7 +115,8 @@ class LinearModel : public ContactModel {
     c.flags[k] &= ~static_cast<dem::PairFlags>(dem::kTouching);
     out.set(k, {}, {}, {});
   }
-  static void touch(PairBlock& c, std::size_t k, const PairForces& out, LinearContactInput in, double arm_j) {
+  [[gnu::always_inline]] static inline void touch(PairBlock& c, std::size_t k, const PairForces& out,
+                                                  LinearContactInput in, double arm_j) {
     in.kn_n_m = c.column[kKn][k];
     in.ks_n_m = c.column[kKs][k];
     in.friction = c.column[kFriction][k];

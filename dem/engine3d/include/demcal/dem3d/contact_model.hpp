@@ -5,6 +5,7 @@
 // of demcal/dem/contacts.hpp, shared with 2D). Unlike 2D, a model writes each
 // pair's force and moments into PairForces and the world sums them per sphere
 // in pair order, so any split of the pairs between threads gives the same bits.
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -26,22 +27,45 @@ struct StepContext {
   double time_s = 0;
 };
 
-// Where a block's pair k puts what it gives: the force on sphere i (its
-// partner gets the opposite) and the moments about each centre. For a
-// sphere-wall pair, i is the sphere and the wall gets the opposite force.
+// Where a block's sphere pair k puts what it gives: the force on sphere i
+// (its partner gets the opposite) and the moments about each centre.
+//   - Stored per pair (several threads): i's moment at 2k, j's at 2k + 1, and
+//     the world sums each sphere's pairs afterwards, in pair order.
+//   - Added at once to the spheres' sums (`direct`, one thread: the pairs come
+//     in pair order, so each sphere's sum is the same, bit for bit); the force
+//     is stored per pair too (the equilibrium measure reads it).
+// For a sphere-wall pair, i is the sphere and the wall gets the opposite force;
+// wall pairs are always stored.
 struct PairForces {
   double *fx, *fy, *fz;
-  double *mix, *miy, *miz;
-  double *mjx, *mjy, *mjz;
-  // The same arrays from pair `first` on (a block's, or a thread's part of it).
+  double *mx, *my, *mz;  // two per pair
+  // Direct: the spheres' sums and the block's pair ends (nullptr when stored).
+  double *sum_fx = nullptr, *sum_fy = nullptr, *sum_fz = nullptr, *sum_mx = nullptr, *sum_my = nullptr,
+         *sum_mz = nullptr;
+  const std::int32_t *i = nullptr, *j = nullptr;
+
+  // The same from pair `first` on (a block's, or a thread's part of it).
   PairForces from(std::size_t first) const {
-    return {fx + first, fy + first, fz + first, mix + first, miy + first, miz + first,
-            mjx + first, mjy + first, mjz + first};
+    PairForces out = *this;
+    out.fx = fx + first, out.fy = fy + first, out.fz = fz + first;
+    if (sum_fx)
+      out.i = i + first, out.j = j + first;
+    else
+      out.mx = mx + 2 * first, out.my = my + 2 * first, out.mz = mz + 2 * first;
+    return out;
   }
   void set(std::size_t k, Vec3 force, Vec3 moment_i, Vec3 moment_j) const {
     fx[k] = force.x, fy[k] = force.y, fz[k] = force.z;
-    mix[k] = moment_i.x, miy[k] = moment_i.y, miz[k] = moment_i.z;
-    mjx[k] = moment_j.x, mjy[k] = moment_j.y, mjz[k] = moment_j.z;
+    if (sum_fx) {
+      const auto a = static_cast<std::size_t>(i[k]), b = static_cast<std::size_t>(j[k]);
+      sum_fx[a] += force.x, sum_fy[a] += force.y, sum_fz[a] += force.z;
+      sum_mx[a] += moment_i.x, sum_my[a] += moment_i.y, sum_mz[a] += moment_i.z;
+      sum_fx[b] -= force.x, sum_fy[b] -= force.y, sum_fz[b] -= force.z;
+      sum_mx[b] += moment_j.x, sum_my[b] += moment_j.y, sum_mz[b] += moment_j.z;
+      return;
+    }
+    mx[2 * k] = moment_i.x, my[2 * k] = moment_i.y, mz[2 * k] = moment_i.z;
+    mx[2 * k + 1] = moment_j.x, my[2 * k + 1] = moment_j.y, mz[2 * k + 1] = moment_j.z;
   }
 };
 

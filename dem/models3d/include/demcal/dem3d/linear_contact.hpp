@@ -25,11 +25,12 @@ struct LinearContactInput {
 // kept (first order in the step's angle; objective under a rigid rotation of
 // the pair).
 inline Vec3 turned_shear(Vec3 stored, Vec3 n, Vec3 mean_spin_rad_s, double dt_s) {
-  const double length = norm(stored);
+  const double length2 = dot(stored, stored);
+  if (!(length2 > 0)) return stored;  // nothing stored (a new contact): nothing to turn
   Vec3 fs = stored - dot(stored, n) * n;
   fs = fs + (dot(mean_spin_rad_s, n) * dt_s) * cross(n, fs);
-  const double turned = norm(fs);
-  return turned > 0 ? (length / turned) * fs : fs;
+  const double turned2 = dot(fs, fs);
+  return turned2 > 0 ? std::sqrt(length2 / turned2) * fs : fs;
 }
 
 // The new shear force (force on i), from the stored one; `normal_force_n` gets the normal force's size.
@@ -39,8 +40,9 @@ inline Vec3 linear_shear_force(const LinearContactInput& in, Vec3 stored, double
   Vec3 fs = turned_shear(stored, n, in.mean_spin_rad_s, in.dt_s);
   const Vec3 vt = in.relative_velocity_m_s - dot(in.relative_velocity_m_s, n) * n;
   fs = fs + (in.ks_n_m * in.dt_s) * vt;
-  const double limit = in.friction * normal_force_n, size = norm(fs);
-  if (size > limit) fs = (size > 0 ? limit / size : 0.0) * fs;
+  // Coulomb's cap; the square root only for a sliding contact.
+  const double limit = in.friction * normal_force_n, size2 = dot(fs, fs);
+  if (size2 > limit * limit) fs = (limit / std::sqrt(size2)) * fs;
   return fs;
 }
 
