@@ -3,6 +3,7 @@
 // cache, and bad specs refused naming the field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -35,6 +36,12 @@ TEST(Genesis3D, ReachesThePorosityInsideItsVessel) {
     // A frictionless packing at this porosity holds each sphere by four or more contacts on average.
     EXPECT_GT(s.coordination_number, 4.0);
     EXPECT_LT(s.mean_overlap_ratio, 0.05);
+    // The kept spheres are the held ones: hardly any has fewer than three sphere contacts (the rest lean on walls).
+    std::vector<int> contacts(s.size(), 0);
+    for (std::size_t a = 0; a < s.size(); ++a)
+      for (std::size_t b = a + 1; b < s.size(); ++b)
+        if (std::hypot(s.x[b] - s.x[a], s.y[b] - s.y[a], s.z[b] - s.z[a]) < s.radius[a] + s.radius[b]) ++contacts[a], ++contacts[b];
+    EXPECT_LT(std::count_if(contacts.begin(), contacts.end(), [](int c) { return c < 3; }), 0.05 * static_cast<double>(s.size()));
     for (std::size_t i = 0; i < s.size(); ++i) {
       const double reach = 0.2 * s.radius[i];  // overlaps with the vessel stay small
       EXPECT_GT(s.z[i], s.radius[i] - reach);

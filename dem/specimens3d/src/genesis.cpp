@@ -25,7 +25,9 @@ void set_radius(Spheres& s, std::size_t i, double radius, double density) {
   s.inertia[i] = 0.4 * s.mass[i] * radius * radius;
 }
 
-// Contacts per sphere (index), walls included, from the current overlaps.
+// Contacts per sphere, walls included, from the current overlaps, by sphere
+// id (the world reorders its spheres at every rebuild, so an index would go
+// stale).
 std::vector<int> contact_counts(const World& world) {
   const Spheres& s = world.spheres;
   std::vector<int> count(s.size(), 0);
@@ -33,12 +35,12 @@ std::vector<int> contact_counts(const World& world) {
   for (std::size_t k = 0; k < c.size(); ++k) {
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     const Vec3 d = s.position(j) - s.position(i);
-    if (norm(d) < s.radius[i] + s.radius[j]) ++count[i], ++count[j];
+    if (norm(d) < s.radius[i] + s.radius[j]) ++count[s.id[i]], ++count[s.id[j]];
   }
   const dem::ContactSet& w = world.wall_pairs();
   for (std::size_t k = 0; k < w.size(); ++k) {
     const auto i = static_cast<std::size_t>(w.i[k]);
-    if (world.walls[static_cast<std::size_t>(w.j[k])].contact(s.position(i), s.radius[i]).overlap_m > 0) ++count[i];
+    if (world.walls[static_cast<std::size_t>(w.j[k])].contact(s.position(i), s.radius[i]).overlap_m > 0) ++count[s.id[i]];
   }
   return count;
 }
@@ -79,7 +81,7 @@ std::size_t SphereSpecimenSpec::sphere_count() const {
 std::string SphereSpecimenSpec::cache_key() const {
   std::ostringstream key;
   // The version changes with anything that moves a packing's numbers.
-  key << "genesis3d-v1 vessel=" << (vessel == Vessel::box ? "box" : "cylinder") << " W=" << format_double(width_m)
+  key << "genesis3d-v2 vessel=" << (vessel == Vessel::box ? "box" : "cylinder") << " W=" << format_double(width_m)
       << " D=" << format_double(vessel == Vessel::box ? depth_m : width_m) << " H=" << format_double(height_m)
       << " n=" << format_double(porosity) << " Rmin=" << format_double(radius_min_m)
       << " Rmax=" << format_double(radius_max_m) << " rho=" << format_double(density_kg_m3)
@@ -188,7 +190,7 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
       bool any = false;
       Spheres& s = world.spheres;
       for (std::size_t i = 0; i < n; ++i)
-        if (count[i] < spec.min_contacts && s.radius[i] < 1.05 * final_radius[s.id[i]]) {
+        if (count[s.id[i]] < spec.min_contacts && s.radius[i] < 1.05 * final_radius[s.id[i]]) {
           set_radius(s, i, s.radius[i] * 1.005, spec.density_kg_m3);
           any = true;
         }
@@ -200,12 +202,12 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
     double kept_solid = 0;
     const Spheres& s = world.spheres;
     for (std::size_t i = 0; i < n; ++i)
-      if (count[i] >= spec.min_contacts) kept_solid += 4.0 / 3.0 * M_PI * s.radius[i] * s.radius[i] * s.radius[i];
+      if (count[s.id[i]] >= spec.min_contacts) kept_solid += 4.0 / 3.0 * M_PI * s.radius[i] * s.radius[i] * s.radius[i];
     const double target_solid = (1 - spec.porosity) * volume;
     if (std::abs(kept_solid / target_solid - 1) < 1e-3) break;
     const double grow = std::cbrt(target_solid / kept_solid);
     for (std::size_t i = 0; i < n; ++i)
-      if (count[i] >= spec.min_contacts) set_radius(world.spheres, i, s.radius[i] * grow, spec.density_kg_m3);
+      if (count[s.id[i]] >= spec.min_contacts) set_radius(world.spheres, i, s.radius[i] * grow, spec.density_kg_m3);
     world.refresh();
     cycle_to_equilibrium(world, 1e-3, 20000);
     advance();
@@ -224,7 +226,7 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
   std::vector<std::int64_t> kept_index(n, -1);
   double kept_solid = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (count[i] < spec.min_contacts) {
+    if (count[s.id[i]] < spec.min_contacts) {
       ++out.floaters_removed;
       continue;
     }
@@ -248,6 +250,13 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
   out.coordination_number = out.size() ? 2.0 * static_cast<double>(contacts) / static_cast<double>(out.size()) : 0.0;
   out.mean_overlap_ratio = contacts ? overlap_ratio_sum / static_cast<double>(contacts) : 0.0;
   out.steps = world.steps_done();
+  // Frictionless spheres without gravity jam only near random close packing:
+  // a looser porosity leaves them apart, held by nothing.
+  if (out.coordination_number < 3)
+    throw Error("specimen: at porosity " + format_double(spec.porosity) + " the packing did not jam (" +
+                format_double(out.coordination_number) +
+                " contacts per sphere); a frictionless packing needs a porosity near random close packing, about "
+                "0.36 for radii in a 1:1.5 range");
   if (std::abs(out.porosity - spec.porosity) > 0.005)
     throw Error("specimen: genesis reached porosity " + format_double(out.porosity) + ", not the " +
                 format_double(spec.porosity) + " asked (" + std::to_string(out.floaters_removed) +

@@ -52,7 +52,8 @@ struct SphereSpecimen {
 // the vessel fixed; floaters grown by up to 5 % and removed when that fails,
 // the kept spheres scaled back to the porosity. The spheres keep their
 // overlaps (a bonded test makes them force-free as they lie). A porosity more
-// than 0.005 from the one asked is an Error.
+// than 0.005 from the one asked, or a packing that did not jam (fewer than 3
+// contacts per sphere: too loose for frictionless spheres), is an Error.
 SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec);
 
 // Refuses (an Error) a packing that would need more than 80 % of the
