@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <numeric>
 #include <tuple>
+#include <utility>
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem3d/world.hpp"
@@ -91,67 +92,65 @@ void World::reorder_spheres() {
 void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {
   const Spheres& s = spheres;
   const std::size_t n = s.size();
-  struct Found {
-    std::uint8_t model;
-    std::uint32_t first, second;  // storage indices, first < second: the order
-    std::uint64_t key;
-    std::int32_t i, j;
-  };
-  std::vector<Found> found;
+  // Each model's pairs as (first, second) storage indices, first < second.
+  // Sphere `first` runs in storage order and its partners are sorted, so every
+  // list comes out in (first, second) order without a sort of the whole list.
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(models_.size());
   if (n > 1) {
     const Grid g = make_grid(s, 2 * largest_radius(s) + skin_m_);
     const auto cells = static_cast<std::size_t>(g.nx * g.ny * g.nz);
     // The spheres by cell (a counting sort): cell c holds by_cell[start[c], start[c + 1]).
-    std::vector<std::uint32_t> cell_of(n), start(cells + 1, 0), by_cell(n);
+    std::vector<std::uint32_t> start(cells + 1, 0), by_cell(n);
+    std::vector<std::int64_t> cx(n), cy(n), cz(n);
     for (std::size_t i = 0; i < n; ++i) {
-      cell_of[i] = static_cast<std::uint32_t>(g.index(g.coordinate(s.x[i], g.x0, g.nx), g.coordinate(s.y[i], g.y0, g.ny),
-                                                      g.coordinate(s.z[i], g.z0, g.nz)));
-      ++start[cell_of[i] + 1];
+      cx[i] = g.coordinate(s.x[i], g.x0, g.nx), cy[i] = g.coordinate(s.y[i], g.y0, g.ny);
+      cz[i] = g.coordinate(s.z[i], g.z0, g.nz);
+      ++start[static_cast<std::size_t>(g.index(cx[i], cy[i], cz[i])) + 1];
     }
     for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
     std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) by_cell[next[cell_of[i]]++] = static_cast<std::uint32_t>(i);
-    found.reserve(8 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      by_cell[next[static_cast<std::size_t>(g.index(cx[i], cy[i], cz[i]))]++] = static_cast<std::uint32_t>(i);
+    for (auto& list : found) list.reserve(4 * n);
+    std::vector<std::pair<std::uint32_t, std::uint8_t>> partners;  // sphere a's, before sorting
     for (std::size_t a = 0; a < n; ++a) {
-      const std::int64_t cx = g.coordinate(s.x[a], g.x0, g.nx), cy = g.coordinate(s.y[a], g.y0, g.ny),
-                         cz = g.coordinate(s.z[a], g.z0, g.nz);
-      for (std::int64_t dz = -1; dz <= 1; ++dz)
-        for (std::int64_t dy = -1; dy <= 1; ++dy)
-          for (std::int64_t dx = -1; dx <= 1; ++dx) {
-            const std::int64_t x = cx + dx, y = cy + dy, z = cz + dz;
-            if (x < 0 || y < 0 || z < 0 || x >= g.nx || y >= g.ny || z >= g.nz) continue;
-            const auto c = static_cast<std::size_t>(g.index(x, y, z));
-            for (std::uint32_t e = start[c]; e < start[c + 1]; ++e) {
-              const std::size_t b = by_cell[e];
-              if (b <= a) continue;  // each pair once
-              const std::uint8_t model = model_for(s.group[a], s.group[b]);
-              if (model == kNoModel || (s.fixed[a] && s.fixed[b])) continue;
-              if (s.clump[a] >= 0 && s.clump[a] == s.clump[b]) continue;  // one rigid body
-              const double ddx = s.x[b] - s.x[a], ddy = s.y[b] - s.y[a], ddz = s.z[b] - s.z[a];
-              const double reach = s.radius[a] + s.radius[b] + skin_m_;
-              if (ddx * ddx + ddy * ddy + ddz * ddz >= reach * reach) continue;
-              // i is the sphere with the smaller id, so a pair's orientation does not depend on storage.
-              const bool a_first = s.id[a] < s.id[b];
-              const std::size_t i = a_first ? a : b, j = a_first ? b : a;
-              found.push_back({model, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-                               static_cast<std::uint64_t>(s.id[i]) << 32 | s.id[j], static_cast<std::int32_t>(i),
-                               static_cast<std::int32_t>(j)});
-            }
+      partners.clear();
+      const double xa = s.x[a], ya = s.y[a], za = s.z[a], reach_a = s.radius[a] + skin_m_;
+      for (std::int64_t z = std::max<std::int64_t>(cz[a] - 1, 0); z <= std::min(cz[a] + 1, g.nz - 1); ++z)
+        for (std::int64_t y = std::max<std::int64_t>(cy[a] - 1, 0); y <= std::min(cy[a] + 1, g.ny - 1); ++y) {
+          // The three cells of this row are consecutive in by_cell.
+          const std::int64_t x0 = std::max<std::int64_t>(cx[a] - 1, 0), x1 = std::min(cx[a] + 1, g.nx - 1);
+          const std::uint32_t from = start[static_cast<std::size_t>(g.index(x0, y, z))];
+          const std::uint32_t to = start[static_cast<std::size_t>(g.index(x1, y, z)) + 1];
+          for (std::uint32_t e = from; e < to; ++e) {
+            const std::size_t b = by_cell[e];
+            if (b <= a) continue;  // each pair once, from its first sphere
+            const double ddx = s.x[b] - xa, ddy = s.y[b] - ya, ddz = s.z[b] - za, reach = reach_a + s.radius[b];
+            if (ddx * ddx + ddy * ddy + ddz * ddz >= reach * reach) continue;
+            const std::uint8_t model = model_for(s.group[a], s.group[b]);
+            if (model == kNoModel || (s.fixed[a] && s.fixed[b])) continue;
+            if (s.clump[a] >= 0 && s.clump[a] == s.clump[b]) continue;  // one rigid body
+            partners.emplace_back(static_cast<std::uint32_t>(b), model);
           }
+        }
+      std::sort(partners.begin(), partners.end());
+      for (const auto& [b, model] : partners) found[model].emplace_back(static_cast<std::uint32_t>(a), b);
     }
   }
-  std::sort(found.begin(), found.end(), [](const Found& p, const Found& q) {
-    return std::tie(p.model, p.first, p.second) < std::tie(q.model, q.first, q.second);
-  });
   std::vector<std::size_t> per_model(models_.size(), 0);
-  for (const Found& f : found) ++per_model[f.model];
+  for (std::size_t m = 0; m < found.size(); ++m) per_model[m] = found[m].size();
   fresh.assign_blocks(per_model);
-  keys.resize(found.size());
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    fresh.i[k] = found[k].i;
-    fresh.j[k] = found[k].j;
-    keys[k] = found[k].key;
-  }
+  keys.resize(fresh.size());
+  std::size_t k = 0;
+  for (const auto& list : found)
+    for (const auto& [a, b] : list) {
+      // i is the sphere with the smaller id, so a pair's orientation does not depend on storage.
+      const bool a_first = s.id[a] < s.id[b];
+      const std::uint32_t i = a_first ? a : b, j = a_first ? b : a;
+      fresh.i[k] = static_cast<std::int32_t>(i);
+      fresh.j[k] = static_cast<std::int32_t>(j);
+      keys[k++] = static_cast<std::uint64_t>(s.id[i]) << 32 | s.id[j];
+    }
 }
 
 void World::build_wall_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -115,27 +116,70 @@ void World::rebuild() {
 void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>& fresh_keys,
                         const dem::ContactSet& old, const std::vector<std::uint64_t>& old_keys) {
   const bool walls_set = &old == &wall_pairs_;
-  // Each model's pairs, old and fresh, in key order: one walk matches them.
-  auto by_key = [](const std::vector<std::uint64_t>& keys, std::size_t begin, std::size_t end) {
-    std::vector<std::pair<std::uint64_t, std::size_t>> out;
-    out.reserve(end - begin);
-    for (std::size_t k = begin; k < end; ++k) out.emplace_back(keys[k], k);
-    std::sort(out.begin(), out.end());
-    return out;
-  };
+  std::vector<std::uint8_t> carried(fresh.size(), 0);
+  if (!walls_set) {
+    // Sphere pairs: each model's fresh pairs run by (first, second) storage
+    // index, so the pair of two spheres is found in its first sphere's short
+    // row; an old pair's spheres are found by id.
+    const std::size_t n = spheres.size();
+    std::vector<std::uint32_t> index_of_id;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (spheres.id[i] >= index_of_id.size()) index_of_id.resize(spheres.id[i] + std::size_t{1}, UINT32_MAX);
+      index_of_id[spheres.id[i]] = static_cast<std::uint32_t>(i);
+    }
+    std::vector<std::uint32_t> row(n + 1);
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const auto model = static_cast<std::uint8_t>(m);
+      const std::size_t begin = fresh.begin(model), end = fresh.end(model);
+      if (end == begin || old.end(model) == old.begin(model)) continue;
+      std::fill(row.begin(), row.end(), 0);
+      for (std::size_t k = begin; k < end; ++k) ++row[std::min(fresh.i[k], fresh.j[k]) + std::size_t{1}];
+      for (std::size_t i = 0; i < n; ++i) row[i + 1] += row[i];
+      for (std::size_t k = old.begin(model); k < old.end(model); ++k) {
+        const std::uint64_t key = old_keys[k];
+        const std::uint64_t id_i = key >> 32, id_j = key & 0xffffffffu;
+        if (id_i >= index_of_id.size() || id_j >= index_of_id.size()) continue;
+        const std::uint32_t a = index_of_id[id_i], b = index_of_id[id_j];
+        if (a == UINT32_MAX || b == UINT32_MAX) continue;
+        const std::uint32_t first = std::min(a, b);
+        for (std::size_t f = begin + row[first]; f < begin + row[first + 1]; ++f)
+          if (fresh_keys[f] == key) {
+            fresh.copy_state(f, old, k);
+            carried[f] = 1;
+            break;
+          }
+      }
+    }
+  } else {
+    // Wall pairs (few): each model's pairs, old and fresh, in key order: one walk matches them.
+    auto by_key = [](const std::vector<std::uint64_t>& keys, std::size_t begin, std::size_t end) {
+      std::vector<std::pair<std::uint64_t, std::size_t>> out;
+      out.reserve(end - begin);
+      for (std::size_t k = begin; k < end; ++k) out.emplace_back(keys[k], k);
+      std::sort(out.begin(), out.end());
+      return out;
+    };
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const auto model = static_cast<std::uint8_t>(m);
+      const auto old_sorted = by_key(old_keys, old.begin(model), old.end(model));
+      const auto fresh_sorted = by_key(fresh_keys, fresh.begin(model), fresh.end(model));
+      std::size_t from = 0;
+      for (const auto& [key, k] : fresh_sorted) {
+        while (from < old_sorted.size() && old_sorted[from].first < key) ++from;
+        if (from < old_sorted.size() && old_sorted[from].first == key) {
+          fresh.copy_state(k, old, old_sorted[from].second);
+          carried[k] = 1;
+        }
+      }
+    }
+  }
+  // The pairs new to the list take their constants from their model.
   for (std::size_t m = 0; m < models_.size(); ++m) {
     const auto model = static_cast<std::uint8_t>(m);
-    const auto old_sorted = by_key(old_keys, old.begin(model), old.end(model));
-    const auto fresh_sorted = by_key(fresh_keys, fresh.begin(model), fresh.end(model));
-    std::size_t from = 0;
     PairBlock block = fresh.block(model);
     const std::size_t begin = fresh.begin(model);
-    for (const auto& [key, k] : fresh_sorted) {
-      while (from < old_sorted.size() && old_sorted[from].first < key) ++from;
-      if (from < old_sorted.size() && old_sorted[from].first == key) {
-        fresh.copy_state(k, old, old_sorted[from].second);
-        continue;
-      }
+    for (std::size_t k = begin; k < fresh.end(model); ++k) {
+      if (carried[k]) continue;
       const auto i = static_cast<std::size_t>(fresh.i[k]);
       PairInfo info;
       info.radius_i = spheres.radius[i];
