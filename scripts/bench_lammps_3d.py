@@ -165,21 +165,25 @@ def main():
     print(f"times: medians of {args.repeats} runs each; ratio: median over the runs of LAMMPS loop time / demcal loop "
           "time, one core each (> 1: demcal faster); 2 thr: demcal on two threads; KE diff: largest relative "
           "difference of the translational kinetic energy, first quarter / whole run")
-    print()
-    print("cost of a step against the sphere count (released, demcal):")
-    curves = {1: [], 2: []}
-    for count in scaling:
-        for threads in (1, 2):
-            runs = [run_ours(binary, count, cache, False, threads) for _ in range(args.repeats)]
-            per_step = statistics.median(r["wall_s"] / r["steps"] for r in runs)
-            curves[threads].append((runs[0]["spheres"], per_step))
-            memory = runs[0]["peak_rss_kib"] * 1024 / runs[0]["spheres"]
-            print(f"{runs[0]['spheres']:>8} spheres  {threads} thread(s)  {1e3 * per_step:8.3f} ms/step  "
-                  f"{runs[0]['spheres'] / per_step / 1e6:6.2f} M particle-steps/s  peak memory {memory:6.0f} B/sphere",
-                  flush=True)
-    for threads, points in curves.items():
-        if len(points) > 1:
-            print(f"slope of log(time per step) on log(spheres), {threads} thread(s): {slope(points):.3f}")
+    # Released, the rebuilds grow with the count (the fastest of more spheres is faster); in the box, with every
+    # contact loaded and hardly a rebuild, the cost of the law and the sums alone.
+    for box in (False, True):
+        print()
+        print(f"cost of a step against the sphere count ({'box' if box else 'released'}, demcal):")
+        curves = {1: [], 2: []}
+        for count in scaling:
+            for threads in (1, 2):
+                runs = [run_ours(binary, count, cache, box, threads) for _ in range(args.repeats)]
+                per_step = statistics.median(r["wall_s"] / r["steps"] for r in runs)
+                curves[threads].append((runs[0]["spheres"], per_step))
+                memory = runs[0]["peak_rss_kib"] * 1024 / runs[0]["spheres"]
+                print(f"{runs[0]['spheres']:>8} spheres  {threads} thread(s)  {1e3 * per_step:8.3f} ms/step  "
+                      f"{runs[0]['spheres'] / per_step / 1e6:6.2f} M particle-steps/s  {runs[0]['rebuilds']:5d} rebuilds  "
+                      f"peak memory {memory:6.0f} B/sphere", flush=True)
+        for threads, points in curves.items():
+            if len(points) > 1:
+                print(f"slope of log(time per step) on log(spheres), {'box' if box else 'released'}, {threads} "
+                      f"thread(s): {slope(points):.3f}")
 
 
 if __name__ == "__main__":
