@@ -105,6 +105,14 @@ TEST(Walls3D, VtkSnapshotsHoldEverySphereAndWall) {
   // 32 facets of the drum and one patch of the floor.
   EXPECT_NE(b.str().find("POLYGONS 33 "), std::string::npos);
   EXPECT_NE(b.str().find("POINTS 68 double"), std::string::npos);
+  // A mesh's triangle is drawn as its three corners.
+  world.walls = {make_triangle({0, 0, 0}, {0.01, 0, 0}, {0, 0.01, 0}, 0, {})};
+  write_vtk_walls(world, walls_path);
+  std::ifstream triangle(walls_path);
+  std::stringstream c;
+  c << triangle.rdbuf();
+  EXPECT_NE(c.str().find("POINTS 3 double"), std::string::npos);
+  EXPECT_NE(c.str().find("POLYGONS 1 4\n3 0 1 2\n"), std::string::npos);
 }
 
 // Servo walls: a plane pressing a column of spheres onto a floor, and a

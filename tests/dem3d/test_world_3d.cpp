@@ -161,3 +161,22 @@ TEST(World3D, ModelsAreCheckedByTheirOwnRegistry) {
     EXPECT_NE(std::string(e.what()).find("s.json: contacts.particle-particle"), std::string::npos) << e.what();
   }
 }
+
+// A wall switched on after the list was built takes part at once (its pairs are
+// made), and two spheres with one id are refused.
+TEST(World3D, AWallSwitchedOnCountsAtOnceAndIdsAreUnique) {
+  World w;
+  w.assign(0, 1, w.add_model(ContactModelRegistry::instance().create(
+                     "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.5}}, "test")));
+  w.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+  w.walls[0].active = false;
+  w.spheres.add_sphere({0, 0, 0.00099}, 0.001, 2650, 0);
+  w.refresh();
+  EXPECT_EQ(w.wall_pairs().size(), 0u);
+  w.walls[0].active = true;
+  w.step();
+  EXPECT_EQ(w.wall_pairs().size(), 1u);
+  EXPECT_GT(w.spheres.vz[0], 0.0);  // pushed up at once
+  w.spheres.add_sphere({0.01, 0, 0.002}, 0.001, 2650, 0, 0);  // the id of the first
+  EXPECT_THROW(w.refresh(), demcal::Error);
+}

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/log.hpp"
 
 namespace demcal::dem3d {
 namespace {
@@ -95,17 +96,23 @@ StlMesh read_stl(const std::string& path, std::int32_t mesh, std::uint8_t group,
         throw Error(path + ": facet " + std::to_string(t + 1) + " has a coordinate that is not a finite number");
       v = scale * v + offset_m;
     }
-    try {
-      out.triangles.push_back(make_triangle(c[0], c[1], c[2], mesh, pivot, group));
-    } catch (const Error& e) {
-      throw Error(path + ": facet " + std::to_string(t + 1) + ": " + e.what());
-    }
+    // Every edge counts for closedness, a sliver's too (its neighbours share them).
     for (int e = 0; e < 3; ++e) {
       auto a = key_of(c[static_cast<std::size_t>(e)]), b = key_of(c[static_cast<std::size_t>((e + 1) % 3)]);
+      if (a == b) continue;  // two corners in one place: no edge
       if (b < a) std::swap(a, b);
       ++edges[{a, b}];
     }
+    try {
+      out.triangles.push_back(make_triangle(c[0], c[1], c[2], mesh, pivot, group));
+    } catch (const Error&) {
+      // A facet without area (CAD exports hold some) pushes nowhere: left out, and said below.
+      ++out.facets_without_area;
+    }
   }
+  if (out.triangles.empty()) throw Error(path + ": every facet of the STL file spans no area");
+  if (out.facets_without_area > 0)
+    log::warn(path + ": " + std::to_string(out.facets_without_area) + " facet(s) without area left out");
   out.closed = true;
   for (const auto& [edge, uses] : edges) out.closed = out.closed && uses == 2;
   if (must_be_closed && !out.closed) {

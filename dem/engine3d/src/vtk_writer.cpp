@@ -68,6 +68,13 @@ void write_vtk_walls(const World& world, const std::string& path) {
     const Wall& wall = world.walls[w];
     Vec3 u, v;
     across(wall.axis, u, v);
+    if (wall.shape == WallShape::triangle) {
+      const std::size_t first = points.size();
+      for (const Vec3& v : wall.vertices) points.push_back(v);
+      polygons.push_back({first, first + 1, first + 2});
+      owner.push_back(w);
+      continue;
+    }
     if (wall.shape == WallShape::plane) {
       const std::size_t first = points.size();
       for (const auto& [a, b] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}})

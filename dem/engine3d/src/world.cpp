@@ -49,8 +49,11 @@ void World::rebuild() {
     if (settings_.skin_m > 0) {
       skin_m_ = settings_.skin_m;
     } else {
+      // Summed in ascending order: the same bits however the spheres were given.
+      std::vector<double> radii = spheres.radius;
+      std::sort(radii.begin(), radii.end());
       double sum = 0;
-      for (double r : spheres.radius) sum += r;
+      for (double r : radii) sum += r;
       skin_m_ = n > 0 ? 0.25 * sum / static_cast<double>(n) : 1e-3;
     }
   }
@@ -125,6 +128,8 @@ void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>
     std::vector<std::uint32_t> index_of_id;
     for (std::size_t i = 0; i < n; ++i) {
       if (spheres.id[i] >= index_of_id.size()) index_of_id.resize(spheres.id[i] + std::size_t{1}, UINT32_MAX);
+      if (index_of_id[spheres.id[i]] != UINT32_MAX)
+        throw Error("two spheres have the id " + std::to_string(spheres.id[i]) + " (ids order pairs and must be unique)");
       index_of_id[spheres.id[i]] = static_cast<std::uint32_t>(i);
     }
     std::vector<std::uint32_t> row(n + 1);
@@ -181,10 +186,15 @@ void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>
     for (std::size_t k = begin; k < fresh.end(model); ++k) {
       if (carried[k]) continue;
       const auto i = static_cast<std::size_t>(fresh.i[k]);
+      // The mass each side moves with: a clump member moves with its clump's.
+      const auto moving_mass = [&](std::size_t s) {
+        if (spheres.fixed[s]) return 0.0;
+        return spheres.clump[s] >= 0 ? clumps_[static_cast<std::size_t>(spheres.clump[s])].mass_kg : spheres.mass[s];
+      };
       PairInfo info;
       info.radius_i = spheres.radius[i];
       info.group_i = spheres.group[i];
-      info.mass_i_kg = spheres.fixed[i] ? 0.0 : spheres.mass[i];
+      info.mass_i_kg = moving_mass(i);
       if (walls_set) {
         info.wall = true;
         info.group_j = walls[static_cast<std::size_t>(fresh.j[k])].group;
@@ -192,7 +202,7 @@ void World::carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>
         const auto j = static_cast<std::size_t>(fresh.j[k]);
         info.radius_j = spheres.radius[j];
         info.group_j = spheres.group[j];
-        info.mass_j_kg = spheres.fixed[j] ? 0.0 : spheres.mass[j];
+        info.mass_j_kg = moving_mass(j);
       }
       models_[m]->initialise(block, k - begin, info);
     }
@@ -322,6 +332,10 @@ void World::step() {
       // by its point's displacement plus, when it turns, at most its axis's
       // change times the spheres' extent.
       const Wall &now = walls[w], &then = in.walls_built[w];
+      if (now.active != then.active || now.group != then.group || now.shape != then.shape) {
+        stale = true;  // its pairs are another set now
+        break;
+      }
       double moved = 0;
       if (now.shape == WallShape::triangle)
         for (int v = 0; v < 3; ++v) moved = std::max(moved, norm(now.vertices[v] - then.vertices[v]));

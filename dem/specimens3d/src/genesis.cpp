@@ -81,7 +81,7 @@ std::size_t SphereSpecimenSpec::sphere_count() const {
 std::string SphereSpecimenSpec::cache_key() const {
   std::ostringstream key;
   // The version changes with anything that moves a packing's numbers.
-  key << "genesis3d-v2 vessel=" << (vessel == Vessel::box ? "box" : "cylinder") << " W=" << format_double(width_m)
+  key << "genesis3d-v3 vessel=" << (vessel == Vessel::box ? "box" : "cylinder") << " W=" << format_double(width_m)
       << " D=" << format_double(vessel == Vessel::box ? depth_m : width_m) << " H=" << format_double(height_m)
       << " n=" << format_double(porosity) << " Rmin=" << format_double(radius_min_m)
       << " Rmax=" << format_double(radius_max_m) << " rho=" << format_double(density_kg_m3)
@@ -213,6 +213,8 @@ SphereSpecimen pack_sphere_specimen(const SphereSpecimenSpec& spec) {
     advance();
   }
   if (progress) progress->finish();
+  // The floaters of the packing as it ends (the last pass may have grown and cycled it).
+  count = contact_counts(world);
 
   // The kept spheres, numbered in the world's order (a Morton curve of their
   // positions: neighbours close in memory when a test loads them).

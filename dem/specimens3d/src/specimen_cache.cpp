@@ -16,7 +16,7 @@ namespace demcal::dem3d {
 void save_sphere_specimen(const SphereSpecimen& s, const std::string& key, const std::string& path) {
   // Write beside the target and rename, so a crash never leaves half a cache file.
   const std::string temporary = path + ".tmp." + std::to_string(::getpid());
-  {
+  try {
     h5::File file(temporary, h5::Mode::Truncate);
     h5::Group group = file.group("/specimen3d", true);
     group.write("x", s.x);
@@ -35,6 +35,9 @@ void save_sphere_specimen(const SphereSpecimen& s, const std::string& key, const
     group.set_attribute("floaters_removed", static_cast<std::int64_t>(s.floaters_removed));
     group.set_attribute("steps", static_cast<std::int64_t>(s.steps));
     file.flush();
+  } catch (...) {
+    std::remove(temporary.c_str());  // no half-written file left beside the cache
+    throw;
   }
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     std::remove(temporary.c_str());

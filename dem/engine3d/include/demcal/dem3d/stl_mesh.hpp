@@ -14,13 +14,15 @@ namespace demcal::dem3d {
 struct StlMesh {
   std::vector<Wall> triangles;
   bool closed = false;  // every edge shared by exactly two facets (a vessel that holds its contents)
+  std::size_t facets_without_area = 0;  // left out (their corners in a line), with a warning
 };
 
 // Reads `path` as mesh number `mesh` of group `group`, scaled by `scale` (an
 // STL has no units: 0.001 reads millimetres as metres) and shifted by
 // `offset_m`; the pivot is the mesh's centroid. An Error naming the file and
-// the facet for a file that is neither STL form, holds a coordinate that is not
-// finite or a facet without area; with `must_be_closed`, for an open mesh too.
+// the facet for a file that is neither STL form or holds a coordinate that is
+// not finite; with `must_be_closed`, for an open mesh too. Facets without area
+// are left out with a warning (their edges still count for closedness).
 StlMesh read_stl(const std::string& path, std::int32_t mesh, std::uint8_t group = 1, double scale = 1.0,
                  Vec3 offset_m = {}, bool must_be_closed = false);
 
