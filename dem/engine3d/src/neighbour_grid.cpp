@@ -166,7 +166,16 @@ void World::build_wall_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>&
     for (std::size_t i = 0; i < spheres.size(); ++i) {
       const std::uint8_t model = model_for(spheres.group[i], wall.group);
       if (model == kNoModel || spheres.fixed[i]) continue;
-      if (!(wall.contact(spheres.position(i), spheres.radius[i]).overlap_m > -skin_m_)) continue;
+      // A bounded cylinder lists the spheres within a skin beyond its ends too
+      // (one drifting in along the axis must find its pair there).
+      Wall probe = wall;
+      const bool cylinder = wall.shape == WallShape::cylinder_inside || wall.shape == WallShape::cylinder_outside;
+      if (cylinder && wall.length_m > 0) {
+        const double along = dot(spheres.position(i) - wall.point_m, wall.axis), margin = spheres.radius[i] + skin_m_;
+        if (along < -margin || along > wall.length_m + margin) continue;
+        probe.length_m = 0;
+      }
+      if (!(probe.contact(spheres.position(i), spheres.radius[i]).overlap_m > -skin_m_)) continue;
       found.push_back({model, static_cast<std::uint64_t>(spheres.id[i]) << 32 | w, static_cast<std::int32_t>(i),
                        static_cast<std::int32_t>(w)});
     }
