@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <cmath>
 #include <fstream>
 #include <ios>
 
@@ -27,6 +28,24 @@ void require_known_fields(const nlohmann::json& object, const std::vector<std::s
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed,
                           const std::string& where, const char* noun) {
   require_known_fields(object, std::vector<std::string>(allowed.begin(), allowed.end()), where, noun);
+}
+
+double number_field(const nlohmann::json& object, const char* key, double fallback, const std::string& where) {
+  if (!object.contains(key)) return fallback;
+  const nlohmann::json& v = object.at(key);
+  if (!v.is_number() || !std::isfinite(v.get<double>())) throw Error(where + ": \"" + key + "\" must be a finite number");
+  return v.get<double>();
+}
+
+std::size_t choice_field(const nlohmann::json& object, const char* key, const std::vector<std::string>& choices,
+                         std::size_t fallback, const std::string& where) {
+  if (!object.contains(key)) return fallback;
+  const nlohmann::json& v = object.at(key);
+  for (std::size_t c = 0; c < choices.size(); ++c)
+    if (v == choices[c]) return c;
+  std::string allowed;
+  for (const std::string& c : choices) allowed += (allowed.empty() ? "\"" : " or \"") + c + "\"";
+  throw Error(where + ": \"" + key + "\" must be " + allowed + " (got " + v.dump() + ")");
 }
 
 nlohmann::json read_json_file(const std::string& path, const std::string& what) {

@@ -30,25 +30,6 @@ class DiskContactModels : public ContactModelCatalog {
   }
 };
 
-double number_field(const json& object, const char* key, double fallback, const std::string& where) {
-  if (!object.contains(key)) return fallback;
-  const json& v = object.at(key);
-  if (!v.is_number() || !std::isfinite(v.get<double>())) throw Error(where + ": \"" + key + "\" must be a finite number");
-  return v.get<double>();
-}
-
-// A string field that must be one of `choices`; returns its index (`fallback` when absent).
-std::size_t choice_field(const json& object, const char* key, const std::vector<std::string>& choices,
-                         std::size_t fallback, const std::string& where) {
-  if (!object.contains(key)) return fallback;
-  const json& v = object.at(key);
-  for (std::size_t c = 0; c < choices.size(); ++c)
-    if (v == choices[c]) return c;
-  std::string allowed;
-  for (const std::string& c : choices) allowed += (allowed.empty() ? "\"" : " or \"") + c + "\"";
-  throw Error(where + ": \"" + key + "\" must be " + allowed + " (got " + v.dump() + ")");
-}
-
 // The aggregates object: sizes in mm as engineers give them.
 AggregateSpec aggregate_spec(const json& a, const std::string& where) {
   require_known_fields(a, {"size_range_mm", "bins", "coarse_fraction", "sides", "min_gap_m", "density_kg_m3", "max_attempts",

@@ -18,6 +18,14 @@ void require_known_fields(const nlohmann::json& object, std::initializer_list<co
 void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed,
                           const std::string& where, const char* noun = "field");
 
+// A number field of `object` (`fallback` when absent); an Error
+// "<where>: "<key>" must be a finite number" otherwise.
+double number_field(const nlohmann::json& object, const char* key, double fallback, const std::string& where);
+// A string field that must be one of `choices`: its index (`fallback` when
+// absent); an Error naming the allowed values otherwise.
+std::size_t choice_field(const nlohmann::json& object, const char* key, const std::vector<std::string>& choices,
+                         std::size_t fallback, const std::string& where);
+
 // Reads a whole JSON file; errors say "<path>: cannot open <what>" or
 // "<path>: not valid JSON (...)".
 nlohmann::json read_json_file(const std::string& path, const std::string& what);
