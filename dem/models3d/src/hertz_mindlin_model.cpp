@@ -22,6 +22,7 @@
 #include "demcal/dem3d/builtin_models.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/linear_contact.hpp"
+#include "demcal/dem3d/pair_contact.hpp"
 
 namespace demcal::dem3d {
 namespace {
@@ -77,36 +78,22 @@ class HertzMindlinModel : public ContactModel {
     c.column[kMassEff][k] = mi > 0 && mj > 0 ? mi * mj / (mi + mj) : std::max(mi, mj);
   }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
+    PairContact p;
     for (std::size_t k = 0; k < c.size; ++k) {
-      const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-      const Vec3 d = s.position(j) - s.position(i);
-      const double reach = s.radius[i] + s.radius[j], distance2 = dot(d, d);
-      if (!(distance2 < reach * reach)) {
+      if (sphere_pair_contact(s, static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k]), p))
+        touch(c, k, out, p, step.dt_s);
+      else
         leave(c, k, out);
-        continue;
-      }
-      const double distance = std::sqrt(distance2);
-      const Vec3 n = (1.0 / distance) * d;
-      const double overlap = reach - distance;
-      const double arm_i = s.radius[i] - 0.5 * overlap, arm_j = s.radius[j] - 0.5 * overlap;
-      const Vec3 vi = s.velocity(i) + cross(s.spin(i), arm_i * n);
-      const Vec3 vj = s.velocity(j) + cross(s.spin(j), -arm_j * n);
-      touch(c, k, out, n, overlap, arm_i, arm_j, vj - vi, 0.5 * (s.spin(i) + s.spin(j)), step.dt_s);
     }
   }
   void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
                    const StepContext& step) const override {
+    PairContact p;
     for (std::size_t k = 0; k < c.size; ++k) {
-      const auto i = static_cast<std::size_t>(c.i[k]);
-      const double overlap = g.overlap_m[k];
-      if (!(overlap > 0)) {
+      if (wall_pair_contact(s, static_cast<std::size_t>(c.i[k]), g, k, p))
+        touch(c, k, out, p, step.dt_s);
+      else
         leave(c, k, out);
-        continue;
-      }
-      const Vec3 n = {g.nx[k], g.ny[k], g.nz[k]};
-      const double arm_i = s.radius[i] - 0.5 * overlap;
-      const Vec3 vi = s.velocity(i) + cross(s.spin(i), arm_i * n);
-      touch(c, k, out, n, overlap, arm_i, 0.0, Vec3{g.vx[k], g.vy[k], g.vz[k]} - vi, 0.5 * s.spin(i), step.dt_s);
     }
   }
   void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
@@ -138,8 +125,9 @@ class HertzMindlinModel : public ContactModel {
     c.flags[k] &= ~static_cast<dem::PairFlags>(dem::kTouching);
     out.set(k, {}, {}, {});
   }
-  void touch(PairBlock& c, std::size_t k, const PairForces& out, Vec3 n, double overlap, double arm_i, double arm_j,
-             Vec3 relative_velocity, Vec3 mean_spin, double dt) const {
+  void touch(PairBlock& c, std::size_t k, const PairForces& out, const PairContact& p, double dt) const {
+    const Vec3 n = p.normal, relative_velocity = p.relative_velocity_m_s, mean_spin = p.mean_spin_rad_s;
+    const double overlap = p.overlap_m, arm_i = p.arm_i_m, arm_j = p.arm_j_m;
     const double radius = c.column[kRadiusEff][k], mass = c.column[kMassEff][k];
     const double a = std::sqrt(radius * overlap);
     const double sn = 2.0 * e_eff_ * a, st = 8.0 * g_eff_ * a;

@@ -13,6 +13,7 @@
 #include "demcal/dem3d/builtin_models.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/linear_contact.hpp"
+#include "demcal/dem3d/pair_contact.hpp"
 
 namespace demcal::dem3d {
 namespace {
@@ -60,39 +61,22 @@ class LinearModel : public ContactModel {
     c.column[kFriction][k] = friction_;
   }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
+    PairContact p;
     for (std::size_t k = 0; k < c.size; ++k) {
-      const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-      const Vec3 d = s.position(j) - s.position(i);
-      const double reach = s.radius[i] + s.radius[j], distance2 = dot(d, d);
-      if (!(distance2 < reach * reach)) {
+      if (sphere_pair_contact(s, static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k]), p))
+        touch(c, k, out, p, step.dt_s);
+      else
         leave(c, k, out);
-        continue;
-      }
-      const double distance = std::sqrt(distance2);
-      const Vec3 n = (1.0 / distance) * d;
-      const double overlap = reach - distance;
-      const double arm_i = s.radius[i] - 0.5 * overlap, arm_j = s.radius[j] - 0.5 * overlap;
-      // Velocities of the contact point as each sphere carries it.
-      const Vec3 vi = s.velocity(i) + cross(s.spin(i), arm_i * n);
-      const Vec3 vj = s.velocity(j) + cross(s.spin(j), -arm_j * n);
-      const Vec3 mean_spin = 0.5 * (s.spin(i) + s.spin(j));
-      touch(c, k, out, {n, overlap, arm_i, vj - vi, mean_spin, 0, 0, 0, 0, step.dt_s}, arm_j);
     }
   }
   void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
                    const StepContext& step) const override {
+    PairContact p;
     for (std::size_t k = 0; k < c.size; ++k) {
-      const auto i = static_cast<std::size_t>(c.i[k]);
-      const double overlap = g.overlap_m[k];
-      if (!(overlap > 0)) {
+      if (wall_pair_contact(s, static_cast<std::size_t>(c.i[k]), g, k, p))
+        touch(c, k, out, p, step.dt_s);
+      else
         leave(c, k, out);
-        continue;
-      }
-      const Vec3 n = {g.nx[k], g.ny[k], g.nz[k]};
-      const double arm_i = s.radius[i] - 0.5 * overlap;
-      const Vec3 vi = s.velocity(i) + cross(s.spin(i), arm_i * n);
-      touch(c, k, out, {n, overlap, arm_i, Vec3{g.vx[k], g.vy[k], g.vz[k]} - vi, 0.5 * s.spin(i), 0, 0, 0, 0, step.dt_s},
-            0.0);
     }
   }
   void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
@@ -116,7 +100,9 @@ class LinearModel : public ContactModel {
     out.set(k, {}, {}, {});
   }
   [[gnu::always_inline]] static inline void touch(PairBlock& c, std::size_t k, const PairForces& out,
-                                                  LinearContactInput in, double arm_j) {
+                                                  const PairContact& p, double dt_s) {
+    LinearContactInput in{p.normal, p.overlap_m, p.arm_i_m, p.relative_velocity_m_s, p.mean_spin_rad_s, 0, 0, 0, 0, dt_s};
+    const double arm_j = p.arm_j_m;
     in.kn_n_m = c.column[kKn][k];
     in.ks_n_m = c.column[kKs][k];
     in.friction = c.column[kFriction][k];

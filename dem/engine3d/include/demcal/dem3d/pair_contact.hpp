@@ -1,0 +1,51 @@
+#pragma once
+// What every 3D contact model needs of a touching pair, computed one way for
+// all of them: the unit normal from i to j (to the wall), the overlap, the
+// arms from each centre to the contact point (the middle of the overlap), the
+// velocity of j's contact point relative to i's (spins included), and the
+// pair's mean spin (a wall's side spins not: half of i's).
+#include <cmath>
+#include <cstddef>
+
+#include "demcal/dem3d/contact_model.hpp"
+#include "demcal/dem3d/spheres.hpp"
+
+namespace demcal::dem3d {
+
+struct PairContact {
+  Vec3 normal;
+  double overlap_m = 0, arm_i_m = 0, arm_j_m = 0;
+  Vec3 relative_velocity_m_s, mean_spin_rad_s;
+};
+
+// Spheres i and j; false when they are apart.
+inline bool sphere_pair_contact(const Spheres& s, std::size_t i, std::size_t j, PairContact& c) {
+  const Vec3 d = s.position(j) - s.position(i);
+  const double reach = s.radius[i] + s.radius[j], distance2 = dot(d, d);
+  if (!(distance2 < reach * reach)) return false;
+  const double distance = std::sqrt(distance2);
+  c.normal = (1.0 / distance) * d;
+  c.overlap_m = reach - distance;
+  c.arm_i_m = s.radius[i] - 0.5 * c.overlap_m;
+  c.arm_j_m = s.radius[j] - 0.5 * c.overlap_m;
+  const Vec3 vi = s.velocity(i) + cross(s.spin(i), c.arm_i_m * c.normal);
+  const Vec3 vj = s.velocity(j) + cross(s.spin(j), -c.arm_j_m * c.normal);
+  c.relative_velocity_m_s = vj - vi;
+  c.mean_spin_rad_s = 0.5 * (s.spin(i) + s.spin(j));
+  return true;
+}
+
+// Sphere i against the wall of geometry g's pair k (block-local); false when apart.
+inline bool wall_pair_contact(const Spheres& s, std::size_t i, const WallGeometry& g, std::size_t k, PairContact& c) {
+  c.overlap_m = g.overlap_m[k];
+  if (!(c.overlap_m > 0)) return false;
+  c.normal = {g.nx[k], g.ny[k], g.nz[k]};
+  c.arm_i_m = s.radius[i] - 0.5 * c.overlap_m;
+  c.arm_j_m = 0.0;
+  const Vec3 vi = s.velocity(i) + cross(s.spin(i), c.arm_i_m * c.normal);
+  c.relative_velocity_m_s = Vec3{g.vx[k], g.vy[k], g.vz[k]} - vi;
+  c.mean_spin_rad_s = 0.5 * s.spin(i);
+  return true;
+}
+
+}  // namespace demcal::dem3d
