@@ -16,6 +16,7 @@
 
 #include "demcal/dem/bodies.hpp"
 #include "demcal/dem/contacts.hpp"
+#include "demcal/dem/model_registry.hpp"
 #include "demcal/dem/walls.hpp"
 
 namespace demcal {
@@ -126,41 +127,14 @@ class ContactModel {
   virtual bool depends_on_masses() const { return false; }
 };
 
-using ContactModelFactory =
-    std::function<std::unique_ptr<ContactModel>(const nlohmann::json& parameters, const std::string& where)>;
-
-class ContactModelRegistry {
+// The 2D engine's models by name (model_registry.hpp): a new model is one
+// file in dem/models/src and one line in builtin_models.cpp.
+class ContactModelRegistry : public ModelRegistry<ContactModel> {
  public:
+  ContactModelRegistry() : ModelRegistry<ContactModel>("contact model", "known") {}
   // Holds the built-in models; defined by the models library (dem/models).
   static ContactModelRegistry& instance();
-  // `parameter_keys`: every key a scene may give the model (`describe
-  // --registries` lists them and the reference pages are checked against them).
-  void add(const std::string& name, std::vector<std::string> parameter_keys, ContactModelFactory factory);
-  // Throws an Error naming the known models when `name` is unknown, and one
-  // naming the allowed keys for a key the model does not take.
-  std::unique_ptr<ContactModel> create(const std::string& name, const nlohmann::json& parameters,
-                                       const std::string& where) const;
-  std::vector<std::string> names() const;
-  // The keys `name` accepts; throws like create() for an unknown model.
-  const std::vector<std::string>& parameter_keys(const std::string& name) const;
-  // How other programs name the model and its keys, so that `export` keeps no
-  // copy of them: {"pfc"|"yade"|"liggghts": {"model", "keywords": [{"key",
-  // "name", ...}], ...}} (docs/reference/executables/demcal-dem.md). A model
-  // without a table for a program has no counterpart there.
-  void set_peer_names(const std::string& name, const nlohmann::json& peer_names);
-  // The table of `name` (an empty object when none was set).
-  const nlohmann::json& peer_names(const std::string& name) const;
-
- private:
-  struct Entry {
-    std::string name;
-    std::vector<std::string> parameter_keys;
-    ContactModelFactory factory;
-    std::shared_ptr<const nlohmann::json> peer_names;
-  };
-  Entry& find_mutable(const std::string& name);
-  const Entry& find(const std::string& name, const std::string& where) const;
-  std::vector<Entry> entries_;
 };
+using ContactModelFactory = ContactModelRegistry::Factory;
 
 }  // namespace demcal::dem

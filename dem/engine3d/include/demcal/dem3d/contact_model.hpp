@@ -14,6 +14,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "demcal/dem/contacts.hpp"
+#include "demcal/dem/model_registry.hpp"
 #include "demcal/dem3d/spheres.hpp"
 #include "demcal/dem3d/walls.hpp"
 
@@ -116,33 +117,13 @@ class ContactModel {
   virtual bool depends_on_masses() const { return false; }
 };
 
-using ContactModelFactory =
-    std::function<std::unique_ptr<ContactModel>(const nlohmann::json& parameters, const std::string& where)>;
-
 // The 3D models by name (a model of the same name in 2D is another law with
-// its own keys: each engine has its own registry).
-class ContactModelRegistry {
+// its own keys: each engine has its own registry, model_registry.hpp).
+class ContactModelRegistry : public dem::ModelRegistry<ContactModel> {
  public:
+  ContactModelRegistry() : dem::ModelRegistry<ContactModel>("3D contact model", "known in 3D") {}
   // Holds the built-in 3D models; defined by the 3D models library.
   static ContactModelRegistry& instance();
-  void add(const std::string& name, std::vector<std::string> parameter_keys, ContactModelFactory factory);
-  void set_peer_names(const std::string& name, const nlohmann::json& peer_names);
-  // Throws an Error naming the known models, or the allowed keys.
-  std::unique_ptr<ContactModel> create(const std::string& name, const nlohmann::json& parameters,
-                                       const std::string& where) const;
-  std::vector<std::string> names() const;
-  const std::vector<std::string>& parameter_keys(const std::string& name) const;
-  const nlohmann::json& peer_names(const std::string& name) const;
-
- private:
-  struct Entry {
-    std::string name;
-    std::vector<std::string> parameter_keys;
-    ContactModelFactory factory;
-    std::shared_ptr<const nlohmann::json> peer_names;
-  };
-  const Entry& find(const std::string& name, const std::string& where) const;
-  std::vector<Entry> entries_;
 };
 
 }  // namespace demcal::dem3d
