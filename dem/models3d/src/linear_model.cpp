@@ -61,23 +61,15 @@ class LinearModel : public ContactModel {
     c.column[kFriction][k] = friction_;
   }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    PairContact p;
-    for (std::size_t k = 0; k < c.size; ++k) {
-      if (sphere_pair_contact(s, static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k]), p))
-        touch(c, k, out, p, step.dt_s);
-      else
-        leave(c, k, out);
-    }
+    for_sphere_pairs(
+        c, s, [&](std::size_t k, const PairContact& p) { touch(c, k, out, p, step.dt_s); },
+        [&](std::size_t k) { leave(c, k, out); });
   }
   void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
                    const StepContext& step) const override {
-    PairContact p;
-    for (std::size_t k = 0; k < c.size; ++k) {
-      if (wall_pair_contact(s, static_cast<std::size_t>(c.i[k]), g, k, p))
-        touch(c, k, out, p, step.dt_s);
-      else
-        leave(c, k, out);
-    }
+    for_wall_pairs(
+        c, s, g, [&](std::size_t k, const PairContact& p) { touch(c, k, out, p, step.dt_s); },
+        [&](std::size_t k) { leave(c, k, out); });
   }
   void stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
                  double& rotational_nm_rad) const override {

@@ -48,4 +48,26 @@ inline bool wall_pair_contact(const Spheres& s, std::size_t i, const WallGeometr
   return true;
 }
 
+// A model's loops over a block: `touch(k, contact)` for each touching pair,
+// `leave(k)` for each pair apart.
+template <class Touch, class Leave>
+inline void for_sphere_pairs(const PairBlock& c, const Spheres& s, Touch touch, Leave leave) {
+  PairContact p;
+  for (std::size_t k = 0; k < c.size; ++k)
+    if (sphere_pair_contact(s, static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k]), p))
+      touch(k, p);
+    else
+      leave(k);
+}
+
+template <class Touch, class Leave>
+inline void for_wall_pairs(const PairBlock& c, const Spheres& s, const WallGeometry& g, Touch touch, Leave leave) {
+  PairContact p;
+  for (std::size_t k = 0; k < c.size; ++k)
+    if (wall_pair_contact(s, static_cast<std::size_t>(c.i[k]), g, k, p))
+      touch(k, p);
+    else
+      leave(k);
+}
+
 }  // namespace demcal::dem3d
