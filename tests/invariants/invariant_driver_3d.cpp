@@ -1,10 +1,12 @@
 // The invariant driver's 3D part: every registered 3D contact model passes
 // the same checks, from one data file each (tests/invariants/models3d/NAME.json:
 // {"model", "parameters", "stress_keys", "steps", "stability": {"parameters",
-// "radius_m", "density_kg_m3"}}), on a cloud of 576 spheres colliding in a box
-// of six planes (no gravity, so the law's scaling is exact):
+// "radius_m", "density_kg_m3"}}, and for a bonded model "bonds":
+// {"gap_tolerance_m", "seed"}), on a cloud of 576 spheres colliding in a box
+// of six planes (no gravity, so the law's scaling is exact); a bonded model's
+// cloud is bonded across gaps up to the tolerance first, and some bonds break:
 //   - 1, 2 and 3 threads, and the spheres entering in a shuffled order, give
-//     the same bits for every sphere;
+//     the same bits for every sphere and the same break log;
 //   - every stress_keys parameter x 4 and the velocities x 2 give the same run
 //     in half the time: positions the same bits, velocities x 2 exactly;
 //   - a pressed pair between two walls and a sphere resting on a floor stay
@@ -99,7 +101,15 @@ class Model3DInvariants : public ::testing::TestWithParam<std::string> {
       const std::size_t i = w.spheres.add_sphere(c.centre[k], c.radius[k], 2650, 0, static_cast<std::int64_t>(k));
       w.spheres.set_velocity(i, speed * c.velocity[k]);
     }
+    install_bonds(w);
     return w;
+  }
+  // A bonded model's bonds (none for a model without a "bonds" entry).
+  void install_bonds(World& w) const {
+    if (!data_.contains("bonds")) return;
+    const json& b = data_.at("bonds");
+    const std::size_t installed = w.install_bonds(b.at("gap_tolerance_m").get<double>(), b.at("seed").get<std::uint64_t>());
+    if (installed == 0) throw std::runtime_error(GetParam() + ": no bond installed (gap_tolerance_m too small?)");
   }
   std::uint64_t steps() const { return data_.at("steps").get<std::uint64_t>(); }
 
@@ -137,11 +147,22 @@ TEST_P(Model3DInvariants, ThreadsAndShuffledSpheresGiveTheSameBits) {
   World shuffled = world(2, 17);
   shuffled.run(steps());
   EXPECT_TRUE(same_bits(state_by_id(shuffled), expected)) << "shuffled";
+  if (data_.contains("bonds")) {
+    EXPECT_GT(one.breaks().size(), 0u) << "no bond broke: the check does not reach the break test";
+    EXPECT_GT(one.bonded_pairs(), 0u) << "every bond broke: the check does not reach an intact bond";
+    ASSERT_EQ(shuffled.breaks().size(), one.breaks().size());
+    for (std::size_t k = 0; k < one.breaks().size(); ++k) {
+      const auto &a = one.breaks()[k], &b = shuffled.breaks()[k];
+      EXPECT_TRUE(a.time_s == b.time_s && a.x_m == b.x_m && a.y_m == b.y_m && a.z_m == b.z_m && a.mode == b.mode)
+          << "break " << k;
+    }
+  }
   // The golden: the run's summary, bit for bit.
   double x_sum = 0;
   for (const auto& [id, v] : expected) x_sum += v[0] + v[1] + v[2];
-  const json now = {{"kinetic_energy_j", one.kinetic_energy()}, {"position_sum_m", x_sum}, {"dt_s", one.dt_s()},
-                    {"rebuilds", one.rebuilds()}, {"touching_pairs", one.touching_pairs()}};
+  json now = {{"kinetic_energy_j", one.kinetic_energy()}, {"position_sum_m", x_sum}, {"dt_s", one.dt_s()},
+              {"rebuilds", one.rebuilds()}, {"touching_pairs", one.touching_pairs()}};
+  if (data_.contains("bonds")) now["breaks"] = one.breaks().size(), now["bonded_pairs"] = one.bonded_pairs();
   const std::string path = kHere + "golden/model3d_" + GetParam() + ".json";
   const char* update = std::getenv("DEMCAL_UPDATE_GOLDEN");
   if (update && std::string(update) == "1") {
@@ -157,6 +178,7 @@ TEST_P(Model3DInvariants, StressesTimesFourRunTheSameInHalfTheTime) {
   base.run(steps());
   scaled.run(steps());
   EXPECT_EQ(scaled.dt_s(), 0.5 * base.dt_s());
+  EXPECT_EQ(scaled.breaks().size(), base.breaks().size());
   const Spheres &a = base.spheres, &b = scaled.spheres;
   ASSERT_EQ(a.id, b.id);
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -189,6 +211,7 @@ TEST_P(Model3DInvariants, APressedPairAndARestingSphereStayStable) {
     w.spheres.set_spin(0, {0, 0, 1e-3});
     w.spheres.set_spin(1, {0, 0, -1e-3});
     w.refresh();
+    if (data_.contains("bonds")) ASSERT_EQ(w.install_bonds(0.1 * r, 1), 1u) << "the pressed pair is bonded";
     double largest_spin = 0, first_energy = 0, last_energy = 0;
     for (int k = 0; k < 400; ++k) {
       for (int step = 0; step < 100; ++step) {

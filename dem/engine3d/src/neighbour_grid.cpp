@@ -137,6 +137,7 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
       for (const auto& [b, model] : partners) found[model].emplace_back(static_cast<std::uint32_t>(a), b);
     }
   }
+  keep_bonded_pairs(found);
   std::vector<std::size_t> per_model(models_.size(), 0);
   for (std::size_t m = 0; m < found.size(); ++m) per_model[m] = found[m].size();
   fresh.assign_blocks(per_model);
@@ -151,6 +152,40 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
       fresh.j[k] = static_cast<std::int32_t>(j);
       keys[k++] = static_cast<std::uint64_t>(s.id[i]) << 32 | s.id[j];
     }
+}
+
+// A bond holds its pair in the list however far apart its spheres have
+// moved: the bonded pairs of the old list the search did not find (beyond
+// the skin), by their ids, at their (first, second) places.
+void World::keep_bonded_pairs(std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>>& found) const {
+  const Spheres& s = spheres;
+  std::vector<std::uint32_t> index_of_id;
+  bool any = false;
+  for (std::size_t k = 0; k < pairs_.size() && !any; ++k) any = (pairs_.flags[k] & dem::kBonded) != 0;
+  if (!any) return;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s.id[i] >= index_of_id.size()) index_of_id.resize(s.id[i] + std::size_t{1}, UINT32_MAX);
+    index_of_id[s.id[i]] = static_cast<std::uint32_t>(i);
+  }
+  std::vector<std::uint8_t> grown(found.size(), 0);
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    if (!(pairs_.flags[k] & dem::kBonded)) continue;
+    const std::uint64_t id_i = pair_keys_[k] >> 32, id_j = pair_keys_[k] & 0xffffffffu;
+    if (id_i >= index_of_id.size() || id_j >= index_of_id.size()) continue;
+    const std::uint32_t p = index_of_id[id_i], q = index_of_id[id_j];
+    if (p == UINT32_MAX || q == UINT32_MAX) continue;  // a sphere was removed
+    const std::uint32_t a = std::min(p, q), b = std::max(p, q);
+    if ((s.fixed[a] && s.fixed[b]) || (s.clump[a] >= 0 && s.clump[a] == s.clump[b])) continue;
+    // The search's own test, so a pair is found once: by it or here.
+    const double ddx = s.x[b] - s.x[a], ddy = s.y[b] - s.y[a], ddz = s.z[b] - s.z[a];
+    const double reach = s.radius[a] + skin_m_ + s.radius[b];
+    if (ddx * ddx + ddy * ddy + ddz * ddz < reach * reach) continue;
+    const std::uint8_t model = pairs_.model[k];
+    found[model].emplace_back(a, b);
+    grown[model] = 1;
+  }
+  for (std::size_t m = 0; m < found.size(); ++m)
+    if (grown[m]) std::sort(found[m].begin(), found[m].end());
 }
 
 void World::build_wall_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {

@@ -391,6 +391,7 @@ void World::compute_pair_forces() {
       models_[m]->wall_forces(part, spheres, geometry.from(first), wall_out.from(first), step);
     }
   }
+  log_breaks();
   // The walls' forces and moments about their points, in pair order.
   for (Wall& w : walls) w.force_n = w.moment_nm = {}, w.normal_force_n = 0;
   const WallGeometryArrays& g = in.wall_geometry;

@@ -118,7 +118,7 @@ class HertzMindlinModel : public ContactModel {
     out.set(k, {}, {}, {});
   }
   void touch(PairBlock& c, std::size_t k, const PairForces& out, const PairContact& p, double dt) const {
-    const Vec3 n = p.normal, relative_velocity = p.relative_velocity_m_s, mean_spin = p.mean_spin_rad_s;
+    const Vec3 n = p.normal, relative_velocity = p.relative_velocity_m_s, plane_spin = p.plane_spin_rad_s;
     const double overlap = p.overlap_m, arm_i = p.arm_i_m, arm_j = p.arm_j_m;
     const double radius = c.column[kRadiusEff][k], mass = c.column[kMassEff][k];
     const double a = std::sqrt(radius * overlap);
@@ -130,7 +130,7 @@ class HertzMindlinModel : public ContactModel {
     const double normal = elastic - damping_ * std::sqrt(sn * mass) * vn;
     const Vec3 vt = relative_velocity - vn * n;
     // The stored shear spring, turned with the contact plane, incremented, capped.
-    Vec3 spring = turned_shear({c.column[kShearX][k], c.column[kShearY][k], c.column[kShearZ][k]}, n, mean_spin, dt);
+    Vec3 spring = turned_shear({c.column[kShearX][k], c.column[kShearY][k], c.column[kShearZ][k]}, n, plane_spin, dt);
     spring = spring + (st * dt) * vt;
     const double limit = friction_ * elastic, size = norm(spring);
     Vec3 shear;

@@ -5,6 +5,7 @@
 // of demcal/dem/contacts.hpp, shared with 2D). Unlike 2D, a model writes each
 // pair's force and moments into PairForces and the world sums them per sphere
 // in pair order, so any split of the pairs between threads gives the same bits.
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,10 +19,20 @@
 #include "demcal/dem3d/spheres.hpp"
 #include "demcal/dem3d/walls.hpp"
 
+namespace demcal {
+class Rng;
+}
+
 namespace demcal::dem3d {
 
 using dem::ConstPairBlock;
 using dem::PairBlock;
+
+// Flags a bonded model sets on a pair whose bond broke this step (and clears
+// kBonded): the world logs each break in pair order after the step's forces,
+// so the log is the same on any number of threads, and clears these.
+constexpr dem::PairFlags kBrokeThisStep = 1u << 8;
+constexpr dem::PairFlags kBrokeInTension = 1u << 9;
 
 struct StepContext {
   double dt_s = 0;
@@ -87,6 +98,7 @@ struct PairInfo {
   std::uint8_t group_i = 0, group_j = 0;
   bool wall = false;
   double mass_i_kg = 0, mass_j_kg = 0;  // 0 for a side that does not move
+  double overlap_m = 0;  // the overlap now (negative: a gap); set when a bond is installed
 };
 
 class ContactModel {
@@ -97,6 +109,28 @@ class ContactModel {
   virtual std::vector<std::string> state_columns() const = 0;
   // Sets the constants of the block's pair k when it enters the list.
   virtual void initialise(PairBlock& c, std::size_t k, const PairInfo& pair) const = 0;
+  // Material genesis: the block's pair k carries no force at `overlap_m`
+  // (PFC's "remove overlap only"; less than the whole overlap keeps a
+  // locked-in share). A model without a reference overlap ignores it.
+  virtual void make_force_free(PairBlock& c, std::size_t k, double overlap_m) const {
+    (void)c, (void)k, (void)overlap_m;
+  }
+  // Installs a bond on the block's sphere pair k, drawing its strengths from
+  // `rng` (keyed by the pair's ids); false for a model without bonds.
+  virtual bool install_bond(PairBlock& c, std::size_t k, const PairInfo& pair, Rng& rng) const {
+    (void)c, (void)k, (void)pair, (void)rng;
+    return false;
+  }
+  // Whether the model's pairs can hold bonds (kBonded: kept in the list
+  // however far apart, their breaks logged).
+  virtual bool has_bonds() const { return false; }
+  // How close the block's most loaded intact bond is to breaking (what the
+  // break test compares over the strength, at the last step's state); 0 when
+  // none is intact, NaN for a model without bonds.
+  virtual double max_bond_utilisation(const ConstPairBlock& c, const Spheres& s) const {
+    (void)c, (void)s;
+    return std::nan("");
+  }
   // The forces of a block of sphere pairs (c.i, c.j sphere indices), into `out` (block-local indices).
   virtual void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const = 0;
   // The forces of a block of sphere-wall pairs (c.j a wall index), from their geometry `g` (block-local).

@@ -3,7 +3,9 @@
 // all of them: the unit normal from i to j (to the wall), the overlap, the
 // arms from each centre to the contact point (the middle of the overlap), the
 // velocity of j's contact point relative to i's (spins included), and the
-// pair's mean spin (a wall's side spins not: half of i's).
+// spin of the contact plane over the step: the normal's own turn (the centres'
+// relative motion across it) plus the pair's mean spin about the normal (a
+// wall's side spins not: half of i's; a wall's normal is taken as fixed).
 #include <cmath>
 #include <cstddef>
 
@@ -15,14 +17,12 @@ namespace demcal::dem3d {
 struct PairContact {
   Vec3 normal;
   double overlap_m = 0, arm_i_m = 0, arm_j_m = 0;
-  Vec3 relative_velocity_m_s, mean_spin_rad_s;
+  Vec3 relative_velocity_m_s, plane_spin_rad_s;
 };
 
-// Spheres i and j; false when they are apart.
-inline bool sphere_pair_contact(const Spheres& s, std::size_t i, std::size_t j, PairContact& c) {
-  const Vec3 d = s.position(j) - s.position(i);
-  const double reach = s.radius[i] + s.radius[j], distance2 = dot(d, d);
-  if (!(distance2 < reach * reach)) return false;
+// The geometry of spheres i and j at centre offset d (j - i), |d|^2 = distance2.
+inline void fill_pair_contact(const Spheres& s, std::size_t i, std::size_t j, Vec3 d, double reach, double distance2,
+                              PairContact& c) {
   const double distance = std::sqrt(distance2);
   c.normal = (1.0 / distance) * d;
   c.overlap_m = reach - distance;
@@ -31,8 +31,24 @@ inline bool sphere_pair_contact(const Spheres& s, std::size_t i, std::size_t j, 
   const Vec3 vi = s.velocity(i) + cross(s.spin(i), c.arm_i_m * c.normal);
   const Vec3 vj = s.velocity(j) + cross(s.spin(j), -c.arm_j_m * c.normal);
   c.relative_velocity_m_s = vj - vi;
-  c.mean_spin_rad_s = 0.5 * (s.spin(i) + s.spin(j));
+  const Vec3 mean_spin = 0.5 * (s.spin(i) + s.spin(j));
+  c.plane_spin_rad_s = (1.0 / distance) * cross(c.normal, s.velocity(j) - s.velocity(i)) + dot(mean_spin, c.normal) * c.normal;
+}
+
+// Spheres i and j; false when they are apart.
+inline bool sphere_pair_contact(const Spheres& s, std::size_t i, std::size_t j, PairContact& c) {
+  const Vec3 d = s.position(j) - s.position(i);
+  const double reach = s.radius[i] + s.radius[j], distance2 = dot(d, d);
+  if (!(distance2 < reach * reach)) return false;
+  fill_pair_contact(s, i, j, d, reach, distance2, c);
   return true;
+}
+
+// Spheres i and j touching or not (a bond holds them across a gap): the
+// overlap is negative across a gap and the contact point lies in its middle.
+inline void sphere_pair_geometry(const Spheres& s, std::size_t i, std::size_t j, PairContact& c) {
+  const Vec3 d = s.position(j) - s.position(i);
+  fill_pair_contact(s, i, j, d, s.radius[i] + s.radius[j], dot(d, d), c);
 }
 
 // Sphere i against the wall of geometry g's pair k (block-local); false when apart.
@@ -44,7 +60,7 @@ inline bool wall_pair_contact(const Spheres& s, std::size_t i, const WallGeometr
   c.arm_j_m = 0.0;
   const Vec3 vi = s.velocity(i) + cross(s.spin(i), c.arm_i_m * c.normal);
   c.relative_velocity_m_s = Vec3{g.vx[k], g.vy[k], g.vz[k]} - vi;
-  c.mean_spin_rad_s = 0.5 * s.spin(i);
+  c.plane_spin_rad_s = (0.5 * dot(s.spin(i), c.normal)) * c.normal;
   return true;
 }
 

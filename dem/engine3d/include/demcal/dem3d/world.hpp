@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "demcal/dem/contacts.hpp"
@@ -78,6 +79,31 @@ class World {
   // Rebuilds the neighbour list now (after spheres were moved or added by hand).
   void refresh();
 
+  // Material genesis: makes every overlapping sphere pair force-free at its
+  // overlap (PFC's "remove overlap only"), or at (1 - locked_in_fraction) of
+  // it to keep a locked-in share, then bonds every pair whose gap is at most
+  // `tolerance_m` and whose model has bonds. Each bond draws its strengths
+  // from a generator keyed by `seed` and the ids of its two spheres, so a
+  // bond's strength depends on neither the order of the spheres nor the
+  // threads. A bond keeps its pair in the list however far apart the spheres
+  // move. Returns the number of bonds installed.
+  std::size_t install_bonds(double tolerance_m, std::uint64_t seed, double locked_in_fraction = 0.0);
+  // Makes every touching sphere-wall contact force-free as it lies (walls
+  // placed where the vessel was touch the specimen without pushing it).
+  // Returns the number of such contacts.
+  std::size_t make_wall_contacts_force_free();
+  // Clears the break log, the step and time counters and every velocity and
+  // spin: what came before prepared the specimen and is not the test.
+  void start_test();
+  // Every bond break since start_test (or the start), in the order they
+  // happened and, within a step, in pair order.
+  const std::vector<dem::BreakEvent>& breaks() const { return breaks_; }
+  // Intact bonds now.
+  std::size_t bonded_pairs() const;
+  // The largest ContactModel::max_bond_utilisation over the models with
+  // bonds; NaN when no model has bonds.
+  double max_bond_utilisation() const;
+
   double time_s() const { return time_s_; }
   std::uint64_t steps_done() const { return steps_; }
   double dt_s() const { return dt_s_; }
@@ -111,6 +137,7 @@ class World {
   void reorder_spheres();
   void build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys);
   void build_wall_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys);
+  void keep_bonded_pairs(std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>>& found) const;
   void move_walls();
   void carry_state(dem::ContactSet& fresh, const std::vector<std::uint64_t>& fresh_keys, const dem::ContactSet& old,
                    const std::vector<std::uint64_t>& old_keys);
@@ -119,6 +146,7 @@ class World {
   void compute_wall_geometry();
   void keep_one_contact_per_mesh_point();
   void compute_pair_forces();
+  void log_breaks();
   void integrate();
   void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
@@ -133,6 +161,7 @@ class World {
   std::vector<std::size_t> layout_;
   std::vector<std::uint8_t> run_models_, wall_run_models_;
   std::vector<Clump> clumps_;
+  std::vector<dem::BreakEvent> breaks_;
   struct Internals;  // per-pair force arrays, the per-sphere sums, positions at the last build
   std::unique_ptr<Internals> internals_;
   int threads_in_use_ = 1;

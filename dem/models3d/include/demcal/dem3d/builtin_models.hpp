@@ -7,6 +7,8 @@ class ContactModelRegistry;
 
 void register_linear_model(ContactModelRegistry& registry);
 void register_hertz_mindlin_model(ContactModelRegistry& registry);
+void register_contact_bond_model(ContactModelRegistry& registry);
+void register_parallel_bond_model(ContactModelRegistry& registry);
 void register_builtin_models(ContactModelRegistry& registry);
 
 }  // namespace demcal::dem3d

@@ -7,7 +7,6 @@
 #include "demcal/core/number_format.hpp"
 
 namespace demcal::dem {
-namespace {
 
 double number(const nlohmann::json& p, const std::string& key, const std::string& where) {
   if (!p.is_object() || !p.contains(key)) throw Error(where + ": missing parameter \"" + key + "\"");
@@ -17,8 +16,6 @@ double number(const nlohmann::json& p, const std::string& key, const std::string
   if (!std::isfinite(value)) throw Error(where + ": parameter \"" + key + "\" is not finite");
   return value;
 }
-
-}  // namespace
 
 double positive(const nlohmann::json& p, const std::string& key, const std::string& where) {
   double value = number(p, key, where);

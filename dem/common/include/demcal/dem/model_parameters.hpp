@@ -7,6 +7,8 @@
 
 namespace demcal::dem {
 
+// A finite number.
+double number(const nlohmann::json& p, const std::string& key, const std::string& where);
 double positive(const nlohmann::json& p, const std::string& key, const std::string& where);
 double non_negative(const nlohmann::json& p, const std::string& key, const std::string& where);
 // Returns `fallback` when the key is absent.
