@@ -341,7 +341,7 @@ static void record_ten_points(LoadingMonitor& monitor, const World& world, TestR
     CurvePoint point;
     point.axial_strain = strain_step * k;
     point.stress_pa = stress_step_pa * k;
-    ASSERT_TRUE(monitor.record(world, point, result, "test"));
+    ASSERT_TRUE(monitor.record(DiskMonitoredWorld(world), point, result, "test"));
   }
 }
 
@@ -369,7 +369,7 @@ TEST(LoadingMonitor, KineticEnergyThePlatensNeverPutInIsAnInstabilityNotABurst) 
   CurvePoint point;
   point.axial_strain = 1e-4;
   point.cracks = 1;
-  EXPECT_FALSE(monitor.record(world, point, result, "strain 1e-4"));
+  EXPECT_FALSE(monitor.record(DiskMonitoredWorld(world), point, result, "strain 1e-4"));
   EXPECT_FALSE(result.ok);
   EXPECT_EQ(result.reason.rfind("unstable: the kinetic energy (", 0), 0u) << result.reason;
 }
@@ -389,11 +389,11 @@ TEST(LoadingMonitor, AFastDiskWithBondsBreakingGoesOnButOneThatLeftTheDomainFail
   point.axial_strain = 1e-2;
   point.stress_pa = 1e8;
   point.cracks = 1;
-  EXPECT_TRUE(monitor.record(world, point, result, "strain 1e-2")) << result.reason;
+  EXPECT_TRUE(monitor.record(DiskMonitoredWorld(world), point, result, "strain 1e-2")) << result.reason;
   world.bodies.x[1] = 1.5;
   point.axial_strain = 1.1e-2;
   point.cracks = 2;
-  EXPECT_FALSE(monitor.record(world, point, result, "strain 1.1e-2"));
+  EXPECT_FALSE(monitor.record(DiskMonitoredWorld(world), point, result, "strain 1.1e-2"));
   EXPECT_FALSE(result.ok);
   EXPECT_EQ(result.reason.rfind("unstable: a disk left the domain sideways", 0), 0u) << result.reason;
 }

@@ -115,7 +115,7 @@ TestResult confine_and_load(World& world, double confining_stress_pa, const Load
     point.stress_pa = sigma_1 - point.confining_stress_pa;
     point.lateral_strain = (W - W0) / W0;
     point.cracks = world.breaks().size();
-    if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
+    if (!monitor.record(DiskMonitoredWorld(world), point, result, "axial strain " + std::to_string(strain))) break;
   }
   result.steps = confining_steps;  // added to the loading's steps by record_run_end's caller
   if (!result.ok) return result;

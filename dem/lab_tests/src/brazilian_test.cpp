@@ -72,7 +72,7 @@ TestResult run_brazilian(const Scene& scene, const std::map<std::string, double>
     point.axial_strain = approach;
     point.stress_pa = 2.0 * platen_force(world) / (M_PI * D * t);
     point.cracks = world.breaks().size();
-    if (!monitor.record(world, point, result, "platen approach " + std::to_string(approach) + " D")) break;
+    if (!monitor.record(DiskMonitoredWorld(world), point, result, "platen approach " + std::to_string(approach) + " D")) break;
   }
   record_run_end(world, options, start, loading_start, result);
   if (result.ok) {

@@ -12,6 +12,7 @@
 #include "demcal/dem/builtin_tests.hpp"
 #include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem/platen_test.hpp"
 
 namespace demcal::dem {
@@ -35,21 +36,6 @@ double mean_x(const Bodies& b, const std::vector<std::size_t>& ids) {
   double sum = 0;
   for (std::size_t i : ids) sum += b.x[i];
   return sum / static_cast<double>(ids.size());
-}
-
-// Least-squares slope of y(point) on the axial strain over curve[from..to].
-template <typename Y>
-double slope_on_axial_strain(const std::vector<CurvePoint>& curve, std::size_t from, std::size_t to, Y y) {
-  double se = 0, sy = 0, see = 0, sey = 0;
-  const double n = static_cast<double>(to - from + 1);
-  for (std::size_t k = from; k <= to; ++k) {
-    const double e = curve[k].axial_strain, v = y(curve[k]);
-    se += e;
-    sy += v;
-    see += e * e;
-    sey += e * v;
-  }
-  return (n * sey - se * sy) / (n * see - se * se);
 }
 
 // Both platens approach at `speed_m_s` (bottom up, top down).
@@ -86,44 +72,6 @@ double LateralStrainFit::strain(const std::vector<double>& x) const {
   double sxd = 0;
   for (std::size_t k = 0; k < ids_.size(); ++k) sxd += centred_x0_[k] * (x[ids_[k]] - x0_[k]);
   return sxd / sxx_;
-}
-
-std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve,
-                                               const std::vector<double>* tangent_lateral_strain) {
-  if (curve.size() < 5) throw Error("too few curve points to evaluate the test");
-  if (tangent_lateral_strain && tangent_lateral_strain->size() != curve.size())
-    throw Error("the tangent lateral strain has " + std::to_string(tangent_lateral_strain->size()) +
-                " values for " + std::to_string(curve.size()) + " curve points");
-  std::size_t peak = 0;
-  for (std::size_t k = 1; k < curve.size(); ++k)
-    if (curve[k].stress_pa > curve[peak].stress_pa) peak = k;
-  const double sigma_u = curve[peak].stress_pa;
-  std::size_t half = 0;
-  while (half < peak && curve[half].stress_pa < 0.5 * sigma_u) ++half;
-  // Tangents at the half-peak point, E and nu over the same window: a
-  // least-squares slope over its neighbours, a tenth of the points to the
-  // peak on each side. A twentieth scattered nu over seeds by 12 % on a weak
-  // sandstone where a tenth gives 9 % (20 seeds, docs/explanation/calibration_method.md), and a
-  // line through points set evenly about one point of a parabola still has
-  // its slope there.
-  const std::size_t window = std::max<std::size_t>(2, peak / 10);
-  const std::size_t from = half > window ? half - window : 0, to = std::min(peak, half + window);
-  std::map<std::string, double> macro;
-  macro["sigma_u_MPa"] = sigma_u / 1e6;
-  macro["E_GPa"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.stress_pa; }) / 1e9;
-  macro["E50_GPa"] = curve[half].stress_pa / curve[half].axial_strain / 1e9;
-  if (tangent_lateral_strain) {
-    const CurvePoint* first = curve.data();
-    macro["nu"] = slope_on_axial_strain(curve, from, to, [&](const CurvePoint& p) {
-      return (*tangent_lateral_strain)[static_cast<std::size_t>(&p - first)];
-    });
-  } else {
-    macro["nu"] = slope_on_axial_strain(curve, from, to, [](const CurvePoint& p) { return p.lateral_strain; });
-  }
-  // The secant at the same point, as Su et al. 2021 define their nu (E50's partner).
-  macro["nu50"] = curve[half].lateral_strain / curve[half].axial_strain;
-  macro["peak_strain"] = curve[peak].axial_strain;
-  return macro;
 }
 
 TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options) {
@@ -189,7 +137,7 @@ TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& para
                             median_shift_x(world.bodies, left, left_x0, scratch)) / width0;
     point.cracks = world.breaks().size();
     bulk_lateral_strain.push_back(bulk_gauge.strain(world.bodies.x));
-    if (!monitor.record(world, point, result, "axial strain " + std::to_string(strain))) break;
+    if (!monitor.record(DiskMonitoredWorld(world), point, result, "axial strain " + std::to_string(strain))) break;
     if (fast) {
       // The speed falls in proportion as the most loaded bond takes up its
       // strength, never rising again: a gradual slowing rings the specimen

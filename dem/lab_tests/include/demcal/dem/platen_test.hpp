@@ -13,6 +13,7 @@
 #include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/genesis.hpp"
 #include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/test_result.hpp"
 #include "demcal/dem/world.hpp"
@@ -67,41 +68,21 @@ double platen_force(const World& world);
 // options.vtk_every points and at the end (`final`); nothing when unset.
 void snapshot(const World& world, const RunOptions& options, std::size_t points, bool final);
 
-// Records the curve of a platen test and decides when loading ends: past the
-// peak (bonds have broken and the stress has fallen below the stop fraction
-// of the peak a few points later, so an elastic dip does not count), at the
-// strain limit, on instability or on timeout. Draws the progress line.
-//
-// A disk faster than 1000 x the platen speed is either bonds breaking (a
-// brittle burst at failure, or at slow platens one bond's break before the
-// peak) or a numerical instability (energy out of nothing). The energy budget
-// tells them apart: the kinetic energy can never exceed the work the platens
-// have done, so with bonds breaking (within the last three recorded points)
-// and less energy than that the test goes on to its own end; otherwise the run
-// fails. `work_m3` turns the curve into that work: the
-// platen force times its approach is stress x strain x work_m3. (A
-// specimen.locked_in_stress_pa adds energy the platens did not put in; a
-// large one may make a burst look like an instability.)
-class LoadingMonitor {
+// The disk world as the loading monitor (loading_monitor.hpp) sees it.
+class DiskMonitoredWorld : public MonitoredWorld {
  public:
-  LoadingMonitor(const LoadingSpec& loading, const RunOptions& options, std::chrono::steady_clock::time_point start,
-                 double work_m3);
-  ~LoadingMonitor();
-  // Adds `point`; false when the run ends (result.ok set when it ended as
-  // planned, result.reason when it failed; `where` says where, for the reason).
-  bool record(const World& world, const CurvePoint& point, TestResult& result, const std::string& where);
-  double peak() const { return peak_; }
+  explicit DiskMonitoredWorld(const World& world) : world_(world) {}
+  std::string instability(double platen_velocity_m_s) const override {
+    return dem::instability(world_, platen_velocity_m_s);
+  }
+  double kinetic_energy_j() const override { return world_.kinetic_energy(); }
+  std::size_t breaks() const override { return world_.breaks().size(); }
+  void snapshot(const RunOptions& options, std::size_t points, bool final) const override {
+    dem::snapshot(world_, options, points, final);
+  }
 
  private:
-  const LoadingSpec& loading_;
-  const RunOptions& options_;
-  std::chrono::steady_clock::time_point start_;
-  std::unique_ptr<Progress> progress_;
-  int shown_ = 0;
-  double peak_ = 0;
-  std::size_t peak_index_ = 0;
-  double work_m3_ = 0;
-  double work_j_ = 0;  // done by the platens so far
+  const World& world_;
 };
 
 // Fills in what every run reports at its end: steps, time step, threads, wall

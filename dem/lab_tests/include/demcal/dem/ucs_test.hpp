@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "demcal/dem/bodies.hpp"
+#include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/test_result.hpp"
 
@@ -14,15 +15,6 @@ namespace demcal::dem {
 // Packs (or loads) the specimen, bonds it, and loads it to failure. Bad input
 // throws; a run that goes unstable or times out returns ok = false with the reason.
 TestResult run_ucs(const Scene& scene, const std::map<std::string, double>& parameters, const RunOptions& options);
-
-// sigma_u, E (tangent where the stress first reaches half the peak, a
-// least-squares slope over its neighbours), E50 (secant there), nu (tangent
-// d eps_lat / d eps_ax over E's window), nu50 (secant eps_lat / eps_ax at the
-// half-peak point) and the peak strain. nu50 uses the curve's lateral strain;
-// nu uses `tangent_lateral_strain` (one value per curve point) when given,
-// else the curve's too.
-std::map<std::string, double> ucs_macro_values(const std::vector<CurvePoint>& curve,
-                                               const std::vector<double>* tangent_lateral_strain = nullptr);
 
 // The band of the height whose disks nu's tangent fits, as fractions of the
 // height above the bottom platen: the middle three fifths. Over E's short
