@@ -211,7 +211,9 @@ TEST_P(Model3DInvariants, APressedPairAndARestingSphereStayStable) {
     w.spheres.set_spin(0, {0, 0, 1e-3});
     w.spheres.set_spin(1, {0, 0, -1e-3});
     w.refresh();
-    if (data_.contains("bonds")) ASSERT_EQ(w.install_bonds(0.1 * r, 1), 1u) << "the pressed pair is bonded";
+    if (data_.contains("bonds")) {
+      ASSERT_EQ(w.install_bonds(0.1 * r, 1), 1u) << "the pressed pair is bonded";
+    }
     double largest_spin = 0, first_energy = 0, last_energy = 0;
     for (int k = 0; k < 400; ++k) {
       for (int step = 0; step < 100; ++step) {

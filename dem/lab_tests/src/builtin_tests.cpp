@@ -2,6 +2,7 @@
 
 #include "demcal/dem/external_test.hpp"
 #include "demcal/dem/lab_test.hpp"
+#include "demcal/dem3d/lab_tests_3d.hpp"
 
 namespace demcal::dem {
 
@@ -23,6 +24,7 @@ void register_builtin_tests(LabTestRegistry& registry) {
   register_external_test(registry);
   register_heap_test(registry);
   register_wave_strip_test(registry);
+  dem3d::register_ucs_test_3d(registry);
 }
 
 }  // namespace demcal::dem

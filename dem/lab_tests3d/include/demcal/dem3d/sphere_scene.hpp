@@ -1,0 +1,74 @@
+#pragma once
+// What a 3D test reads from a scene: the sphere engine's contact models (as
+// the scene layer's catalog, and bound into a World) and the packed specimen
+// of the "specimen" section; and PackedSphereTest, the base of the tests of a
+// packed sphere specimen, which declares those sections, the specimen's role
+// and what a batch packs.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem/loading_monitor.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/dem3d/genesis.hpp"
+#include "demcal/dem3d/world.hpp"
+
+namespace demcal::dem3d {
+
+using dem::Scene;
+
+// A 3D Poisson's ratio lies in (-1, 0.5).
+inline constexpr dem::OutputRange kPoissonRatio3D{-1.0, 0.5};
+
+constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
+
+// The sphere engine's contact models (ContactModelRegistry) as the scene layer sees them.
+const dem::ContactModelCatalog& sphere_contact_models();
+
+// Creates a model for each of the scene's contact roles (bound to
+// `parameters`) and assigns it to the role's groups.
+void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters);
+
+// The scene's "specimen" section at `parameters`: a cylinder (diameter_m,
+// height_m) or a box (width_m, depth_m, height_m), radii, porosity, density.
+SphereSpecimenSpec sphere_specimen_spec(const Scene& scene, const std::map<std::string, double>& parameters,
+                                        std::uint64_t seed);
+
+// A 3D test of a packed specimen: reads "specimen" (required) and "loading".
+class PackedSphereTest : public dem::LabTest {
+ public:
+  int dimension() const override { return 3; }
+  const dem::ContactModelCatalog& contact_models() const override { return sphere_contact_models(); }
+  std::vector<dem::SceneSection> sections() const override;
+  std::vector<dem::ContactRole> specimen_roles(const Scene& scene) const override;
+  void check_scene(const Scene& scene) const override;
+  std::vector<dem::SpecimenToPack> specimens_to_pack(const Scene& scene, const std::map<std::string, double>& parameters,
+                                                     std::uint64_t seed) const override;
+};
+
+// The world settings a run's loading and options ask for (damping, safety
+// factor, density scaling, threads).
+WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOptions& options);
+
+// The sphere world as the loading monitor sees it: a run fails on a non-finite
+// value, a sphere through a platen (walls[0] bottom, walls[1] top, normal to
+// z), or a sphere faster than 1000 x the platen speed.
+class SphereMonitoredWorld : public dem::MonitoredWorld {
+ public:
+  explicit SphereMonitoredWorld(const World& world) : world_(world) {}
+  std::string instability(double platen_velocity_m_s) const override;
+  double kinetic_energy_j() const override { return world_.kinetic_energy(); }
+  std::size_t breaks() const override { return world_.breaks().size(); }
+  void snapshot(const dem::RunOptions& options, std::size_t points, bool final) const override;
+
+ private:
+  const World& world_;
+};
+
+// Steps, time step, threads, wall times and the crack counts by mode.
+void record_run_end(const World& world, const dem::RunOptions& options, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point loading_start, dem::TestResult& result);
+
+}  // namespace demcal::dem3d

@@ -1,0 +1,171 @@
+#include "demcal/dem3d/sphere_scene.hpp"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
+#include "demcal/dem3d/contact_model.hpp"
+#include "demcal/dem3d/vtk_writer.hpp"
+
+namespace demcal::dem3d {
+namespace {
+
+using json = nlohmann::json;
+
+class SphereContactModels : public dem::ContactModelCatalog {
+ public:
+  std::string dimension() const override { return "3d"; }
+  std::vector<std::string> names() const override { return ContactModelRegistry::instance().names(); }
+  const std::vector<std::string>& parameter_keys(const std::string& model) const override {
+    return ContactModelRegistry::instance().parameter_keys(model);
+  }
+  const json& peer_names(const std::string& model) const override {
+    return ContactModelRegistry::instance().peer_names(model);
+  }
+  void check(const std::string& model, const json& bound, const std::string& where) const override {
+    ContactModelRegistry::instance().create(model, bound, where);
+  }
+};
+
+}  // namespace
+
+const dem::ContactModelCatalog& sphere_contact_models() {
+  static const SphereContactModels models;
+  return models;
+}
+
+void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters) {
+  for (const dem::ContactRole& role : scene.contact_roles()) {
+    const dem::ContactSpec& c = scene.contacts().at(role.name);
+    const std::string where = scene.origin() + ": contacts." + role.name;
+    const std::uint8_t model =
+        world.add_model(ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where), where));
+    for (const auto& [a, b] : role.groups) world.assign(a, b, model);
+  }
+}
+
+SphereSpecimenSpec sphere_specimen_spec(const Scene& scene, const std::map<std::string, double>& parameters,
+                                        std::uint64_t seed) {
+  const json& specimen = scene.section("specimen");
+  const std::string where = scene.origin() + ": specimen";
+  SphereSpecimenSpec spec;
+  spec.vessel = choice_field(specimen, "shape", {"cylinder", "box"}, 0, where) == 0 ? Vessel::cylinder : Vessel::box;
+  auto field = [&](const char* key, double& target) {
+    if (specimen.contains(key)) target = scene.evaluate(specimen.at(key), parameters, where + "." + key);
+  };
+  if (spec.vessel == Vessel::cylinder) {
+    if (specimen.contains("width_m") || specimen.contains("depth_m"))
+      throw Error(where + ": a cylinder takes diameter_m and height_m (width_m and depth_m are a box's)");
+    field("diameter_m", spec.width_m);
+  } else {
+    if (specimen.contains("diameter_m")) throw Error(where + ": a box takes width_m, depth_m and height_m");
+    field("width_m", spec.width_m);
+    field("depth_m", spec.depth_m);
+  }
+  field("height_m", spec.height_m);
+  field("porosity", spec.porosity);
+  field("radius_min_m", spec.radius_min_m);
+  field("radius_max_m", spec.radius_max_m);
+  field("density_kg_m3", spec.density_kg_m3);
+  spec.seed = seed;
+  return spec;
+}
+
+std::vector<dem::SceneSection> PackedSphereTest::sections() const {
+  return {{"specimen", "the packed sphere specimen: its vessel (a cylinder or a box), radii, porosity and density", true,
+           true, {}},
+          {"loading", "how the test loads the specimen", false, false, {}}};
+}
+
+std::vector<dem::ContactRole> PackedSphereTest::specimen_roles(const Scene&) const {
+  return {{"particle-particle", {{kSpecimenGroup, kSpecimenGroup}}, "the specimen's spheres against each other"}};
+}
+
+void PackedSphereTest::check_scene(const Scene& scene) const {
+  require_known_fields(scene.section("specimen"),
+                       {"shape", "diameter_m", "width_m", "depth_m", "height_m", "porosity", "radius_min_m",
+                        "radius_max_m", "density_kg_m3", "note"},
+                       scene.origin() + ": specimen");
+  try {
+    sphere_specimen_spec(scene, scene.resolve({}), 1).validate();
+  } catch (const Error& e) {
+    throw Error(scene.origin() + ": " + e.what());
+  }
+  const dem::LoadingSpec& loading = scene.loading();
+  if (loading.elastic_speedup != 1)
+    throw Error(scene.origin() + ": loading.elastic_speedup: the 3D tests load at one speed throughout");
+  if (loading.platen_start != dem::LoadingSpec::PlatenStart::vessel_faces)
+    throw Error(scene.origin() + ": loading.platen_start: the 3D tests start their platens at the vessel's faces");
+}
+
+std::vector<dem::SpecimenToPack> PackedSphereTest::specimens_to_pack(const Scene& scene,
+                                                                     const std::map<std::string, double>& parameters,
+                                                                     std::uint64_t seed) const {
+  const SphereSpecimenSpec spec = sphere_specimen_spec(scene, parameters, seed);
+  return {{spec.cache_key(), [spec](const std::string& cache_dir) { cached_sphere_specimen(spec, cache_dir); }}};
+}
+
+WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOptions& options) {
+  WorldSettings settings;
+  settings.damping = loading.local_damping;
+  settings.safety_factor = loading.safety_factor;
+  settings.density_scaling_dt_s = loading.density_scaling_dt_s;
+  if (options.threads > 0) settings.threads = options.threads;
+  if (options.min_disks_per_thread > 0) settings.min_spheres_per_thread = options.min_disks_per_thread;
+  return settings;
+}
+
+std::string SphereMonitoredWorld::instability(double platen_velocity_m_s) const {
+  const Spheres& s = world_.spheres;
+  const Wall &bottom = world_.walls[0], &top = world_.walls[1];
+  double fastest2 = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Vec3 v = s.velocity(i);
+    fastest2 = std::max(fastest2, dot(v, v));
+    if (!std::isfinite(s.x[i] + s.y[i] + s.z[i])) return "unstable: non-finite positions";
+    if (s.z[i] < bottom.point_m.z - s.radius[i] || s.z[i] > top.point_m.z + s.radius[i])
+      return "unstable: a sphere passed through a platen";
+  }
+  if (!std::isfinite(fastest2) || !std::isfinite(bottom.normal_force_n + top.normal_force_n))
+    return "unstable: non-finite forces or velocities";
+  if (fastest2 > 1e6 * platen_velocity_m_s * platen_velocity_m_s)
+    return "unstable: a sphere moves faster than 1000 x the platen speed";
+  return "";
+}
+
+void SphereMonitoredWorld::snapshot(const dem::RunOptions& options, std::size_t points, bool final) const {
+  if (options.vtk_dir.empty()) return;
+  const bool due =
+      final || points == 1 || (options.vtk_every > 0 && points % static_cast<std::size_t>(options.vtk_every) == 0);
+  if (!due) return;
+  ::mkdir(options.vtk_dir.c_str(), 0755);
+  char name[64];
+  std::snprintf(name, sizeof(name), "%s_%06zu.vtk", final ? "final" : "spheres", points);
+  write_vtk_spheres(world_, options.vtk_dir + "/" + name);
+  std::snprintf(name, sizeof(name), "%s_%06zu.vtk", final ? "final_walls" : "walls", points);
+  write_vtk_walls(world_, options.vtk_dir + "/" + name);
+}
+
+void record_run_end(const World& world, const dem::RunOptions& options, std::chrono::steady_clock::time_point start,
+                    std::chrono::steady_clock::time_point loading_start, dem::TestResult& result) {
+  const auto now = std::chrono::steady_clock::now();
+  result.steps = world.steps_done();
+  result.dt_s = world.dt_s();
+  result.threads = world.threads_in_use();
+  result.density_scaling_dt_s = world.settings().density_scaling_dt_s;
+  SphereMonitoredWorld(world).snapshot(options, result.curve.size(), true);
+  result.wall_s = std::chrono::duration<double>(now - start).count();
+  result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
+  std::size_t tension = 0;
+  for (const dem::BreakEvent& b : world.breaks()) tension += b.mode == dem::BreakMode::Tension;
+  result.macro["cracks_tension"] = static_cast<double>(tension);
+  result.macro["cracks_shear"] = static_cast<double>(world.breaks().size() - tension);
+}
+
+}  // namespace demcal::dem3d
