@@ -197,6 +197,27 @@ case("scene/extends_bad_patch",
      path(S, "extends_bad_patch.json"), "strain_limit")
 case("scene/does_not_exist", describe(missing(S, "does_not_exist.json")), path(S, "does_not_exist.json"), "cannot open")
 case("scene/directory", describe(directory("as_file.json")), f"{HERE}/dir/as_file.json")
+# 3D scenes: each test checks its contact models against its own engine's registry.
+scene3d = load("tests/data/ucs_small_3d.json")
+case("scene/3d_two_d_only_model",
+     describe(write(S, "3d_two_d_only_model.json",
+                    edited(scene3d, lambda d: d["contacts"]["particle-particle"].update(model="flat_joint")))),
+     path(S, "3d_two_d_only_model.json"), "flat_joint")
+case("scene/3d_bond_without_its_modulus",
+     describe(write(S, "3d_bond_without_its_modulus.json",
+                    edited(scene3d, lambda d: d["contacts"]["particle-particle"]["parameters"].pop("bond_modulus_pa")))),
+     path(S, "3d_bond_without_its_modulus.json"), "bond_modulus_pa")
+case("scene/3d_box_for_a_cylinder_test",
+     describe(write(S, "3d_box_for_a_cylinder_test.json",
+                    edited(scene3d, lambda d: d["specimen"].update(shape="box", width_m=0.01, depth_m=0.01)
+                           or d["specimen"].pop("diameter_m")))),
+     path(S, "3d_box_for_a_cylinder_test.json"), "shape")
+case("scene/3d_negative_diameter",
+     describe(write(S, "3d_negative_diameter.json", edited(scene3d, lambda d: d["specimen"].update(diameter_m=-0.01)))),
+     path(S, "3d_negative_diameter.json"), "diameter_m")
+case("scene/3d_porosity_out_of_range",
+     describe(write(S, "3d_porosity_out_of_range.json", edited(scene3d, lambda d: d["specimen"].update(porosity=0.9)))),
+     path(S, "3d_porosity_out_of_range.json"), "porosity")
 
 # ---------------------------------------------------------------- parameter space JSON (demcal-doe, describe --space)
 def doe(f):

@@ -70,7 +70,6 @@ dem::TestResult run_ucs_3d(const Scene& scene, const std::map<std::string, doubl
   const auto start = std::chrono::steady_clock::now();
   const dem::LoadingSpec& loading = scene.loading();
   const SphereSpecimenSpec spec = sphere_specimen_spec(scene, parameters, options.seed);
-  if (spec.vessel != Vessel::cylinder) throw Error(scene.origin() + ": specimen.shape: ucs_3d compresses a cylinder");
   const SphereSpecimen specimen = cached_sphere_specimen(spec, options.cache_dir);
 
   World world(loading_settings(loading, options));
@@ -157,6 +156,11 @@ class UcsTest3D : public PackedSphereTest {
         {"cracks_tension", "1", "bonds broken in tension", true, dem::kNonNegative},
         {"cracks_shear", "1", "bonds broken in shear", true, dem::kNonNegative},
     };
+  }
+  void check_scene(const Scene& scene) const override {
+    PackedSphereTest::check_scene(scene);
+    if (sphere_specimen_spec(scene, scene.resolve({}), 1).vessel != Vessel::cylinder)
+      throw Error(scene.origin() + ": specimen.shape: ucs_3d compresses a cylinder (\"shape\": \"cylinder\")");
   }
   std::vector<std::string> headline_outputs(const Scene&) const override { return {"sigma_u_MPa", "E_GPa", "nu"}; }
   std::vector<std::string> modulus_outputs(const Scene&) const override { return {"E_GPa", "E50_GPa"}; }
