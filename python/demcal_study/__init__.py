@@ -1,7 +1,7 @@
 """demcal's study layer. What a user runs:
 
     python -m demcal_study calibrate --scene S --target NAME=VALUE ...   make calibrate (docs/tutorial.md)
-    python -m demcal_study export --solution S.json --scene S --to pfc|yade|liggghts   a calibrated set as input
+    python -m demcal_study export --solution S.json --scene S --to pfc|pfc3d|yade|liggghts   a calibrated set as input
                                                        of the simulator a user runs (docs/howto/own_simulator.md)
 
 A study file (data/studies/) becomes a make plan whose every stage is a file target; the stages are subcommands

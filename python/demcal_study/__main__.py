@@ -156,13 +156,14 @@ def parser():
                           "and parameters.json land there (default build/calibrations)")
     cal.add_argument("--quiet", action="store_true",
                      help="no progress lines on stderr (errors and the exit code still tell the outcome)")
-    exp = sub.add_parser("export", help="a calibrated parameter set as PFC, YADE or LIGGGHTS input",
+    exp = sub.add_parser("export", help="a calibrated parameter set as PFC2D, PFC3D, YADE or LIGGGHTS input",
                          description="A calibrated parameter set written as the input of the simulator you run.",
                          epilog="exit codes: 0 written; 1 internal failure; 2 bad input (one line naming the file)")
     exp.add_argument("--solution", required=True, metavar="SOLUTION.json",
                      help="a solution.json (make calibrate, a study, demcal-invert) or a report's parameters.json")
     exp.add_argument("--scene", required=True, metavar="SCENE.json", help="the scene the solution belongs to")
-    exp.add_argument("--to", required=True, choices=("pfc", "yade", "liggghts"))
+    exp.add_argument("--to", required=True, choices=("pfc", "pfc3d", "yade", "liggghts"),
+                     help="pfc: PFC2D (a 2D scene); pfc3d: PFC3D (a 3D scene); yade; liggghts")
     exp.add_argument("--out", metavar="FILE", help="default: print it")
     return p
 

@@ -1,6 +1,6 @@
 """export: a calibrated parameter set written as the input of the simulator a user runs.
 
-    python -m demcal_study export --solution SOLUTION.json --scene S.json --to pfc|yade|liggghts [--out FILE]
+    python -m demcal_study export --solution SOLUTION.json --scene S.json --to pfc|pfc3d|yade|liggghts [--out FILE]
 
 The solution is any of demcal's (demcal-invert, make calibrate, a study), or the parameters.json a report writes
 beside itself: its `x` (or parameters) over the scene's defaults. For our
@@ -9,11 +9,13 @@ and written under the other program's names, which each contact model declares (
 contact_model_peer_names), SI units; for an external scene, its own parameters under their own
 names (they are that program's already). What does not carry over is said in the file, never silently dropped:
 
-* our DEM is 2D (disks of unit thickness): PFC2D takes the moduli and strengths as they are; YADE and LIGGGHTS are 3D,
-  where the same numbers give another material, so the calibration must be repeated there (or run through
-  demcal's external test on that program);
+* a 2D scene (disks of unit thickness) exports to PFC2D (`pfc`), which takes the moduli and strengths as they are;
+  YADE and LIGGGHTS are 3D, where the same numbers give another material, so the calibration must be repeated there
+  (or run through demcal's external test on that program). A 3D scene (spheres) exports to PFC3D (`pfc3d`), YADE
+  and LIGGGHTS as it is, each law as close as that program's model (each model's reference page says how close);
 * strength deviations (`*_std_pa`) have no property in the other programs: they are written as comments;
-* a contact bond's strengths are stresses here (force = stress x 2 min(R) t per bond, PFC's contact area), which
+* a contact bond's strengths are stresses here (force = stress x 2 min(R) t per bond in 2D, pi min(R)^2 in 3D: PFC's
+  contact area), which
   PFC's linearcbond takes through its cb_strength method after bonding, not as properties of the assignment table.
 """
 import json
@@ -23,7 +25,7 @@ import os
 from . import executables
 from .errors import fail, load_json
 
-TARGETS = ("pfc", "yade", "liggghts")
+TARGETS = ("pfc", "pfc3d", "yade", "liggghts")
 
 
 def evaluate(expression, values, where):
@@ -78,7 +80,7 @@ def contact_roles(description):
 
 # Each model's names in the other programs are its own (`demcal-dem describe --registries`, contact_model_peer_names):
 # what follows only renders them in each program's syntax and applies that program's conventions.
-PROGRAMS = {"pfc": "PFC", "yade": "YADE", "liggghts": "LIGGGHTS"}
+PROGRAMS = {"pfc": "PFC", "pfc3d": "PFC3D", "yade": "YADE", "liggghts": "LIGGGHTS"}
 
 
 def converted(keyword, p):
@@ -175,7 +177,18 @@ def liggghts_lines(role, model, p, table):
     return lines + not_carried(p, used, "LIGGGHTS")
 
 
-WRITERS = {"pfc": pfc_lines, "yade": yade_lines, "liggghts": liggghts_lines}
+WRITERS = {"pfc": pfc_lines, "pfc3d": pfc_lines, "yade": yade_lines, "liggghts": liggghts_lines}
+HEADERS_3D = {
+    "pfc3d": ["# PFC3D 7 contact model assignment (Python, run inside PFC3D: import itasca as it). SI units.",
+              "# Written from PFC's documented keywords without a PFC to run it on: check them against your version.",
+              "# Our 3D DEM has spheres, as PFC3D: moduli and strengths carry over as they are.",
+              "import itasca as it"],
+    "yade": ["# YADE material properties (Python dicts: O.materials.append(CohFrictMat(**{k: v for k, v in d.items()",
+             "# if k != 'kind'})) ). SI units. Our 3D DEM has spheres, as YADE; its cohesive-frictional law is related",
+             "# to, not the same as, PFC3D's bonds: check a run in YADE against demcal's (docs/howto/own_simulator.md)."],
+    "liggghts": ["# LIGGGHTS fix property/global lines (one atom type). SI units. Our 3D DEM has spheres, as LIGGGHTS:",
+                 "# the numbers carry over as they are; the laws are each model's (see its reference page)."],
+}
 HEADERS = {
     "pfc": ["# PFC2D 7 contact model assignment (Python, run inside PFC: import itasca as it). SI units.",
             "# Written from PFC's documented keywords without a PFC to run it on: check them against your version.",
@@ -191,7 +204,7 @@ HEADERS = {
 
 def role_lines(to, role, model, bound, peer_names):
     """`peer_names`: one engine's tables ({model: {program: table}})."""
-    table = peer_names.get(model, {}).get(to)
+    table = peer_names.get(model, {}).get("pfc" if to == "pfc3d" else to)
     if table is None:
         return [f"# {role}: model {model} has no {PROGRAMS[to]} counterpart in this exporter"]
     return ([f"# {role}: {model} as {PROGRAMS[to]}'s {table['model']}"] + [f"# {n}" for n in table.get("notes", [])] +
@@ -199,7 +212,7 @@ def role_lines(to, role, model, bound, peer_names):
 
 
 def external_lines(to, values):
-    if to == "pfc":
+    if to in ("pfc", "pfc3d"):
         return [f"{name} = {value!r}" for name, value in sorted(values.items())]
     if to == "yade":
         return ["parameters = " + repr(dict(sorted(values.items())))]
@@ -217,7 +230,12 @@ def export_text(description, solution, to, peer_names, where="export"):
     if not roles:  # an external scene (or a list of them): no contacts of ours to translate
         lines.append("# an external scene: its own parameters, under their own names")
         return "\n".join(lines + external_lines(to, values)) + "\n"
-    lines += HEADERS[to]
+    dims = {dim for _, _, _, _, dim in roles}
+    if to == "pfc" and "3d" in dims:
+        fail(f"{where}: --to pfc writes PFC2D's commands, and {description['scene']} is a 3D scene: use --to pfc3d")
+    if to == "pfc3d" and "3d" not in dims:
+        fail(f"{where}: --to pfc3d writes PFC3D's commands, and {description['scene']} is a 2D scene: use --to pfc")
+    lines += HEADERS_3D[to] if dims == {"3d"} else HEADERS[to]
     lines.append("# scene parameters: " + ", ".join(f"{k} = {v:.10g}" for k, v in sorted(values.items())))
     for label, role, model, bindings, dim in roles:
         bound = {k: evaluate(v, values, f"{where}: contacts.{role}.{k}") for k, v in bindings.items()}

@@ -157,6 +157,19 @@ def write_parameters(out, entries, scene, status, note=""):
     return path
 
 
+PROGRAM_OF = {"pfc": "PFC2D", "pfc3d": "PFC3D"}
+
+
+def scene_dimension(scene):
+    """2 or 3: the engine of the scene's test (a test list: 3 when every test is 3D)."""
+    from . import executables
+    d = executables.describe(scene)
+    if d.get("test") == "list":
+        dims = {t.get("dimension") for t in d.get("tests", [])}
+        return 3 if dims == {3} else 2
+    return d.get("dimension") or 2
+
+
 def parameter_block_lines(entries, scene, out, heading="## Final parameter set"):
     """The report's first section: every parameter in one copyable block (exact values, as the DEM ran them), and how
     to export it."""
@@ -168,13 +181,14 @@ def parameter_block_lines(entries, scene, out, heading="## Final parameter set")
     # and Debian's interpreter (the one with the study layer's packages).
     package = os.path.relpath(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), os.path.abspath(out))
     scene_shown = shown_path(scene, out)
+    pfc = "pfc3d" if scene_dimension(scene) == 3 else "pfc"
     return [heading, "",
             "Every parameter of the scene (fixed ones included), exact as the DEM ran them; also in "
             "[parameters.json](parameters.json) beside this report (name, value, unit).", "",
             "```text"] + block + ["```", "",
-                                  "Export it to PFC, YADE or LIGGGHTS from this report's folder: "
+                                  f"Export it to {PROGRAM_OF[pfc]}, YADE or LIGGGHTS from this report's folder: "
                                   f"`PYTHONPATH={package} /usr/bin/python3 -m demcal_study export --solution "
-                                  f"parameters.json --scene {scene_shown} --to pfc` (or `--to yade`, "
+                                  f"parameters.json --scene {scene_shown} --to {pfc}` (or `--to yade`, "
                                   "`--to liggghts`).", ""]
 
 

@@ -86,7 +86,7 @@ def test_an_external_scene_exports_its_own_parameters_by_name(peers):
 
 
 def test_bad_requests_say_what_is_wrong(peers):
-    with pytest.raises(StudyError, match="--to must be one of pfc, yade, liggghts"):
+    with pytest.raises(StudyError, match="--to must be one of pfc, pfc3d, yade, liggghts"):
         export.export_text(PB_SCENE, SOLUTION, "edem", peers)
     with pytest.raises(StudyError, match="x.Ec_Pa is not a parameter of ucs_rock_pb.json"):
         export.export_text(PB_SCENE, {"x": {"Ec_Pa": 1}}, "pfc", peers)
@@ -131,23 +131,29 @@ def test_no_key_of_any_model_is_dropped_silently(peers, bin_dir):
     # Every key a model takes is either written under the other program's name or said not to carry over.
     done = subprocess.run([os.path.join(bin_dir, "demcal-dem"), "describe", "--registries"], capture_output=True,
                           text=True, check=True)
-    keys = json.loads(done.stdout)["contact_model_parameters"]["2d"]
-    assert set(peers["2d"]) == set(keys)
-    for model, model_keys in keys.items():
-        # Scene parameters p0, p1 ... (not the keys' names, which would then appear in the header anyway); kn_ks near
-        # 0.3: no Hertz-Mindlin Poisson's ratio, which must be said too.
-        scene = {"scene": "s.json", "test": "ucs",
-                 "parameters": {f"p{i}": {"value": 0.3 + 0.01 * i} for i in range(len(model_keys))},
-                 "contacts": {"particle-particle": {"model": model, "parameters": {
-                     k: f"p{i}" for i, k in enumerate(model_keys)}}}}
-        for to in export.TARGETS:
-            text = export.export_text(scene, {"x": {}}, to, peers)
-            table = peers["2d"][model].get(to)
-            if table is None:
-                assert f"model {model} has no" in text
-                continue
-            translated = {k["key"]: k["name"] for k in table["keywords"] if "key" in k}
-            for key in model_keys:
-                said = re.search(rf"^# {key}\b", text, re.M)
-                written = key in translated and re.search(rf"\b{translated[key]}\b", text)
-                assert said or written, (model, to, key)
+    registries = json.loads(done.stdout)["contact_model_parameters"]
+    assert set(peers) == set(registries)
+    for dim, keys in registries.items():
+        assert set(peers[dim]) == set(keys)
+        for model, model_keys in keys.items():
+            # Scene parameters p0, p1 ... (not the keys' names, which would then appear in the header anyway); kn_ks
+            # near 0.3: no Hertz-Mindlin Poisson's ratio, which must be said too.
+            scene = {"scene": "s.json", "test": "ucs" if dim == "2d" else "ucs_3d", "dimension": int(dim[0]),
+                     "parameters": {f"p{i}": {"value": 0.3 + 0.01 * i} for i in range(len(model_keys))},
+                     "contacts": {"particle-particle": {"model": model, "parameters": {
+                         k: f"p{i}" for i, k in enumerate(model_keys)}}}}
+            for to in export.TARGETS:
+                if to == ("pfc3d" if dim == "2d" else "pfc"):
+                    with pytest.raises(StudyError, match="use --to pfc"):
+                        export.export_text(scene, {"x": {}}, to, peers)
+                    continue
+                text = export.export_text(scene, {"x": {}}, to, peers)
+                table = peers[dim][model].get("pfc" if to == "pfc3d" else to)
+                if table is None:
+                    assert f"model {model} has no" in text
+                    continue
+                translated = {k["key"]: k["name"] for k in table["keywords"] if "key" in k}
+                for key in model_keys:
+                    said = re.search(rf"^# {key}\b", text, re.M)
+                    written = key in translated and re.search(rf"\b{translated[key]}\b", text)
+                    assert said or written, (dim, model, to, key)

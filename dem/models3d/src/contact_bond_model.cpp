@@ -139,7 +139,12 @@ void register_contact_bond_model(ContactModelRegistry& registry) {
                    {"key": "tensile_strength_pa", "group": "cb_strength", "name": "tensile"},
                    {"key": "shear_strength_pa", "group": "cb_strength", "name": "shear"}],
       "later": {"cb_strength": {"command": "contact method cb_strength",
-        "text": "after bonding (contact method bond gap ...), the strengths as stresses; PFC3D turns them into the forces cb_tenf and cb_shearf with the contact area pi min(R)^2, as demcal does"}}}})"));
+        "text": "after bonding (contact method bond gap ...), the strengths as stresses; PFC3D turns them into the forces cb_tenf and cb_shearf with the contact area pi min(R)^2, as demcal does"}}},
+    "yade": {"model": "CohFrictMat", "notes": ["YADE sets its normal stiffness from young as 2 young R1 R2 / (R1 + R2) (PFC3D: pi min(R)^2 E / (R1 + R2)) and its cohesions over its own area: the same numbers make a stiffer or softer material there; check a YADE run against demcal's"],
+      "keywords": [{"key": "modulus_pa", "name": "young"}, {"key": "kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "friction", "name": "frictionAngle", "as": "atan"},
+                   {"key": "tensile_strength_pa", "name": "normalCohesion"},
+                   {"key": "shear_strength_pa", "name": "shearCohesion"}, {"name": "isCohesive", "value": true}]}})"));
 }
 
 }  // namespace demcal::dem3d

@@ -36,7 +36,10 @@ void register_linear_model(ContactModelRegistry& registry) {
                    {"key": "kn_ks", "group": "deformability", "name": "kratio"},
                    {"key": "kn_n_m", "group": "property", "name": "kn"},
                    {"key": "ks_n_m", "group": "property", "name": "ks"},
-                   {"key": "friction", "group": "property", "name": "fric"}]}})"));
+                   {"key": "friction", "group": "property", "name": "fric"}]},
+    "yade": {"model": "FrictMat", "notes": ["YADE sets its normal stiffness from young as 2 young R1 R2 / (R1 + R2) (PFC3D: pi min(R)^2 E / (R1 + R2)): check a YADE run against demcal's"],
+      "keywords": [{"key": "modulus_pa", "name": "young"}, {"key": "kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "friction", "name": "frictionAngle", "as": "atan"}]}})"));
 }
 
 }  // namespace demcal::dem3d

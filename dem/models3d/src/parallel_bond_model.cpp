@@ -221,7 +221,12 @@ void register_parallel_bond_model(ContactModelRegistry& registry) {
                    {"key": "shear_strength_pa", "group": "property", "name": "pb_coh"},
                    {"group": "property", "name": "pb_fa", "value": 0},
                    {"key": "radius_multiplier", "group": "property", "name": "pb_rmul", "default": 1},
-                   {"key": "moment_contribution", "group": "property", "name": "pb_mcf", "default": 1}]}})"));
+                   {"key": "moment_contribution", "group": "property", "name": "pb_mcf", "default": 1}]},
+    "yade": {"model": "CohFrictMat", "notes": ["YADE sets its normal stiffness from young as 2 young R1 R2 / (R1 + R2) (PFC3D: pi min(R)^2 E / (R1 + R2)) and its cohesions over its own area: the same numbers make a stiffer or softer material there; check a YADE run against demcal's"],
+      "keywords": [{"key": "modulus_pa", "name": "young"}, {"key": "kn_ks", "name": "poisson", "as": "reciprocal"},
+                   {"key": "friction", "name": "frictionAngle", "as": "atan"},
+                   {"key": "tensile_strength_pa", "name": "normalCohesion"},
+                   {"key": "shear_strength_pa", "name": "shearCohesion"}, {"name": "isCohesive", "value": true}]}})"));
 }
 
 }  // namespace demcal::dem3d
