@@ -123,16 +123,17 @@ WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOp
 
 std::string SphereMonitoredWorld::instability(double platen_velocity_m_s) const {
   const Spheres& s = world_.spheres;
-  const Wall &bottom = world_.walls[0], &top = world_.walls[1];
+  const Wall &first = world_.walls[0], &second = world_.walls[1];
   double fastest2 = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const Vec3 v = s.velocity(i);
+    const Vec3 v = s.velocity(i), x = s.position(i);
     fastest2 = std::max(fastest2, dot(v, v));
-    if (!std::isfinite(s.x[i] + s.y[i] + s.z[i])) return "unstable: non-finite positions";
-    if (s.z[i] < bottom.point_m.z - s.radius[i] || s.z[i] > top.point_m.z + s.radius[i])
+    if (!std::isfinite(x.x + x.y + x.z)) return "unstable: non-finite positions";
+    // A platen's normal points into the specimen: a centre more than a radius behind it has passed through.
+    if (dot(x - first.point_m, first.axis) < -s.radius[i] || dot(x - second.point_m, second.axis) < -s.radius[i])
       return "unstable: a sphere passed through a platen";
   }
-  if (!std::isfinite(fastest2) || !std::isfinite(bottom.normal_force_n + top.normal_force_n))
+  if (!std::isfinite(fastest2) || !std::isfinite(first.normal_force_n + second.normal_force_n))
     return "unstable: non-finite forces or velocities";
   if (fastest2 > 1e6 * platen_velocity_m_s * platen_velocity_m_s)
     return "unstable: a sphere moves faster than 1000 x the platen speed";

@@ -53,8 +53,9 @@ class PackedSphereTest : public dem::LabTest {
 WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOptions& options);
 
 // The sphere world as the loading monitor sees it: a run fails on a non-finite
-// value, a sphere through a platen (walls[0] bottom, walls[1] top, normal to
-// z), or a sphere faster than 1000 x the platen speed.
+// value, a sphere through a platen (walls[0] and walls[1], planes whose
+// normals point into the specimen), or a sphere faster than 1000 x the platen
+// speed.
 class SphereMonitoredWorld : public dem::MonitoredWorld {
  public:
   explicit SphereMonitoredWorld(const World& world) : world_(world) {}

@@ -1,0 +1,136 @@
+// The Brazilian disc in 3D: a sphere cylinder (the disc, its axis along z,
+// its thickness the packing's height) loaded across a diameter between two
+// frictionless platens, with the 2D test's outputs: sigma_t = 2 F / (pi D t)
+// at the peak force, the platens' approach at the peak over D, cracks by mode.
+// As in 2D the disc is flattened where the platens bear (flats at 10 degrees
+// from the loading axis, which spread the load over several spheres instead
+// of crushing one), and the platens start on the flats, touching every sphere
+// that crosses a flat with no force.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "demcal/core/error.hpp"
+#include "demcal/dem/loading_monitor.hpp"
+#include "demcal/dem/particle_order.hpp"
+#include "demcal/dem3d/lab_tests_3d.hpp"
+#include "demcal/dem3d/sphere_scene.hpp"
+
+namespace demcal::dem3d {
+namespace {
+
+constexpr std::size_t kLeft = 0, kRight = 1;  // the platens, normal to x
+
+dem::TestResult run_brazilian_3d(const Scene& scene, const std::map<std::string, double>& parameters,
+                                 const dem::RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const dem::LoadingSpec& loading = scene.loading();
+  const SphereSpecimen disc = cached_sphere_specimen(sphere_specimen_spec(scene, parameters, options.seed),
+                                                     options.cache_dir);
+  const double D = disc.width_m, t = disc.height_m, flat = 0.5 * D * std::cos(10.0 * M_PI / 180.0);
+
+  World world(loading_settings(loading, options));
+  bind_contact_models(world, scene, parameters);
+  std::size_t kept = 0;
+  for (std::size_t k : dem::particle_order(disc.size(), options.particle_order_seed)) {
+    double x = disc.x[k];
+    const double r = disc.radius[k];
+    if (std::abs(x) > flat) continue;  // cut off by a flat
+    // A sphere crossing a flat by more than half its radius is set back to
+    // half (the flats ground true); bonding makes its new overlaps force-free.
+    if (std::abs(x) > flat - 0.5 * r) x = std::copysign(flat - 0.5 * r, x);
+    world.spheres.add_sphere({x, disc.y[k], disc.z[k]}, r, disc.density_kg_m3, kSpecimenGroup,
+                             static_cast<std::int64_t>(k));
+    ++kept;
+  }
+  Wall left = make_plane({-flat, 0, 0}, {1, 0, 0}), right = make_plane({flat, 0, 0}, {-1, 0, 0});
+  left.group = right.group = kPlatenGroup;
+  world.walls = {left, right};
+  const double r_min = *std::min_element(disc.radius.begin(), disc.radius.end());
+  const double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
+  const std::size_t bonds = world.install_bonds(tolerance, options.seed);
+  const std::size_t on_platens = world.make_wall_contacts_force_free();
+  world.start_test();
+
+  dem::TestResult result;
+  result.particles = kept;
+  result.porosity = disc.porosity;
+  result.specimen_info["coordination_number"] = disc.coordination_number;
+  result.specimen_info["mean_overlap_ratio"] = disc.mean_overlap_ratio;
+  result.specimen_info["bonds_per_sphere"] = 2.0 * static_cast<double>(bonds) / static_cast<double>(kept);
+  result.specimen_info["spheres_on_platens"] = static_cast<double>(on_platens);
+  result.specimen_info["locked_in_stress_MPa"] = 0.0;
+
+  world.walls[kLeft].velocity_m_s = {loading.platen_velocity_m_s, 0, 0};
+  world.walls[kRight].velocity_m_s = {-loading.platen_velocity_m_s, 0, 0};
+  const double gap0 = 2 * flat;
+  const auto loading_start = std::chrono::steady_clock::now();
+  // sigma = 2 F / (pi D t) and the approach over D: F d(approach) = sigma d(approach / D) pi D^2 t / 2.
+  dem::LoadingMonitor monitor(loading, options, start, 0.5 * M_PI * D * D * t);
+  double next_record = 0;
+  for (;;) {
+    world.step();
+    const double approach = (gap0 - (world.walls[kRight].point_m.x - world.walls[kLeft].point_m.x)) / D;
+    if (approach < next_record) continue;
+    next_record = approach + loading.record_strain;
+    dem::CurvePoint point;
+    point.axial_strain = approach;
+    point.stress_pa =
+        2.0 * 0.5 * (world.walls[kLeft].normal_force_n + world.walls[kRight].normal_force_n) / (M_PI * D * t);
+    point.cracks = world.breaks().size();
+    if (!monitor.record(SphereMonitoredWorld(world), point, result,
+                        "platen approach " + std::to_string(approach) + " D"))
+      break;
+  }
+  record_run_end(world, options, start, loading_start, result);
+  if (result.ok) {
+    std::size_t peak = 0;
+    for (std::size_t k = 1; k < result.curve.size(); ++k)
+      if (result.curve[k].stress_pa > result.curve[peak].stress_pa) peak = k;
+    result.macro["sigma_t_MPa"] = monitor.peak() / 1e6;
+    result.macro["peak_approach_over_D"] = result.curve[peak].axial_strain;
+  }
+  return result;
+}
+
+class BrazilianTest3D : public PackedSphereTest {
+ public:
+  std::string name() const override { return "brazilian_3d"; }
+  std::string description() const override {
+    return "Brazilian disc of spheres (a cylinder of its thickness), flattened where the platens bear, split across "
+           "its diameter";
+  }
+  std::vector<dem::BoundaryRole> boundary_roles() const override {
+    return {{"particle-platen", kPlatenGroup, "the disc's spheres against the loading platens"}};
+  }
+  void check_scene(const Scene& scene) const override {
+    PackedSphereTest::check_scene(scene);
+    if (sphere_specimen_spec(scene, scene.resolve({}), 1).vessel != Vessel::cylinder)
+      throw Error(scene.origin() + ": specimen.shape: brazilian_3d loads a disc (\"shape\": \"cylinder\", its "
+                                   "height_m the disc's thickness)");
+  }
+  std::vector<std::string> headline_outputs(const Scene&) const override { return {"sigma_t_MPa"}; }
+  std::pair<std::string, std::string> curve_axes() const override {
+    return {"platen approach / D", "2F / (pi D t) (MPa)"};
+  }
+  std::vector<dem::OutputSpec> outputs(const Scene&) const override {
+    return {{"sigma_t_MPa", "MPa", "tensile strength 2 F_max / (pi D t)", true, dem::kNonNegative},
+            {"peak_approach_over_D", "1", "platen approach at the peak force over the diameter", true,
+             dem::kNonNegative},
+            {"cracks_tension", "1", "bonds broken in tension", true, dem::kNonNegative},
+            {"cracks_shear", "1", "bonds broken in shear", true, dem::kNonNegative}};
+  }
+  dem::TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                      const dem::RunOptions& options) const override {
+    return run_brazilian_3d(scene, parameters, options);
+  }
+};
+
+}  // namespace
+
+void register_brazilian_test_3d(dem::LabTestRegistry& registry) {
+  registry.add(std::make_unique<BrazilianTest3D>());
+}
+
+}  // namespace demcal::dem3d
