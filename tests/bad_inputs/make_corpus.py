@@ -215,6 +215,12 @@ case("scene/3d_box_for_a_cylinder_test",
 case("scene/3d_negative_diameter",
      describe(write(S, "3d_negative_diameter.json", edited(scene3d, lambda d: d["specimen"].update(diameter_m=-0.01)))),
      path(S, "3d_negative_diameter.json"), "diameter_m")
+triaxial3d = load("tests/data/triaxial_small_3d.json")
+triaxial3d["extends"] = "../../data/ucs_small_3d.json"
+case("scene/3d_confining_stress_zero",
+     describe(write(S, "3d_confining_stress_zero.json",
+                    edited(triaxial3d, lambda d: d["loading"].update(confining_stresses_MPa=[0, 4])))),
+     path(S, "3d_confining_stress_zero.json"), "confining_stresses_MPa")
 case("scene/3d_porosity_out_of_range",
      describe(write(S, "3d_porosity_out_of_range.json", edited(scene3d, lambda d: d["specimen"].update(porosity=0.9)))),
      path(S, "3d_porosity_out_of_range.json"), "porosity")

@@ -26,6 +26,7 @@ void register_builtin_tests(LabTestRegistry& registry) {
   register_wave_strip_test(registry);
   dem3d::register_ucs_test_3d(registry);
   dem3d::register_brazilian_test_3d(registry);
+  dem3d::register_triaxial_test(registry);
 }
 
 }  // namespace demcal::dem

@@ -7,5 +7,6 @@ namespace demcal::dem3d {
 
 void register_ucs_test_3d(dem::LabTestRegistry& registry);
 void register_brazilian_test_3d(dem::LabTestRegistry& registry);
+void register_triaxial_test(dem::LabTestRegistry& registry);
 
 }  // namespace demcal::dem3d
