@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <string>
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem/loading_monitor.hpp"
@@ -42,13 +44,21 @@ class RadialStrainGauge {
       srr_ += r0_.back() * r0_.back();
     }
     if (ids_.size() < 8) throw Error("specimen too small to measure the lateral strain (fewer than 8 surface spheres)");
+    id_end_ = ids_.back() + 1;  // ids_ ascending
   }
-  // Expansion positive.
+  // Expansion positive. The spheres are found by id (the world reorders its
+  // arrays), through one table per call: a search per sphere would cost
+  // the gauge times the specimen.
   double strain(const World& w) const {
+    const Spheres& s = w.spheres;
+    index_by_id_.assign(id_end_, UINT32_MAX);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (s.id[i] < id_end_) index_by_id_[s.id[i]] = static_cast<std::uint32_t>(i);
     double sru = 0;
     for (std::size_t k = 0; k < ids_.size(); ++k) {
-      const std::size_t i = w.index_of(ids_[k]);
-      sru += r0_[k] * (std::hypot(w.spheres.x[i], w.spheres.y[i]) - r0_[k]);
+      const std::uint32_t i = index_by_id_[ids_[k]];
+      if (i == UINT32_MAX) throw Error("a lateral gauge sphere (id " + std::to_string(ids_[k]) + ") left the world");
+      sru += r0_[k] * (std::hypot(s.x[i], s.y[i]) - r0_[k]);
     }
     return sru / srr_;
   }
@@ -58,6 +68,8 @@ class RadialStrainGauge {
   std::vector<std::uint32_t> ids_;
   std::vector<double> r0_;
   double srr_ = 0;
+  std::uint32_t id_end_ = 0;
+  mutable std::vector<std::uint32_t> index_by_id_;
 };
 
 void set_platen_speed(World& w, double speed_m_s) {
