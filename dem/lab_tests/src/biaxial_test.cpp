@@ -11,6 +11,7 @@
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/equilibrium.hpp"
 #include "demcal/dem/builtin_tests.hpp"
+#include "demcal/dem/confined_series.hpp"
 #include "demcal/dem/disk_scene.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
@@ -171,16 +172,7 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
       series.reason = "confinement " + n + " (" + format_double(confinements[k] / 1e6) + " MPa): " + one.reason;
       break;
     }
-    series.macro["q_peak_MPa_" + n] = one.macro.at("sigma_u_MPa");
-    series.macro["sigma_1_peak_MPa_" + n] = one.macro.at("sigma_1_peak_MPa");
-    series.macro["sigma_3_peak_MPa_" + n] = one.macro.at("sigma_3_peak_MPa");
-    series.macro["E_GPa_" + n] = one.macro.at("E_GPa");
-    series.macro["nu_" + n] = one.macro.at("nu");
-    series.macro["peak_strain_" + n] = one.macro.at("peak_strain");
-    series.macro["cracks_tension_" + n] = one.macro.at("cracks_tension");
-    series.macro["cracks_shear_" + n] = one.macro.at("cracks_shear");
-    series.macro["cracks_confining_" + n] = one.macro.at("cracks_confining");
-    if (one.macro.count("reached_strain_limit")) series.macro["reached_strain_limit_" + n] = 1;
+    add_confinement_outputs(one, n, series);
     series.ended_by += (series.ended_by.empty() ? "" : "; ") + n + ": " + one.ended_by;
     sigma_3.push_back(one.macro.at("sigma_3_peak_MPa") * 1e6);
     sigma_1.push_back(one.macro.at("sigma_1_peak_MPa") * 1e6);
@@ -188,29 +180,7 @@ TestResult run_biaxial(const Scene& scene, const std::map<std::string, double>& 
   series.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   series.test_wall_s = std::chrono::duration<double>(loading_time).count();
   if (!series.reason.empty()) return series;
-  if (confinements.size() >= 2) {
-    try {
-      const MohrCoulombFit fit = fit_mohr_coulomb(sigma_3, sigma_1);
-      series.macro["c_MPa"] = fit.c_pa / 1e6;
-      series.macro["phi_deg"] = fit.phi_deg;
-      series.macro["mc_sigma_c_MPa"] = fit.sigma_c_pa / 1e6;
-      series.macro["mc_r2"] = fit.r2;
-    } catch (const Error& e) {
-      series.reason = e.what();
-      return series;
-    }
-    // Hoek-Brown is an extra reading of the same peaks: where its line has no
-    // positive intercept the Mohr-Coulomb outputs still stand, and ended_by
-    // says why the hb_ outputs are missing.
-    try {
-      const HoekBrownFit hb = fit_hoek_brown(sigma_3, sigma_1);
-      series.macro["hb_m_i"] = hb.m_i;
-      series.macro["hb_sigma_c_MPa"] = hb.sigma_c_pa / 1e6;
-      series.macro["hb_r2"] = hb.r2;
-    } catch (const Error& e) {
-      series.ended_by += std::string("; no Hoek-Brown envelope: ") + e.what();
-    }
-  }
+  if (confinements.size() >= 2 && !add_envelopes(sigma_3, sigma_1, series)) return series;
   series.ok = true;
   return series;
 }
@@ -249,42 +219,8 @@ class BiaxialTest : public PackedTest {
   }
   std::pair<std::string, std::string> curve_axes() const override { return {"axial strain", "deviatoric stress (MPa)"}; }
   std::vector<OutputSpec> outputs(const Scene& scene) const override {
-    std::vector<OutputSpec> out;
-    const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
-    for (std::size_t k = 0; k < confinements.size(); ++k) {
-      const std::string n = std::to_string(k + 1), at = " at confinement " + n + " (" +
-                                                         format_double(confinements[k] / 1e6) + " MPa)";
-      out.push_back({"q_peak_MPa_" + n, "MPa", "peak deviatoric stress sigma_1 - sigma_3" + at, true, kNonNegative});
-      out.push_back({"sigma_1_peak_MPa_" + n, "MPa", "axial stress at the peak" + at, true, kNonNegative});
-      out.push_back({"sigma_3_peak_MPa_" + n, "MPa",
-                     "confining stress the side walls measured at the peak (the servo's, not the nominal one)" + at, true, kNonNegative});
-      out.push_back({"E_GPa_" + n, "GPa", "tangent d q / d eps_ax where q first reaches half its peak" + at, true,
-                     kNonNegative});
-      out.push_back({"nu_" + n, "1", "tangent d eps_lat / d eps_ax over the same window as E (side walls)" + at,
-                     true, kPoissonRatio2D});
-      out.push_back({"peak_strain_" + n, "1", "axial strain at the peak" + at, true, kNonNegative});
-      out.push_back({"cracks_tension_" + n, "1", "bonds broken in tension" + at, true, kNonNegative});
-      out.push_back({"cracks_shear_" + n, "1", "bonds broken in shear" + at, true, kNonNegative});
-      out.push_back({"cracks_confining_" + n, "1", "bonds broken while the confinement was applied" + at, true, kNonNegative});
-      out.push_back({"reached_strain_limit_" + n, "1",
-                     "1 when loading.strain_limit ended the test before the post-peak stop" + at, false, kFlag});
-    }
-    if (confinements.size() >= 2) {
-      out.push_back({"c_MPa", "MPa", "Mohr-Coulomb cohesion sigma_c / (2 sqrt(N_phi)) of the least-squares line "
-                                     "sigma_1 = sigma_c + N_phi sigma_3 through the peaks", true, kNonNegative});
-      out.push_back({"phi_deg", "deg", "Mohr-Coulomb friction angle, asin((N_phi - 1) / (N_phi + 1))", true,
-                     kAcuteAngleDeg});
-      out.push_back({"mc_sigma_c_MPa", "MPa", "the envelope's intercept sigma_c (its uniaxial strength)", true,
-                     kNonNegative});
-      out.push_back({"mc_r2", "1", "coefficient of determination of the envelope's line", true, kAtMostOne});
-      out.push_back({"hb_m_i", "1", "Hoek-Brown m_i of intact rock: the slope of (sigma_1 - sigma_3)^2 on sigma_3 "
-                                    "over sigma_c (Hoek & Brown 1997); missing when that line has no positive "
-                                    "intercept (ended_by says so)", false, kNonNegative});
-      out.push_back({"hb_sigma_c_MPa", "MPa", "Hoek-Brown sigma_c: the square root of that line's intercept", false,
-                     kNonNegative});
-      out.push_back({"hb_r2", "1", "coefficient of determination of the Hoek-Brown line", false, kAtMostOne});
-    }
-    return out;
+    return confined_series_outputs(scene.loading().confining_stresses_pa, "the side walls", "side walls",
+                                   kPoissonRatio2D);
   }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
                  const RunOptions& options) const override {

@@ -13,7 +13,6 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem/loading_monitor.hpp"
-#include "demcal/dem/particle_order.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
@@ -30,37 +29,18 @@ dem::TestResult run_brazilian_3d(const Scene& scene, const std::map<std::string,
                                                      options.cache_dir);
   const double D = disc.width_m, t = disc.height_m, flat = 0.5 * D * std::cos(10.0 * M_PI / 180.0);
 
-  World world(loading_settings(loading, options));
-  bind_contact_models(world, scene, parameters);
-  std::size_t kept = 0;
-  for (std::size_t k : dem::particle_order(disc.size(), options.particle_order_seed)) {
-    double x = disc.x[k];
-    const double r = disc.radius[k];
-    if (std::abs(x) > flat) continue;  // cut off by a flat
+  World world = specimen_world(scene, parameters, disc, options, [&](Vec3& centre, double r) {
+    if (std::abs(centre.x) > flat) return false;  // cut off by a flat
     // A sphere crossing a flat by more than half its radius is set back to
     // half (the flats ground true); bonding makes its new overlaps force-free.
-    if (std::abs(x) > flat - 0.5 * r) x = std::copysign(flat - 0.5 * r, x);
-    world.spheres.add_sphere({x, disc.y[k], disc.z[k]}, r, disc.density_kg_m3, kSpecimenGroup,
-                             static_cast<std::int64_t>(k));
-    ++kept;
-  }
-  Wall left = make_plane({-flat, 0, 0}, {1, 0, 0}), right = make_plane({flat, 0, 0}, {-1, 0, 0});
-  left.group = right.group = kPlatenGroup;
-  world.walls = {left, right};
-  const double r_min = *std::min_element(disc.radius.begin(), disc.radius.end());
-  const double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
-  const std::size_t bonds = world.install_bonds(tolerance, options.seed);
-  const std::size_t on_platens = world.make_wall_contacts_force_free();
-  world.start_test();
-
+    if (std::abs(centre.x) > flat - 0.5 * r) centre.x = std::copysign(flat - 0.5 * r, centre.x);
+    return true;
+  });
+  world.walls = {make_plane({-flat, 0, 0}, {1, 0, 0}, kPlatenGroup), make_plane({flat, 0, 0}, {-1, 0, 0}, kPlatenGroup)};
   dem::TestResult result;
-  result.particles = kept;
+  bond_specimen(world, scene, disc, options.seed, result.specimen_info);
+  result.particles = world.spheres.size();
   result.porosity = disc.porosity;
-  result.specimen_info["coordination_number"] = disc.coordination_number;
-  result.specimen_info["mean_overlap_ratio"] = disc.mean_overlap_ratio;
-  result.specimen_info["bonds_per_sphere"] = 2.0 * static_cast<double>(bonds) / static_cast<double>(kept);
-  result.specimen_info["spheres_on_platens"] = static_cast<double>(on_platens);
-  result.specimen_info["locked_in_stress_MPa"] = 0.0;
 
   world.walls[kLeft].velocity_m_s = {loading.platen_velocity_m_s, 0, 0};
   world.walls[kRight].velocity_m_s = {-loading.platen_velocity_m_s, 0, 0};

@@ -10,6 +10,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
+#include "demcal/dem/particle_order.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/vtk_writer.hpp"
 
@@ -119,6 +120,34 @@ WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOp
   if (options.threads > 0) settings.threads = options.threads;
   if (options.min_disks_per_thread > 0) settings.min_spheres_per_thread = options.min_disks_per_thread;
   return settings;
+}
+
+World specimen_world(const Scene& scene, const std::map<std::string, double>& parameters,
+                     const SphereSpecimen& specimen, const dem::RunOptions& options,
+                     const std::function<bool(Vec3& centre_m, double radius_m)>& admit) {
+  World world(loading_settings(scene.loading(), options));
+  bind_contact_models(world, scene, parameters);
+  for (std::size_t k : dem::particle_order(specimen.size(), options.particle_order_seed)) {
+    Vec3 centre{specimen.x[k], specimen.y[k], specimen.z[k]};
+    if (admit && !admit(centre, specimen.radius[k])) continue;
+    world.spheres.add_sphere(centre, specimen.radius[k], specimen.density_kg_m3, kSpecimenGroup,
+                             static_cast<std::int64_t>(k));
+  }
+  return world;
+}
+
+void bond_specimen(World& world, const Scene& scene, const SphereSpecimen& specimen, std::uint64_t seed,
+                   std::map<std::string, double>& info) {
+  const dem::LoadingSpec& loading = scene.loading();
+  const double r_min = *std::min_element(specimen.radius.begin(), specimen.radius.end());
+  const double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
+  const std::size_t bonds = world.install_bonds(tolerance, seed);
+  info["spheres_on_walls"] = static_cast<double>(world.make_wall_contacts_force_free());
+  info["coordination_number"] = specimen.coordination_number;
+  info["mean_overlap_ratio"] = specimen.mean_overlap_ratio;
+  info["bonds_per_sphere"] = 2.0 * static_cast<double>(bonds) / static_cast<double>(world.spheres.size());
+  info["locked_in_stress_MPa"] = 0.0;  // every contact force-free as it lies
+  world.start_test();
 }
 
 std::string SphereMonitoredWorld::instability(double platen_velocity_m_s) const {

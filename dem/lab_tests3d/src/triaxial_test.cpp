@@ -16,8 +16,7 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/loading_monitor.hpp"
-#include "demcal/dem/particle_order.hpp"
-#include "demcal/dem/strength_envelope.hpp"
+#include "demcal/dem/confined_series.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
@@ -49,24 +48,11 @@ void set_servo_areas(World& w) {
 // wall, each touching the spheres that touched it with no force), bonded.
 World make_world(const Scene& scene, const std::map<std::string, double>& parameters, const SphereSpecimen& specimen,
                  const dem::RunOptions& options, std::map<std::string, double>& info) {
-  const dem::LoadingSpec& loading = scene.loading();
-  World world(loading_settings(loading, options));
-  bind_contact_models(world, scene, parameters);
-  for (std::size_t k : dem::particle_order(specimen.size(), options.particle_order_seed))
-    world.spheres.add_sphere({specimen.x[k], specimen.y[k], specimen.z[k]}, specimen.radius[k],
-                             specimen.density_kg_m3, kSpecimenGroup, static_cast<std::int64_t>(k));
-  Wall bottom = make_plane({0, 0, 0}, {0, 0, 1}, kPlatenGroup);
-  Wall top = make_plane({0, 0, specimen.height_m}, {0, 0, -1}, kPlatenGroup);
-  Wall side = make_cylinder({0, 0, 0}, {0, 0, 1}, 0.5 * specimen.width_m, 0.0, true, kPlatenGroup);
-  world.walls = {bottom, top, side};
-  const double r_min = *std::min_element(specimen.radius.begin(), specimen.radius.end());
-  const double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
-  const std::size_t bonds = world.install_bonds(tolerance, options.seed);
-  info["spheres_on_walls"] = static_cast<double>(world.make_wall_contacts_force_free());
-  info["coordination_number"] = specimen.coordination_number;
-  info["mean_overlap_ratio"] = specimen.mean_overlap_ratio;
-  info["bonds_per_sphere"] = 2.0 * static_cast<double>(bonds) / static_cast<double>(specimen.size());
-  info["locked_in_stress_MPa"] = 0.0;
+  World world = specimen_world(scene, parameters, specimen, options);
+  world.walls = {make_plane({0, 0, 0}, {0, 0, 1}, kPlatenGroup),
+                 make_plane({0, 0, specimen.height_m}, {0, 0, -1}, kPlatenGroup),
+                 make_cylinder({0, 0, 0}, {0, 0, 1}, 0.5 * specimen.width_m, 0.0, true, kPlatenGroup)};
+  bond_specimen(world, scene, specimen, options.seed, info);
   return world;
 }
 
@@ -181,11 +167,7 @@ dem::TestResult run_triaxial(const Scene& scene, const std::map<std::string, dou
       series.reason = "confinement " + n + " (" + format_double(confinements[k] / 1e6) + " MPa): " + one.reason;
       break;
     }
-    for (const char* name : {"E_GPa", "nu", "peak_strain", "cracks_tension", "cracks_shear", "cracks_confining",
-                             "sigma_1_peak_MPa", "sigma_3_peak_MPa"})
-      series.macro[std::string(name) + "_" + n] = one.macro.at(name);
-    series.macro["q_peak_MPa_" + n] = one.macro.at("sigma_u_MPa");
-    if (one.macro.count("reached_strain_limit")) series.macro["reached_strain_limit_" + n] = 1;
+    dem::add_confinement_outputs(one, n, series);
     series.ended_by += (series.ended_by.empty() ? "" : "; ") + n + ": " + one.ended_by;
     sigma_3.push_back(one.macro.at("sigma_3_peak_MPa") * 1e6);
     sigma_1.push_back(one.macro.at("sigma_1_peak_MPa") * 1e6);
@@ -193,26 +175,7 @@ dem::TestResult run_triaxial(const Scene& scene, const std::map<std::string, dou
   series.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   series.test_wall_s = std::chrono::duration<double>(loading_time).count();
   if (!series.reason.empty()) return series;
-  if (confinements.size() >= 2) {
-    try {
-      const dem::MohrCoulombFit fit = dem::fit_mohr_coulomb(sigma_3, sigma_1);
-      series.macro["c_MPa"] = fit.c_pa / 1e6;
-      series.macro["phi_deg"] = fit.phi_deg;
-      series.macro["mc_sigma_c_MPa"] = fit.sigma_c_pa / 1e6;
-      series.macro["mc_r2"] = fit.r2;
-    } catch (const Error& e) {
-      series.reason = e.what();
-      return series;
-    }
-    try {
-      const dem::HoekBrownFit hb = dem::fit_hoek_brown(sigma_3, sigma_1);
-      series.macro["hb_m_i"] = hb.m_i;
-      series.macro["hb_sigma_c_MPa"] = hb.sigma_c_pa / 1e6;
-      series.macro["hb_r2"] = hb.r2;
-    } catch (const Error& e) {
-      series.ended_by += std::string("; no Hoek-Brown envelope: ") + e.what();
-    }
-  }
+  if (confinements.size() >= 2 && !dem::add_envelopes(sigma_3, sigma_1, series)) return series;
   series.ok = true;
   return series;
 }
@@ -249,41 +212,8 @@ class TriaxialTest : public PackedSphereTest {
   }
   std::pair<std::string, std::string> curve_axes() const override { return {"axial strain", "deviatoric stress (MPa)"}; }
   std::vector<dem::OutputSpec> outputs(const Scene& scene) const override {
-    std::vector<dem::OutputSpec> out;
-    const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
-    for (std::size_t k = 0; k < confinements.size(); ++k) {
-      const std::string n = std::to_string(k + 1),
-                        at = " at confinement " + n + " (" + format_double(confinements[k] / 1e6) + " MPa)";
-      out.push_back({"q_peak_MPa_" + n, "MPa", "peak deviatoric stress sigma_1 - sigma_3" + at, true, dem::kNonNegative});
-      out.push_back({"sigma_1_peak_MPa_" + n, "MPa", "axial stress at the peak" + at, true, dem::kNonNegative});
-      out.push_back({"sigma_3_peak_MPa_" + n, "MPa",
-                     "confining stress the cylinder measured at the peak (the servo's, not the nominal one)" + at, true,
-                     dem::kNonNegative});
-      out.push_back({"E_GPa_" + n, "GPa", "tangent d q / d eps_ax where q first reaches half its peak" + at, true,
-                     dem::kNonNegative});
-      out.push_back({"nu_" + n, "1", "tangent d eps_lat / d eps_ax over the same window as E (the cylinder's radius)" + at,
-                     true, kPoissonRatio3D});
-      out.push_back({"peak_strain_" + n, "1", "axial strain at the peak" + at, true, dem::kNonNegative});
-      out.push_back({"cracks_tension_" + n, "1", "bonds broken in tension" + at, true, dem::kNonNegative});
-      out.push_back({"cracks_shear_" + n, "1", "bonds broken in shear" + at, true, dem::kNonNegative});
-      out.push_back({"cracks_confining_" + n, "1", "bonds broken while the confinement was applied" + at, true,
-                     dem::kNonNegative});
-      out.push_back({"reached_strain_limit_" + n, "1",
-                     "1 when loading.strain_limit ended the test before the post-peak stop" + at, false, dem::kFlag});
-    }
-    if (confinements.size() >= 2) {
-      out.push_back({"c_MPa", "MPa", "Mohr-Coulomb cohesion of the least-squares line sigma_1 = sigma_c + N_phi "
-                                     "sigma_3 through the peaks", true, dem::kNonNegative});
-      out.push_back({"phi_deg", "deg", "Mohr-Coulomb friction angle, asin((N_phi - 1) / (N_phi + 1))", true,
-                     dem::kAcuteAngleDeg});
-      out.push_back({"mc_sigma_c_MPa", "MPa", "the envelope's intercept sigma_c", true, dem::kNonNegative});
-      out.push_back({"mc_r2", "1", "coefficient of determination of the envelope's line", true, dem::kAtMostOne});
-      out.push_back({"hb_m_i", "1", "Hoek-Brown m_i (Hoek & Brown 1997); missing when the line has no positive "
-                                    "intercept (ended_by says so)", false, dem::kNonNegative});
-      out.push_back({"hb_sigma_c_MPa", "MPa", "Hoek-Brown sigma_c", false, dem::kNonNegative});
-      out.push_back({"hb_r2", "1", "coefficient of determination of the Hoek-Brown line", false, dem::kAtMostOne});
-    }
-    return out;
+    return dem::confined_series_outputs(scene.loading().confining_stresses_pa, "the cylinder",
+                                        "the cylinder's radius", kPoissonRatio3D);
   }
   dem::TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
                       const dem::RunOptions& options) const override {

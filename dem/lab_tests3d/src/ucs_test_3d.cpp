@@ -14,7 +14,6 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem/loading_monitor.hpp"
-#include "demcal/dem/particle_order.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
@@ -84,32 +83,18 @@ dem::TestResult run_ucs_3d(const Scene& scene, const std::map<std::string, doubl
   const SphereSpecimenSpec spec = sphere_specimen_spec(scene, parameters, options.seed);
   const SphereSpecimen specimen = cached_sphere_specimen(spec, options.cache_dir);
 
-  World world(loading_settings(loading, options));
-  bind_contact_models(world, scene, parameters);
-  for (std::size_t k : dem::particle_order(specimen.size(), options.particle_order_seed))
-    world.spheres.add_sphere({specimen.x[k], specimen.y[k], specimen.z[k]}, specimen.radius[k],
-                             specimen.density_kg_m3, kSpecimenGroup, static_cast<std::int64_t>(k));
+  World world = specimen_world(scene, parameters, specimen, options);
   // The vessel's end faces become the platens, touching the spheres that touched them with no force.
-  Wall bottom = make_plane({0, 0, 0}, {0, 0, 1}), top = make_plane({0, 0, specimen.height_m}, {0, 0, -1});
-  bottom.group = top.group = kPlatenGroup;
-  world.walls = {bottom, top};
-  double r_min = specimen.radius.empty() ? 0 : *std::min_element(specimen.radius.begin(), specimen.radius.end());
-  const double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
-  const std::size_t bonds = world.install_bonds(tolerance, options.seed);
-  const std::size_t on_platens = world.make_wall_contacts_force_free();
-  world.start_test();
+  world.walls = {make_plane({0, 0, 0}, {0, 0, 1}, kPlatenGroup),
+                 make_plane({0, 0, specimen.height_m}, {0, 0, -1}, kPlatenGroup)};
+  dem::TestResult result;
+  bond_specimen(world, scene, specimen, options.seed, result.specimen_info);
 
   const double D = specimen.width_m, H0 = specimen.height_m, area = 0.25 * M_PI * D * D;
   const RadialStrainGauge gauge(world.spheres, 0.5 * D, 0.0, H0);
-  dem::TestResult result;
   result.particles = specimen.size();
   result.porosity = specimen.porosity;
-  result.specimen_info["coordination_number"] = specimen.coordination_number;
-  result.specimen_info["mean_overlap_ratio"] = specimen.mean_overlap_ratio;
-  result.specimen_info["bonds_per_sphere"] = 2.0 * static_cast<double>(bonds) / static_cast<double>(specimen.size());
-  result.specimen_info["spheres_on_platens"] = static_cast<double>(on_platens);
   result.specimen_info["lateral_gauge_spheres"] = static_cast<double>(gauge.size());
-  result.specimen_info["locked_in_stress_MPa"] = 0.0;  // every contact force-free as it lies
 
   set_platen_speed(world, loading.platen_velocity_m_s);
   const auto loading_start = std::chrono::steady_clock::now();

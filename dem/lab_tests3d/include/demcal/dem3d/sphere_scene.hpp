@@ -5,6 +5,7 @@
 // packed sphere specimen, which declares those sections, the specimen's role
 // and what a batch packs.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -51,6 +52,20 @@ class PackedSphereTest : public dem::LabTest {
 // The world settings a run's loading and options ask for (damping, safety
 // factor, density scaling, threads).
 WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOptions& options);
+
+// A world with the scene's contact models and the specimen's spheres (sphere
+// k with id k), entering in the order options.particle_order_seed gives;
+// `admit`, when given, may move a sphere's centre or leave it out (false).
+World specimen_world(const Scene& scene, const std::map<std::string, double>& parameters,
+                     const SphereSpecimen& specimen, const dem::RunOptions& options,
+                     const std::function<bool(Vec3& centre_m, double radius_m)>& admit = {});
+
+// Bonds the world's spheres (pairs within loading.bond_gap_tolerance_m, or 1 %
+// of the smallest radius; overlaps force-free as they lie), makes the contacts
+// with its walls (placed where the vessel was) force-free, and starts the
+// test. `info` receives what every 3D result states of its specimen.
+void bond_specimen(World& world, const Scene& scene, const SphereSpecimen& specimen, std::uint64_t seed,
+                   std::map<std::string, double>& info);
 
 // The sphere world as the loading monitor sees it: a run fails on a non-finite
 // value, a sphere through a platen (walls[0] and walls[1], planes whose
