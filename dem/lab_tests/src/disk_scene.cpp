@@ -15,21 +15,6 @@ namespace {
 
 using json = nlohmann::json;
 
-class DiskContactModels : public ContactModelCatalog {
- public:
-  std::string dimension() const override { return "2d"; }
-  std::vector<std::string> names() const override { return ContactModelRegistry::instance().names(); }
-  const std::vector<std::string>& parameter_keys(const std::string& model) const override {
-    return ContactModelRegistry::instance().parameter_keys(model);
-  }
-  const json& peer_names(const std::string& model) const override {
-    return ContactModelRegistry::instance().peer_names(model);
-  }
-  void check(const std::string& model, const json& bound, const std::string& where) const override {
-    ContactModelRegistry::instance().create(model, bound, where);
-  }
-};
-
 // The aggregates object: sizes in mm as engineers give them.
 AggregateSpec aggregate_spec(const json& a, const std::string& where) {
   require_known_fields(a, {"size_range_mm", "bins", "coarse_fraction", "sides", "min_gap_m", "density_kg_m3", "max_attempts",
@@ -64,7 +49,7 @@ AggregateSpec aggregate_spec(const json& a, const std::string& where) {
 }  // namespace
 
 const ContactModelCatalog& disk_contact_models() {
-  static const DiskContactModels models;
+  static const RegistryCatalog<ContactModelRegistry> models("2d");
   return models;
 }
 

@@ -15,29 +15,9 @@
 #include "demcal/dem3d/vtk_writer.hpp"
 
 namespace demcal::dem3d {
-namespace {
-
-using json = nlohmann::json;
-
-class SphereContactModels : public dem::ContactModelCatalog {
- public:
-  std::string dimension() const override { return "3d"; }
-  std::vector<std::string> names() const override { return ContactModelRegistry::instance().names(); }
-  const std::vector<std::string>& parameter_keys(const std::string& model) const override {
-    return ContactModelRegistry::instance().parameter_keys(model);
-  }
-  const json& peer_names(const std::string& model) const override {
-    return ContactModelRegistry::instance().peer_names(model);
-  }
-  void check(const std::string& model, const json& bound, const std::string& where) const override {
-    ContactModelRegistry::instance().create(model, bound, where);
-  }
-};
-
-}  // namespace
 
 const dem::ContactModelCatalog& sphere_contact_models() {
-  static const SphereContactModels models;
+  static const dem::RegistryCatalog<ContactModelRegistry> models("3d");
   return models;
 }
 
@@ -53,7 +33,7 @@ void bind_contact_models(World& world, const Scene& scene, const std::map<std::s
 
 SphereSpecimenSpec sphere_specimen_spec(const Scene& scene, const std::map<std::string, double>& parameters,
                                         std::uint64_t seed) {
-  const json& specimen = scene.section("specimen");
+  const nlohmann::json& specimen = scene.section("specimen");
   const std::string where = scene.origin() + ": specimen";
   SphereSpecimenSpec spec;
   spec.vessel = choice_field(specimen, "shape", {"cylinder", "box"}, 0, where) == 0 ? Vessel::cylinder : Vessel::box;

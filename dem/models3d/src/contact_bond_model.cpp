@@ -64,19 +64,8 @@ class ContactBondModel : public LinearBase {
   }
 
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    PairContact p;
-    for (std::size_t k = 0; k < c.size; ++k) {
-      const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-      if (!(c.flags[k] & dem::kBonded)) {
-        if (sphere_pair_contact(s, i, j, p))
-          linear_touch(c, k, out, p, step.dt_s);
-        else
-          linear_leave(c, k, out);
-        continue;
-      }
-      sphere_pair_geometry(s, i, j, p);
-      bonded(c, k, out, p, step.dt_s);
-    }
+    for_bondable_pairs(c, s, out, step.dt_s,
+                       [&](std::size_t k, const PairContact& p) { bonded(c, k, out, p, step.dt_s); });
   }
 
   double max_bond_utilisation(const ConstPairBlock& c, const Spheres& s) const override {

@@ -5,6 +5,7 @@
 // engine's catalog (LabTest::contact_models), so a 3D model named in a 2D
 // scene, or the reverse, is refused when the scene loads.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -27,5 +28,28 @@ class ContactModelCatalog {
 
 // The catalog of a test without contact models of ours (an external command's).
 const ContactModelCatalog& no_contact_models();
+
+// An engine's model registry (dem/common's ModelRegistry: its instance(),
+// names, parameter_keys, peer_names and create) as a catalog: each engine
+// instantiates it with its own registry, so this layer names no engine.
+template <class Registry>
+class RegistryCatalog : public ContactModelCatalog {
+ public:
+  explicit RegistryCatalog(std::string dimension) : dimension_(std::move(dimension)) {}
+  std::string dimension() const override { return dimension_; }
+  std::vector<std::string> names() const override { return Registry::instance().names(); }
+  const std::vector<std::string>& parameter_keys(const std::string& model) const override {
+    return Registry::instance().parameter_keys(model);
+  }
+  const nlohmann::json& peer_names(const std::string& model) const override {
+    return Registry::instance().peer_names(model);
+  }
+  void check(const std::string& model, const nlohmann::json& bound, const std::string& where) const override {
+    Registry::instance().create(model, bound, where);
+  }
+
+ private:
+  std::string dimension_;
+};
 
 }  // namespace demcal::dem
