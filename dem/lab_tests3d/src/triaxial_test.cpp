@@ -114,19 +114,7 @@ dem::TestResult confine_and_load(World& world, double sigma_3_pa, const dem::Loa
   }
   result.steps = confining_steps;
   if (!result.ok) return result;
-  try {
-    for (const auto& [name, value] : dem::ucs_macro_values(result.curve)) result.macro[name] = value;
-  } catch (const Error& e) {
-    result.ok = false;
-    result.reason = e.what();
-    return result;
-  }
-  std::size_t peak = 0;
-  for (std::size_t k = 1; k < result.curve.size(); ++k)
-    if (result.curve[k].stress_pa > result.curve[peak].stress_pa) peak = k;
-  result.macro["sigma_1_peak_MPa"] = (result.curve[peak].stress_pa + result.curve[peak].confining_stress_pa) / 1e6;
-  result.macro["sigma_3_peak_MPa"] = result.curve[peak].confining_stress_pa / 1e6;
-  if (result.ended_by == "strain_limit") result.macro["reached_strain_limit"] = 1;
+  dem::add_confined_values(result);
   return result;
 }
 

@@ -2,6 +2,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem/strength_envelope.hpp"
 
 namespace demcal::dem {
@@ -45,6 +46,22 @@ std::vector<OutputSpec> confined_series_outputs(const std::vector<double>& confi
     out.push_back({"hb_r2", "1", "coefficient of determination of the Hoek-Brown line", false, kAtMostOne});
   }
   return out;
+}
+
+void add_confined_values(TestResult& result) {
+  try {
+    for (const auto& [name, value] : ucs_macro_values(result.curve)) result.macro[name] = value;
+  } catch (const Error& e) {
+    result.ok = false;
+    result.reason = e.what();
+    return;
+  }
+  std::size_t peak = 0;
+  for (std::size_t k = 1; k < result.curve.size(); ++k)
+    if (result.curve[k].stress_pa > result.curve[peak].stress_pa) peak = k;
+  result.macro["sigma_1_peak_MPa"] = (result.curve[peak].stress_pa + result.curve[peak].confining_stress_pa) / 1e6;
+  result.macro["sigma_3_peak_MPa"] = result.curve[peak].confining_stress_pa / 1e6;
+  if (result.ended_by == "strain_limit") result.macro["reached_strain_limit"] = 1;
 }
 
 void add_confinement_outputs(const TestResult& one, const std::string& n, TestResult& series) {

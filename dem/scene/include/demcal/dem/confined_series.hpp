@@ -21,6 +21,12 @@ std::vector<OutputSpec> confined_series_outputs(const std::vector<double>& confi
                                                 const std::string& confining_wall, const std::string& lateral_gauge,
                                                 OutputRange nu_range);
 
+// One confined test's values from its curve (the deviator q against the axial
+// strain): the compression test's (ucs_macro_values: sigma_u is q's peak, E,
+// nu, ...), sigma_1 and sigma_3 at the peak, and reached_strain_limit; on a
+// curve too short to evaluate, ok false and the reason.
+void add_confined_values(TestResult& result);
+
 // Adds confinement `n`'s numbered values (from its test's sigma_u_MPa, E_GPa,
 // nu, ...) to the series.
 void add_confinement_outputs(const TestResult& one, const std::string& n, TestResult& series);
