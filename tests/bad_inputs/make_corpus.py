@@ -201,8 +201,8 @@ case("scene/directory", describe(directory("as_file.json")), f"{HERE}/dir/as_fil
 scene3d = load("tests/data/ucs_small_3d.json")
 case("scene/3d_two_d_only_model",
      describe(write(S, "3d_two_d_only_model.json",
-                    edited(scene3d, lambda d: d["contacts"]["particle-particle"].update(model="flat_joint")))),
-     path(S, "3d_two_d_only_model.json"), "flat_joint")
+                    edited(scene3d, lambda d: d["contacts"]["particle-particle"].update(model="jkr")))),
+     path(S, "3d_two_d_only_model.json"), "jkr")
 case("scene/3d_bond_without_its_modulus",
      describe(write(S, "3d_bond_without_its_modulus.json",
                     edited(scene3d, lambda d: d["contacts"]["particle-particle"]["parameters"].pop("bond_modulus_pa")))),

@@ -3,8 +3,9 @@
 // I = pi R_b^4 / 4, J = pi R_b^4 / 2), its breaks in tension and in shear at
 // the strengths with the moment contribution factor, a contact bond's
 // strengths as forces over pi r^2, every bond's forces turning with a rigid
-// rotation of its pair, a bonded pair's four eigenfrequencies against the
-// time step, and a bond that holds its pair beyond the neighbour-list skin.
+// rotation of its pair (a flat joint's too), a bonded pair's four
+// eigenfrequencies against the time step (parallel bond and flat joint), and
+// a bond that holds its pair beyond the neighbour-list skin.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "demcal/core/rng.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/world.hpp"
+#include "bond_pair_harness.hpp"
 
 using namespace demcal::dem3d;
 namespace dem = demcal::dem;
@@ -22,7 +24,20 @@ using json = nlohmann::json;
 
 namespace {
 
-constexpr double kRadius = 1e-3, kDensity = 2650, kModulus = 1e9, kBondModulus = 2e9, kLambda = 0.8;
+using bond_test::Harness;
+using bond_test::kDensity;
+using bond_test::kRadius;
+using bond_test::rotate;
+constexpr double kModulus = 1e9, kBondModulus = 2e9, kLambda = 0.8;
+
+// A flat joint of the parallel bond's disc, 2 x 4 elements, unbreakable.
+json flat_joint_parameters() {
+  return {{"modulus_pa", kModulus},          {"kn_ks", 2.0},           {"friction", 0.5},
+          {"joint_modulus_pa", kBondModulus}, {"joint_kn_ks", 2.5},     {"radius_multiplier", kLambda},
+          {"radial_elements", 2},             {"circumferential_elements", 4},
+          {"tensile_strength_pa", 1e12},      {"cohesion_pa", 1e12},    {"friction_angle_deg", 30.0},
+          {"joint_friction", 0.5}};
+}
 
 json parallel_bond_parameters(double beta = 1.0) {
   return {{"modulus_pa", kModulus},        {"kn_ks", 2.0},          {"friction", 0.5},
@@ -30,61 +45,11 @@ json parallel_bond_parameters(double beta = 1.0) {
           {"tensile_strength_pa", 2e6},    {"shear_strength_pa", 4e6}, {"moment_contribution", beta}};
 }
 
-// One pair (spheres 0 and 1) handed to a model directly, so a test sets the
-// spheres' motion itself and reads the force on 0 and the moments.
-struct Harness {
-  std::unique_ptr<ContactModel> model;
-  dem::ContactSet set;
-  Spheres s;
-  std::vector<double> f = std::vector<double>(9);
-  double dt = 1e-8;
-
-  Harness(const std::string& name, const json& p, Vec3 x0, Vec3 x1) {
-    model = ContactModelRegistry::instance().create(name, p, "test");
-    set.set_layout({model->state_columns().size()});
-    set.assign_blocks({1});
-    set.i[0] = 0, set.j[0] = 1;
-    s.add_sphere(x0, kRadius, kDensity, 0);
-    s.add_sphere(x1, kRadius, kDensity, 0);
-    dem::PairBlock b = block();
-    PairInfo info;
-    info.radius_i = info.radius_j = kRadius;
-    model->initialise(b, 0, info);
-    const Vec3 d = x1 - x0;
-    info.overlap_m = 2 * kRadius - norm(d);
-    if (info.overlap_m > 0) model->make_force_free(b, 0, info.overlap_m);
-    demcal::Rng rng(1, 2);
-    EXPECT_TRUE(model->install_bond(b, 0, info, rng));
-  }
-  dem::PairBlock block() { return set.block(0); }
-  PairForces out() { return {&f[0], &f[1], &f[2], &f[3], &f[5], &f[7]}; }
-  void step() {
-    dem::PairBlock b = block();
-    model->sphere_forces(b, s, out(), {dt, 0});
-  }
-  // Moves sphere 1 with velocity v and both spins for `steps` steps.
-  void move(int steps, Vec3 v1, Vec3 w0 = {}, Vec3 w1 = {}) {
-    s.set_velocity(1, v1), s.set_spin(0, w0), s.set_spin(1, w1);
-    for (int k = 0; k < steps; ++k) {
-      step();
-      s.x[1] += v1.x * dt, s.y[1] += v1.y * dt, s.z[1] += v1.z * dt;
-    }
-    s.set_velocity(1, {}), s.set_spin(0, {}), s.set_spin(1, {});
-  }
-  bool bonded() { return (set.flags[0] & dem::kBonded) != 0; }
-  bool broke_in_tension() { return (set.flags[0] & kBrokeInTension) != 0; }
-  Vec3 force() const { return {f[0], f[1], f[2]}; }
-  Vec3 moment_i() const { return {f[3], f[5], f[7]}; }
-};
-
 const double kBondRadius = kLambda * kRadius;
 const double kArea = M_PI * kBondRadius * kBondRadius;
 const double kInertia = 0.25 * M_PI * std::pow(kBondRadius, 4), kPolar = 2 * kInertia;
 const double kBondKn = kBondModulus / (2 * kRadius), kBondKs = kBondKn / 2.5;
 
-Vec3 rotate(Vec3 v, Vec3 u, double a) {
-  return std::cos(a) * v + std::sin(a) * cross(u, v) + ((1 - std::cos(a)) * dot(u, v)) * u;
-}
 
 }  // namespace
 
@@ -186,7 +151,9 @@ TEST(Bonds3D, ARigidRotationTurnsEveryBondForceWithThePair) {
              {"shear_strength_pa", 1e12}};
   json pb = parallel_bond_parameters();
   pb["tensile_strength_pa"] = pb["shear_strength_pa"] = 1e12;
-  for (const auto& [name, p] : {std::pair<std::string, json>{"contact_bond", cb}, {"parallel_bond", pb}})
+  const json fj = flat_joint_parameters();
+  for (const auto& [name, p] :
+       {std::pair<std::string, json>{"contact_bond", cb}, {"parallel_bond", pb}, {"flat_joint", fj}})
     for (const Vec3 axis_raw : {Vec3{0, 0, 1}, Vec3{1, 2, 3}}) {
       const Vec3 axis = (1.0 / norm(axis_raw)) * axis_raw;
       Harness h(name, p, {0, 0, 0}, {1.99 * kRadius, 0, 0});
@@ -210,49 +177,53 @@ TEST(Bonds3D, ARigidRotationTurnsEveryBondForceWithThePair) {
       }
       const double turned = angle_step * steps;
       EXPECT_LT(norm(h.force() - rotate(force0, axis, turned)), 1e-5 * norm(force0)) << name;
-      if (name == "parallel_bond")
+      if (name != "contact_bond") {
         EXPECT_LT(norm(h.moment_i() - rotate(moment0, axis, turned)), 1e-5 * norm(moment0)) << name;
+      }
     }
 }
 
 // A free bonded pair of equal touching spheres has four modes with a
 // frequency: axial (w^2 = 2 K_n / m), shear with rotation (2 K_s (1/m +
 // R^2/I)), twisting (2 ks_b J / I) and bending (2 kn_b I_b / I), with K the
-// contact's plus the bond's springs. The world's step at safety 1 stays below
-// 2 / w of each, and a run with every mode excited keeps its energy.
+// bond's springs, plus the contact's for a parallel bond (a flat joint
+// replaces the contact). The world's step at safety 1 stays below 2 / w of
+// each, and a run with every mode excited keeps its energy.
 TEST(Bonds3D, TheTimeStepResolvesABondedPairsFourModes) {
-  for (const double kn_ks : {0.5, 2.5}) {
-    json p = parallel_bond_parameters();
-    p["bond_kn_ks"] = kn_ks;
-    p["tensile_strength_pa"] = p["shear_strength_pa"] = 1e12;
-    WorldSettings settings;
-    settings.damping = 0.0;
-    settings.safety_factor = 1.0;
-    World w(settings);
-    w.assign(0, 0, w.add_model(ContactModelRegistry::instance().create("parallel_bond", p, "test")));
-    w.spheres.add_sphere({0, 0, 0}, kRadius, kDensity, 0);
-    w.spheres.add_sphere({2 * kRadius, 0, 0}, kRadius, kDensity, 0);
-    ASSERT_EQ(w.install_bonds(0.0, 3), 1u);
-    const double m = w.spheres.mass[0], inertia = w.spheres.inertia[0];
-    const double bond_ks = kBondKn / kn_ks;
-    const double kn = M_PI * kRadius * kModulus / 2 + kBondKn * kArea;
-    const double ks = M_PI * kRadius * kModulus / 4 + bond_ks * kArea;
-    const double omega2[4] = {2 * kn / m, 2 * ks * (1 / m + kRadius * kRadius / inertia),
-                              2 * bond_ks * kPolar / inertia, 2 * kBondKn * kInertia / inertia};
-    for (double o2 : omega2) EXPECT_LT(w.dt_s(), 2 / std::sqrt(o2)) << "kn/ks " << kn_ks;
-    w.spheres.set_velocity(1, {1e-4, 2e-4, -1e-4});
-    w.spheres.set_spin(0, {0.3, -0.2, 0.5});
-    w.spheres.set_spin(1, {-0.1, 0.4, 0.2});
-    // The kinetic energy of the half-step velocities swings above the total
-    // near the stability limit: its peaks, not its start, must not grow.
-    double first = 0, last = 0;
-    for (int k = 0; k < 20000; ++k) {
-      w.step();
-      double& window = k < 2000 ? first : last;
-      if (k < 2000 || k >= 18000) window = std::max(window, w.kinetic_energy());
+  for (const std::string name : {"parallel_bond", "flat_joint"})
+    for (const double kn_ks : {0.5, 2.5}) {
+      json p = name == "flat_joint" ? flat_joint_parameters() : parallel_bond_parameters();
+      p[name == "flat_joint" ? "joint_kn_ks" : "bond_kn_ks"] = kn_ks;
+      if (name == "parallel_bond") p["tensile_strength_pa"] = p["shear_strength_pa"] = 1e12;
+      WorldSettings settings;
+      settings.damping = 0.0;
+      settings.safety_factor = 1.0;
+      World w(settings);
+      w.assign(0, 0, w.add_model(ContactModelRegistry::instance().create(name, p, "test")));
+      w.spheres.add_sphere({0, 0, 0}, kRadius, kDensity, 0);
+      w.spheres.add_sphere({2 * kRadius, 0, 0}, kRadius, kDensity, 0);
+      ASSERT_EQ(w.install_bonds(0.0, 3), 1u);
+      const double m = w.spheres.mass[0], inertia = w.spheres.inertia[0];
+      const double bond_ks = kBondKn / kn_ks, contact = name == "parallel_bond" ? 1.0 : 0.0;
+      const double kn = contact * M_PI * kRadius * kModulus / 2 + kBondKn * kArea;
+      const double ks = contact * M_PI * kRadius * kModulus / 4 + bond_ks * kArea;
+      const double omega2[4] = {2 * kn / m, 2 * ks * (1 / m + kRadius * kRadius / inertia),
+                                2 * bond_ks * kPolar / inertia, 2 * kBondKn * kInertia / inertia};
+      for (double o2 : omega2) EXPECT_LT(w.dt_s(), 2 / std::sqrt(o2)) << name << " kn/ks " << kn_ks;
+      w.spheres.set_velocity(1, {1e-4, 2e-4, -1e-4});
+      w.spheres.set_spin(0, {0.3, -0.2, 0.5});
+      w.spheres.set_spin(1, {-0.1, 0.4, 0.2});
+      // The kinetic energy of the half-step velocities swings above the total
+      // near the stability limit: its peaks, not its start, must not grow.
+      double first = 0, last = 0;
+      for (int k = 0; k < 20000; ++k) {
+        w.step();
+        double& window = k < 2000 ? first : last;
+        if (k < 2000 || k >= 18000) window = std::max(window, w.kinetic_energy());
+      }
+      EXPECT_LT(last, 1.2 * first) << name << " kn/ks " << kn_ks << ": the pair gained energy";
+      EXPECT_EQ(w.bonded_pairs(), 1u) << name;
     }
-    EXPECT_LT(last, 1.2 * first) << "kn/ks " << kn_ks << ": the pair gained energy";
-  }
 }
 
 TEST(Bonds3D, ABondHoldsItsPairBeyondTheSkin) {

@@ -85,9 +85,11 @@ void World::log_breaks() {
       const double distance = std::sqrt(dot(d, d));
       const double arm = spheres.radius[i] - 0.5 * (spheres.radius[i] + spheres.radius[j] - distance);
       const Vec3 at = distance > 0 ? spheres.position(i) + (arm / distance) * d : spheres.position(i);
-      breaks_.push_back({time_s_, at.x, at.y, (flags & kBrokeInTension) ? dem::BreakMode::Tension : dem::BreakMode::Shear,
-                         spheres.group[i], spheres.group[j], at.z});
-      flags &= ~(kBrokeThisStep | kBrokeInTension);
+      const unsigned tension = tension_breaks(flags), shear = shear_breaks(flags);
+      for (unsigned b = 0; b < tension + shear; ++b)
+        breaks_.push_back({time_s_, at.x, at.y, b < tension ? dem::BreakMode::Tension : dem::BreakMode::Shear,
+                           spheres.group[i], spheres.group[j], at.z});
+      flags &= ~kBreakMarks;
     }
   }
 }

@@ -20,6 +20,7 @@ void register_builtin_models(ContactModelRegistry& registry) {
   register_hertz_mindlin_model(registry);
   register_contact_bond_model(registry);
   register_parallel_bond_model(registry);
+  register_flat_joint_model(registry);
 }
 
 }  // namespace demcal::dem3d

@@ -92,7 +92,7 @@ class ContactBondModel : public LinearBase {
     const bool shear = !tension && dot(fs, fs) >= c.column[kShearStrength][k] * c.column[kShearStrength][k];
     const bool released = tension || (shear && fn <= 0);
     dem::PairFlags flags = c.flags[k] & ~static_cast<dem::PairFlags>(dem::kTouching);
-    if (tension || shear) flags = (flags & ~static_cast<dem::PairFlags>(dem::kBonded)) | kBrokeThisStep | (tension ? kBrokeInTension : 0u);
+    if (tension || shear) flags = mark_break(flags & ~static_cast<dem::PairFlags>(dem::kBonded), tension);
     // Held: touching while the spheres overlap; broken in shear and pressed: touching; released: not.
     if (!released && (shear || p.overlap_m > 0)) flags |= dem::kTouching;
     c.flags[k] = flags;

@@ -172,7 +172,7 @@ class ParallelBondModel : public LinearBase {
     dem::PairFlags flags = c.flags[k] & ~static_cast<dem::PairFlags>(dem::kTouching);
     if (touching) flags |= dem::kTouching;
     if (broke) {
-      flags = (flags & ~static_cast<dem::PairFlags>(dem::kBonded)) | kBrokeThisStep | (tension ? kBrokeInTension : 0u);
+      flags = mark_break(flags & ~static_cast<dem::PairFlags>(dem::kBonded), tension);
       for (std::size_t column = kBondFn; column <= kBondMbZ; ++column) c.column[column][k] = 0.0;
       c.flags[k] = flags;
       set_contact_force(out, k, p, fs - fn * n, fs);

@@ -38,8 +38,9 @@ struct BreakEvent {
   double z_m = 0;  // 0 in 2D
 };
 
-// Most state columns one model may declare.
-constexpr std::size_t kMaxStateColumns = 48;
+// Most state columns one model may declare (a 3D flat joint of 12 elements
+// declares 89).
+constexpr std::size_t kMaxStateColumns = 96;
 
 // State column c of a block's pairs: pair k's value is base[k].
 template <typename T>

@@ -5,6 +5,7 @@
 // of demcal/dem/contacts.hpp, shared with 2D). Unlike 2D, a model writes each
 // pair's force and moments into PairForces and the world sums them per sphere
 // in pair order, so any split of the pairs between threads gives the same bits.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -28,11 +29,24 @@ namespace demcal::dem3d {
 using dem::ConstPairBlock;
 using dem::PairBlock;
 
-// Flags a bonded model sets on a pair whose bond broke this step (and clears
-// kBonded): the world logs each break in pair order after the step's forces,
-// so the log is the same on any number of threads, and clears these.
+// What a bonded model marks on a pair whose bond (or part of it: a flat
+// joint's elements) broke this step, with mark_break; a model clears kBonded
+// itself when nothing of the bond is left. The world logs the breaks in pair
+// order after the step's forces, so the log is the same on any number of
+// threads, tension breaks before shear ones, and clears the marks.
 constexpr dem::PairFlags kBrokeThisStep = 1u << 8;
-constexpr dem::PairFlags kBrokeInTension = 1u << 9;
+constexpr unsigned kTensionBreaksShift = 12, kShearBreaksShift = 18;  // 6-bit counts
+constexpr dem::PairFlags kBreakCountMask = 0x3f;
+constexpr dem::PairFlags kBreakMarks =
+    kBrokeThisStep | (kBreakCountMask << kTensionBreaksShift) | (kBreakCountMask << kShearBreaksShift);
+
+inline dem::PairFlags mark_break(dem::PairFlags flags, bool tension) {
+  const unsigned shift = tension ? kTensionBreaksShift : kShearBreaksShift;
+  const dem::PairFlags count = std::min<dem::PairFlags>(((flags >> shift) & kBreakCountMask) + 1, kBreakCountMask);
+  return (flags & ~(kBreakCountMask << shift)) | kBrokeThisStep | (count << shift);
+}
+inline unsigned tension_breaks(dem::PairFlags flags) { return (flags >> kTensionBreaksShift) & kBreakCountMask; }
+inline unsigned shear_breaks(dem::PairFlags flags) { return (flags >> kShearBreaksShift) & kBreakCountMask; }
 
 struct StepContext {
   double dt_s = 0;

@@ -9,6 +9,7 @@ void register_linear_model(ContactModelRegistry& registry);
 void register_hertz_mindlin_model(ContactModelRegistry& registry);
 void register_contact_bond_model(ContactModelRegistry& registry);
 void register_parallel_bond_model(ContactModelRegistry& registry);
+void register_flat_joint_model(ContactModelRegistry& registry);
 void register_builtin_models(ContactModelRegistry& registry);
 
 }  // namespace demcal::dem3d
