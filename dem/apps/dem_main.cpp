@@ -89,7 +89,7 @@ dem::Specimen packed_specimen(const dem::Scene& scene, std::uint64_t seed, const
 
 int main(int argc, char** argv) {
   log::set_program("demcal-dem");
-  CLI::App app{"demcal-dem: 2D bonded-particle DEM runs of a scene (its lab test): one run, a resumable batch over a design, the merge of shards, or a description of the scene.", "demcal-dem"};
+  CLI::App app{"demcal-dem: bonded-particle DEM runs of a 2D or 3D scene (its lab test): one run, a resumable batch over a design, the merge of shards, or a description of the scene.", "demcal-dem"};
   app.require_subcommand(1);
   std::string scene_path, out, curve, cache_dir = default_cache_dir();
   std::vector<std::string> sets;

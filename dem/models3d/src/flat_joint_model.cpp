@@ -359,6 +359,8 @@ void register_flat_joint_model(ContactModelRegistry& registry) {
                    {"key": "radius_multiplier", "group": "property", "name": "fj_rmul", "default": 1},
                    {"key": "modulus_pa", "group": "unjoined", "name": "emod"},
                    {"key": "kn_ks", "group": "unjoined", "name": "kratio"},
+                   {"key": "kn_n_m", "group": "unjoined", "name": "kn"},
+                   {"key": "ks_n_m", "group": "unjoined", "name": "ks"},
                    {"key": "friction", "group": "unjoined", "name": "fric"}],
       "later": {"unjoined": {"text": "contacts that form later (unjoined) take the linear part"}}},
     "yade": {"model": "CohFrictMat", "notes": ["no flat joint in YADE: its elements, partial damage and friction angle do not carry over; a cohesive-frictional bond is the nearest"],
