@@ -210,8 +210,8 @@ Harness broken_pressed_joint(int radial, int circumferential) {
 TEST(FlatJoint3D, ABrokenJointPressedTogetherResistsBendingByItsPressedFace) {
   // Bent about z (t2): while all of the face is pressed, the moment on i is
   // k_n I theta and the normal force k_n A gap; once the -y side opens, the
-  // pressed segment's integrals, within 2e-4 of the disc's force (k_n A R
-  // theta) and 6e-4 of its moment (k_n I theta), as the sub-cells promise.
+  // pressed segment's integrals, within 1.5e-3 of the disc's force (k_n A R
+  // theta) and 6e-3 of its moment (k_n I theta), as the sub-cells promise.
   for (const auto& [radial, circumferential] : kSplits) {
     const std::string split = std::to_string(radial) + " x " + std::to_string(circumferential);
     {
@@ -238,9 +238,9 @@ TEST(FlatJoint3D, ABrokenJointPressedTogetherResistsBendingByItsPressedFace) {
         const Segment seg = pressed_segment(d, kJointRadius);
         force_n = kJointKn * theta * seg.gap_area, moment_nm = -kJointKn * theta * seg.gap_moment;
       }
-      EXPECT_NEAR(h.force().x, force_n, 2.5e-4 * kJointKn * kArea * kJointRadius * theta)
+      EXPECT_NEAR(h.force().x, force_n, 1.5e-3 * kJointKn * kArea * kJointRadius * theta)
           << split << " at theta " << theta;
-      EXPECT_NEAR(h.moment_i().z, moment_nm, 7e-4 * kJointKn * kInertia * theta) << split << " at theta " << theta;
+      EXPECT_NEAR(h.moment_i().z, moment_nm, 6e-3 * kJointKn * kInertia * theta) << split << " at theta " << theta;
     }
   }
 }

@@ -55,8 +55,8 @@ std::pair<double, double> Element::extent(double a1, double a2) const {
 std::vector<Element> unit_disc_elements(int radial, int circumferential) {
   std::vector<Element> elements;
   const double span = 2 * M_PI / circumferential;
-  const int cells_deep = static_cast<int>(std::ceil(12.0 / radial));
-  const int cells_wide = static_cast<int>(std::ceil(36.0 / circumferential - 1e-9));
+  const int cells_deep = static_cast<int>(std::ceil(4.0 / radial));
+  const int cells_wide = static_cast<int>(std::ceil(18.0 / circumferential - 1e-9));
   for (int a = 0; a < radial; ++a)
     for (int b = 0; b < circumferential; ++b) {
       Element e;

@@ -4,7 +4,7 @@
 // elements), as PFC3D's flat joint splits it (fj_nr x fj_na). Each element
 // is an annular sector; this file holds its shape in units of R, in the
 // joint's own plane frame (t1, t2): area, centroid, second moments about the
-// centroid, and a grid of sub-cells (at most R/12 deep and 10 degrees wide)
+// centroid, and a grid of sub-cells (at most R/4 deep and 20 degrees wide)
 // for a broken element that is pressed over part of its face only.
 #include <utility>
 #include <vector>
