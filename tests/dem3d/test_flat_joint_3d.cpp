@@ -4,18 +4,23 @@
 // element at the tensile strength in one step, each logged; bending breaks
 // the far side first and leaves the rest bonded; a broken joint pressed
 // together resists bending as the integral of its pressed face says, exactly
-// while all of it is pressed; a joint broken and parted is a linear contact.
+// while all of it is pressed; a joint broken and parted is a linear contact;
+// a bonded fraction below 1 installs the other elements slit.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "../../dem/models3d/src/flat_joint_elements.hpp"
 #include "bond_pair_harness.hpp"
 #include "demcal/core/error.hpp"
+#include "demcal/dem3d/linear_base.hpp"
 
 using namespace demcal::dem3d;
+namespace dem = demcal::dem;
 using bond_test::Harness;
 using bond_test::kRadius;
 using json = nlohmann::json;
@@ -272,4 +277,52 @@ TEST(FlatJoint3D, RefusesASplitItCannotMake) {
   json p = flat_joint_parameters(1, 3);
   p["elements"] = 2;  // the 2D key: the 3D disc is split two ways
   EXPECT_THROW(ContactModelRegistry::instance().create("flat_joint", p, "scene.json"), demcal::Error);
+}
+
+TEST(FlatJoint3D, ABondedFractionInstallsTheRestOfTheElementsSlit) {
+  // 2,000 joints of 2 x 4 elements at phi_B 0.6: the bonded share within 5
+  // binomial deviations (0.02), the strengths drawn as at phi_B 1, and a joint
+  // with no bonded element left a plain contact.
+  const auto install = [](double fraction, std::size_t pairs, std::vector<bool>& installed) {
+    json p = flat_joint_parameters(2, 4, 2e6, 4e6);
+    p["tensile_strength_std_pa"] = 5e5;
+    p["bonded_fraction"] = fraction;
+    auto model = ContactModelRegistry::instance().create("flat_joint", p, "test");
+    auto set = std::make_unique<dem::ContactSet>();
+    set->set_layout({model->state_columns().size()});
+    set->assign_blocks({pairs});
+    dem::PairBlock b = set->block(0);
+    PairInfo info;
+    info.radius_i = info.radius_j = kRadius;
+    installed.assign(pairs, false);
+    for (std::size_t k = 0; k < pairs; ++k) {
+      model->initialise(b, k, info);
+      demcal::Rng rng(k, 2);
+      installed[k] = model->install_bond(b, k, info, rng);
+    }
+    return std::make_pair(std::move(model), std::move(set));
+  };
+  std::vector<bool> all, some;
+  const auto [full_model, full] = install(1.0, 2000, all);
+  const auto [part_model, part] = install(0.6, 2000, some);
+  const std::size_t first = kLinearColumns + 10;  // element 1's columns: gap, shear 1, shear 2, bonded, tensile, cohesion
+  std::size_t bonded = 0, joints = 0;
+  for (std::size_t k = 0; k < 2000; ++k) {
+    EXPECT_TRUE(all[k]);
+    joints += some[k];
+    for (std::size_t e = 0; e < 8; ++e) {
+      const std::size_t c = first + 6 * e;
+      bonded += part->block(0).column[c + 3][k] != 0.0;
+      EXPECT_EQ(part->block(0).column[c + 4][k], full->block(0).column[c + 4][k]) << "strengths do not move with phi_B";
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(bonded) / 16000, 0.6, 0.02);
+  EXPECT_NEAR(static_cast<double>(joints) / 2000, 1 - std::pow(0.4, 8), 0.002);
+  std::vector<bool> none;
+  const auto [slit_model, slit] = install(0.0, 10, none);
+  for (std::size_t k = 0; k < 10; ++k) {
+    EXPECT_FALSE(none[k]);
+    EXPECT_EQ(slit->block(0).column[kLinearColumns][k], 0.0) << "no joint";
+    EXPECT_EQ(slit->block(0).flags[k] & dem::kBonded, 0u);
+  }
 }

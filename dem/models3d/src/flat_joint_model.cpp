@@ -14,7 +14,9 @@
 //               "tensile_strength_pa", "tensile_strength_std_pa" (default 0),
 //               "cohesion_pa", "cohesion_std_pa" (default 0),
 //               "friction_angle_deg" (phi_b of bonded elements),
-//               "joint_friction" (mu of broken elements)
+//               "joint_friction" (mu of broken elements), "bonded_fraction"
+//               (phi_B, default 1: the share of elements installed bonded;
+//               the rest are installed slit, unbonded faces in contact)
 // Kinematics, incremental from installation (the joint is force-free
 // there), in the joint's own frame (t1, t2, n), which turns with the contact
 // plane as a shear force does: with w the spin of j relative to i and x_e
@@ -102,7 +104,9 @@ class FlatJointModel : public LinearBase {
         cohesion_(dem::non_negative(p, "cohesion_pa", where)),
         cohesion_std_(dem::non_negative_or(p, "cohesion_std_pa", 0.0, where)),
         tan_phi_(std::tan(dem::non_negative(p, "friction_angle_deg", where) * M_PI / 180.0)),
-        joint_friction_(dem::non_negative(p, "joint_friction", where)) {
+        joint_friction_(dem::non_negative(p, "joint_friction", where)),
+        bonded_fraction_(dem::non_negative_or(p, "bonded_fraction", 1.0, where)) {
+    if (bonded_fraction_ > 1) throw Error(where + ": \"bonded_fraction\" must lie in [0, 1]");
     if (dem::non_negative(p, "friction_angle_deg", where) >= 90)
       throw Error(where + ": \"friction_angle_deg\" must be below 90");
     const int radial = whole_number(p, "radial_elements", 1, kMaxRadial, where);
@@ -146,6 +150,21 @@ class FlatJointModel : public LinearBase {
       c.column[column_of(e, kBondedElement)][k] = 1.0;
       c.column[column_of(e, kTensile)][k] = dem::draw_strength(sigma_c_, sigma_c_std_, rng);
       c.column[column_of(e, kCohesion)][k] = dem::draw_strength(cohesion_, cohesion_std_, rng);
+    }
+    // Slit elements (PFC3D's flat-jointed material installs a share unbonded),
+    // drawn after the strengths so a joint's strengths do not depend on phi_B.
+    bool any_bonded = true;
+    if (bonded_fraction_ < 1) {
+      any_bonded = false;
+      for (std::size_t e = 0; e < elements_.size(); ++e) {
+        const bool bonded = rng.uniform() < bonded_fraction_;
+        c.column[column_of(e, kBondedElement)][k] = bonded ? 1.0 : 0.0;
+        any_bonded = any_bonded || bonded;
+      }
+    }
+    if (!any_bonded) {  // all slit: a contact like any other (its faces are not held)
+      c.column[kJoint][k] = 0.0;
+      return false;
     }
     c.flags[k] |= dem::kBonded;
     return true;
@@ -332,7 +351,7 @@ class FlatJointModel : public LinearBase {
   }
 
   double joint_modulus_pa_, joint_kn_ks_, lambda_;
-  double sigma_c_, sigma_c_std_, cohesion_, cohesion_std_, tan_phi_, joint_friction_;
+  double sigma_c_, sigma_c_std_, cohesion_, cohesion_std_, tan_phi_, joint_friction_, bonded_fraction_;
   std::vector<flat_joint::Element> elements_;
 };
 
@@ -342,7 +361,7 @@ void register_flat_joint_model(ContactModelRegistry& registry) {
   registry.add("flat_joint", {"modulus_pa", "kn_ks", "kn_n_m", "ks_n_m", "friction", "joint_modulus_pa",
                               "joint_kn_ks", "radius_multiplier", "radial_elements", "circumferential_elements",
                               "tensile_strength_pa", "tensile_strength_std_pa", "cohesion_pa", "cohesion_std_pa",
-                              "friction_angle_deg", "joint_friction"},
+                              "friction_angle_deg", "joint_friction", "bonded_fraction"},
                [](const nlohmann::json& p, const std::string& where) {
                  return std::make_unique<FlatJointModel>(p, where);
                });
@@ -359,12 +378,14 @@ void register_flat_joint_model(ContactModelRegistry& registry) {
                    {"key": "radial_elements", "group": "property", "name": "fj_nr", "as": "integer", "default": 1},
                    {"key": "circumferential_elements", "group": "property", "name": "fj_na", "as": "integer", "default": 3},
                    {"key": "radius_multiplier", "group": "property", "name": "fj_rmul", "default": 1},
+                   {"key": "bonded_fraction", "group": "material", "name": "phi_B", "default": 1},
                    {"key": "modulus_pa", "group": "unjoined", "name": "emod"},
                    {"key": "kn_ks", "group": "unjoined", "name": "kratio"},
                    {"key": "kn_n_m", "group": "unjoined", "name": "kn"},
                    {"key": "ks_n_m", "group": "unjoined", "name": "ks"},
                    {"key": "friction", "group": "unjoined", "name": "fric"}],
-      "later": {"unjoined": {"text": "contacts that form later (unjoined) take the linear part"}}},
+      "later": {"unjoined": {"text": "contacts that form later (unjoined) take the linear part"},
+                "material": {"text": "the share of elements installed bonded, the flat-jointed material's phi_B: set each element's state at installation"}}},
     "yade": {"model": "CohFrictMat", "notes": ["no flat joint in YADE: its elements, partial damage and friction angle do not carry over; a cohesive-frictional bond is the nearest"],
       "keywords": [{"key": "joint_modulus_pa", "name": "young"}, {"key": "joint_kn_ks", "name": "poisson", "as": "reciprocal"},
                    {"key": "joint_friction", "name": "frictionAngle", "as": "atan"},
