@@ -23,32 +23,32 @@ Moments sector_moments(double r0, double r1, double a0, double a1) {
           d4 * (std::sin(a1) * std::sin(a1) - std::sin(a0) * std::sin(a0)) / 2};
 }
 
-// Whether angle `a` lies in [from, to] up to whole turns.
-bool within(double a, double from, double to) {
-  const double turn = 2 * M_PI;
-  double x = std::fmod(a - from, turn);
-  if (x < 0) x += turn;
-  return x <= to - from;
-}
-
 }  // namespace
 
 std::pair<double, double> Element::extent(double a1, double a2) const {
   // A linear function's extremes over the sector lie on its edges: at the
-  // four corners, or where an arc faces along (a1, a2) or against it.
+  // four corners, or where an arc faces along (a1, a2) or against it (r a /
+  // |a| from the disc's centre, when that direction lies in the sector).
   double lo = INFINITY, hi = -INFINITY;
-  const auto at = [&](double r, double angle) {
-    const double value = a1 * (r * std::cos(angle) - x1) + a2 * (r * std::sin(angle) - x2);
+  for (int c = 0; c < 4; ++c) {
+    const double value = a1 * corner1[c] + a2 * corner2[c];
     lo = std::min(lo, value), hi = std::max(hi, value);
-  };
-  for (double r : {r_inner, r_outer})
-    for (double angle : {angle_from, angle_to}) at(r, angle);
-  if (a1 != 0 || a2 != 0) {
-    const double facing = std::atan2(a2, a1);
-    for (double r : {r_inner, r_outer})
-      for (double angle : {facing, facing + M_PI})
-        if (within(angle, angle_from, angle_to)) at(r, angle);
   }
+  const double size = std::hypot(a1, a2);
+  if (size == 0) return {lo, hi};
+  const double centroid = a1 * x1 + a2 * x2;
+  const double span = angle_to - angle_from;
+  // Whether the unit direction (d1, d2) lies between the straight edges.
+  const auto inside = [&](double d1, double d2) {
+    if (span >= 2 * M_PI - 1e-12) return true;
+    return from1 * d2 - from2 * d1 >= 0 && d1 * to2 - d2 * to1 >= 0;
+  };
+  for (const double sign : {1.0, -1.0})
+    if (inside(sign * a1 / size, sign * a2 / size))
+      for (const double r : {r_inner, r_outer}) {
+        const double value = sign * r * size - centroid;
+        lo = std::min(lo, value), hi = std::max(hi, value);
+      }
   return {lo, hi};
 }
 
@@ -69,6 +69,14 @@ std::vector<Element> unit_disc_elements(int radial, int circumferential) {
       e.s11 = m.m11 - m.area * e.x1 * e.x1;
       e.s22 = m.m22 - m.area * e.x2 * e.x2;
       e.s12 = m.m12 - m.area * e.x1 * e.x2;
+      int corner = 0;
+      for (double r : {e.r_inner, e.r_outer})
+        for (double angle : {e.angle_from, e.angle_to}) {
+          e.corner1[corner] = r * std::cos(angle) - e.x1, e.corner2[corner] = r * std::sin(angle) - e.x2;
+          ++corner;
+        }
+      e.from1 = std::cos(e.angle_from), e.from2 = std::sin(e.angle_from);
+      e.to1 = std::cos(e.angle_to), e.to2 = std::sin(e.angle_to);
       // Sub-cells: the same split of this sector, each with its own moments.
       const double dr = (e.r_outer - e.r_inner) / cells_deep, da = span / cells_wide;
       for (int p = 0; p < cells_deep; ++p)

@@ -24,6 +24,10 @@ struct Element {
   double x1, x2;                                  // centroid
   double s11, s22, s12;                           // integrals of u1^2, u2^2, u1 u2 over the element, u from the centroid
   std::vector<SubCell> cells;
+  // The four corners (relative to the centroid) and the unit directions of
+  // the two straight edges, so extent() needs no trigonometry.
+  double corner1[4], corner2[4];
+  double from1, from2, to1, to2;
   // The least and the greatest of a1 u1 + a2 u2 over the element (u from its centroid).
   std::pair<double, double> extent(double a1, double a2) const;
 };

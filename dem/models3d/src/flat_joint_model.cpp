@@ -273,8 +273,7 @@ class FlatJointModel : public LinearBase {
           flags = mark_break(flags, false);
         } else {
           normal = kn * area * gap;
-          b1 = kn * r4 * (theta1 * shape.s22 - theta2 * shape.s12);
-          b2 = kn * r4 * (theta2 * shape.s11 - theta1 * shape.s12);
+          section_bending(shape, kn * r4, theta1, theta2, b1, b2);
           twisting = ks * r4 * (shape.s11 + shape.s22) * twist;
           any_bonded = true;
           pressed = pressed || gap < 0;
@@ -308,6 +307,15 @@ class FlatJointModel : public LinearBase {
     }
   }
 
+  // The moment (on i, along t1 and t2) of an element's whole face bent by
+  // theta about its centroid: k_n S_e theta with S_e its second moments,
+  // `kn_r4` = k_n R_j^4 (S_e is per unit disc).
+  static void section_bending(const flat_joint::Element& shape, double kn_r4, double theta1, double theta2,
+                              double& b1, double& b2) {
+    b1 = kn_r4 * (theta1 * shape.s22 - theta2 * shape.s12);
+    b2 = kn_r4 * (theta2 * shape.s11 - theta1 * shape.s12);
+  }
+
   // A broken element: compression only where its faces overlap, the gap
   // varying as gap + theta1 u2 - theta2 u1 across it (u from its centroid).
   // Sets its normal force (on i, < 0 pressed) and its own bending moment.
@@ -320,8 +328,7 @@ class FlatJointModel : public LinearBase {
     const double r2 = r * r, r3 = r2 * r, r4 = r2 * r2;
     if (gap + hi <= 0) {  // pressed everywhere: the bonded law in compression
       normal = kn * shape.area * r2 * gap;
-      b1 = kn * r4 * (theta1 * shape.s22 - theta2 * shape.s12);
-      b2 = kn * r4 * (theta2 * shape.s11 - theta1 * shape.s12);
+      section_bending(shape, kn * r4, theta1, theta2, b1, b2);
       return;
     }
     // Over the sub-cells: a cell pressed all over adds its exact share (the
