@@ -171,19 +171,13 @@ class FlatJointModel : public LinearBase {
   }
 
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    PairContact p;
-    for (std::size_t k = 0; k < c.size; ++k) {
-      const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-      if (c.column[kJoint][k] == 0.0) {
-        if (sphere_pair_contact(s, i, j, p))
-          linear_touch(c, k, out, p, step.dt_s);
-        else
-          linear_leave(c, k, out);
-        continue;
-      }
-      sphere_pair_geometry(s, i, j, p);
-      joint(c, k, out, p, s.spin(j) - s.spin(i), step.dt_s);
-    }
+    // A joint holds its pair until it has broken and parted (not only while bonded).
+    for_held_pairs(
+        c, s, out, step.dt_s, [&](std::size_t k) { return c.column[kJoint][k] != 0.0; },
+        [&](std::size_t k, const PairContact& p) {
+          joint(c, k, out, p, s.spin(static_cast<std::size_t>(c.j[k])) - s.spin(static_cast<std::size_t>(c.i[k])),
+                step.dt_s);
+        });
   }
 
   // An intact joint's springs are a parallel bond's of the same disc; the

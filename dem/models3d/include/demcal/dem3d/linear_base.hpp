@@ -76,15 +76,16 @@ class LinearBase : public ContactModel {
     c.column[kShearX][k] = fs.x, c.column[kShearY][k] = fs.y, c.column[kShearZ][k] = fs.z;
     return fs;
   }
-  // A bonded model's block: an unbonded pair follows the linear law, a bonded
-  // one `bonded(k, geometry)` whether its spheres touch or not (a bond holds
-  // them across a gap).
-  template <class Bonded>
-  static void for_bondable_pairs(PairBlock& c, const Spheres& s, const PairForces& out, double dt_s, Bonded bonded) {
+  // A block whose pairs are held (`is_held(k)`: bonded, joined) or not: a
+  // pair not held follows the linear law, a held one `held(k, geometry)`
+  // whether its spheres touch or not (a bond holds them across a gap).
+  template <class IsHeld, class Held>
+  static void for_held_pairs(PairBlock& c, const Spheres& s, const PairForces& out, double dt_s, IsHeld is_held,
+                             Held held) {
     PairContact p;
     for (std::size_t k = 0; k < c.size; ++k) {
       const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-      if (!(c.flags[k] & dem::kBonded)) {
+      if (!is_held(k)) {
         if (sphere_pair_contact(s, i, j, p))
           linear_touch(c, k, out, p, dt_s);
         else
@@ -92,8 +93,14 @@ class LinearBase : public ContactModel {
         continue;
       }
       sphere_pair_geometry(s, i, j, p);
-      bonded(k, p);
+      held(k, p);
     }
+  }
+  // A bonded model's block: the pairs with an intact bond are held.
+  template <class Bonded>
+  static void for_bondable_pairs(PairBlock& c, const Spheres& s, const PairForces& out, double dt_s, Bonded bonded) {
+    for_held_pairs(
+        c, s, out, dt_s, [&](std::size_t k) { return (c.flags[k] & dem::kBonded) != 0; }, bonded);
   }
   static void forget_shear(PairBlock& c, std::size_t k) {
     c.column[kShearX][k] = c.column[kShearY][k] = c.column[kShearZ][k] = 0;
