@@ -224,6 +224,16 @@ case("scene/3d_confining_stress_zero",
 case("scene/3d_porosity_out_of_range",
      describe(write(S, "3d_porosity_out_of_range.json", edited(scene3d, lambda d: d["specimen"].update(porosity=0.9)))),
      path(S, "3d_porosity_out_of_range.json"), "porosity")
+case("scene/3d_locked_in_stress_negative",
+     describe(write(S, "3d_locked_in_stress_negative.json",
+                    edited(scene3d, lambda d: d["specimen"].update(locked_in_stress_pa=-1e5)))),
+     path(S, "3d_locked_in_stress_negative.json"), "locked_in_stress_pa")
+fj3d = load("data/scenes/ucs_rock_fj_3d.json")
+fj3d["specimen"] = scene3d["specimen"]
+case("scene/3d_locked_in_stress_with_flat_joints",
+     describe(write(S, "3d_locked_in_stress_with_flat_joints.json",
+                    edited(fj3d, lambda d: d["specimen"].update(locked_in_stress_pa=1e5)))),
+     path(S, "3d_locked_in_stress_with_flat_joints.json"), "locked_in_stress_pa")
 
 # ---------------------------------------------------------------- parameter space JSON (demcal-doe, describe --space)
 def doe(f):

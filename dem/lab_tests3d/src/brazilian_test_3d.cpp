@@ -14,6 +14,7 @@
 #include "demcal/core/error.hpp"
 #include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
+#include "demcal/dem3d/material_pressure.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
 namespace demcal::dem3d {
@@ -25,26 +26,34 @@ dem::TestResult run_brazilian_3d(const Scene& scene, const std::map<std::string,
                                  const dem::RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const dem::LoadingSpec& loading = scene.loading();
-  const SphereSpecimen disc = cached_sphere_specimen(sphere_specimen_spec(scene, parameters, options.seed),
-                                                     options.cache_dir);
+  dem::TestResult result;
+  const PressuredSpecimen prepared = test_specimen(scene, parameters, options, result.specimen_info);
+  if (!prepared.reason.empty()) {
+    result.reason = prepared.reason;
+    return result;
+  }
+  const SphereSpecimen& disc = prepared.specimen;
   const double D = disc.width_m, t = disc.height_m, flat = 0.5 * D * std::cos(10.0 * M_PI / 180.0);
+  // A pressured disc's spheres stay where the stress left them: a moved one would load its neighbours.
+  const bool grind_flats = !(disc.locked_in_stress_pa > 0);
 
   World world = specimen_world(scene, parameters, disc, options, [&](Vec3& centre, double r) {
     if (std::abs(centre.x) > flat) return false;  // cut off by a flat
     // A sphere crossing a flat by more than half its radius is set back to
     // half (the flats ground true); bonding makes its new overlaps force-free.
-    if (std::abs(centre.x) > flat - 0.5 * r) centre.x = std::copysign(flat - 0.5 * r, centre.x);
+    if (grind_flats && std::abs(centre.x) > flat - 0.5 * r) centre.x = std::copysign(flat - 0.5 * r, centre.x);
     return true;
   });
   world.walls = {make_plane({-flat, 0, 0}, {1, 0, 0}, kPlatenGroup), make_plane({flat, 0, 0}, {-1, 0, 0}, kPlatenGroup)};
-  dem::TestResult result;
-  bond_specimen(world, scene, disc, options.seed, result.specimen_info);
+  result.reason = bond_specimen(world, scene, disc, options.seed, result.specimen_info);
+  if (!result.reason.empty()) return result;
   result.particles = world.spheres.size();
   result.porosity = disc.porosity;
 
   world.walls[kLeft].velocity_m_s = {loading.platen_velocity_m_s, 0, 0};
   world.walls[kRight].velocity_m_s = {-loading.platen_velocity_m_s, 0, 0};
-  const double gap0 = 2 * flat;
+  // From the walls: a pressured disc's platens were set back on it after it relaxed.
+  const double gap0 = world.walls[kRight].point_m.x - world.walls[kLeft].point_m.x;
   const auto loading_start = std::chrono::steady_clock::now();
   // sigma = 2 F / (pi D t) and the approach over D: F d(approach) = sigma d(approach / D) pi D^2 t / 2.
   dem::LoadingMonitor monitor(loading, options, start, 0.5 * M_PI * D * D * t);

@@ -12,21 +12,30 @@
 #include "demcal/core/json_fields.hpp"
 #include "demcal/dem/particle_order.hpp"
 #include "demcal/dem3d/contact_model.hpp"
+#include "demcal/dem3d/material_pressure.hpp"
 #include "demcal/dem3d/vtk_writer.hpp"
 
 namespace demcal::dem3d {
+namespace {
+
+// How long a pressured specimen may take to come to rest out of its vessel.
+constexpr std::uint64_t kRelaxationSteps = 200000;
+
+}  // namespace
 
 const dem::ContactModelCatalog& sphere_contact_models() {
   static const dem::RegistryCatalog<ContactModelRegistry> models("3d");
   return models;
 }
 
-void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters) {
+void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters,
+                         bool frictionless) {
   for (const dem::ContactRole& role : scene.contact_roles()) {
     const dem::ContactSpec& c = scene.contacts().at(role.name);
     const std::string where = scene.origin() + ": contacts." + role.name;
-    const std::uint8_t model =
-        world.add_model(ContactModelRegistry::instance().create(c.model, scene.bind(c, parameters, where), where));
+    nlohmann::json bound = scene.bind(c, parameters, where);
+    if (frictionless && bound.contains("friction")) bound["friction"] = 0.0;
+    const std::uint8_t model = world.add_model(ContactModelRegistry::instance().create(c.model, bound, where));
     for (const auto& [a, b] : role.groups) world.assign(a, b, model);
   }
 }
@@ -71,8 +80,13 @@ std::vector<dem::ContactRole> PackedSphereTest::specimen_roles(const Scene&) con
 void PackedSphereTest::check_scene(const Scene& scene) const {
   require_known_fields(scene.section("specimen"),
                        {"shape", "diameter_m", "width_m", "depth_m", "height_m", "porosity", "radius_min_m",
-                        "radius_max_m", "density_kg_m3", "note"},
+                        "radius_max_m", "density_kg_m3", "locked_in_stress_pa", "note"},
                        scene.origin() + ": specimen");
+  if (locked_in_stress_pa(scene, scene.resolve({})) > 0)
+    for (const auto& [role, contact] : scene.contacts())
+      if (contact.model == "flat_joint")  // its elements are installed force-free: the stress would have no carrier
+        throw Error(scene.origin() + ": specimen.locked_in_stress_pa: not supported with the flat_joint model of contacts." +
+                    role + " (its joints are installed force-free)");
   try {
     sphere_specimen_spec(scene, scene.resolve({}), 1).validate();
   } catch (const Error& e) {
@@ -116,18 +130,27 @@ World specimen_world(const Scene& scene, const std::map<std::string, double>& pa
   return world;
 }
 
-void bond_specimen(World& world, const Scene& scene, const SphereSpecimen& specimen, std::uint64_t seed,
-                   std::map<std::string, double>& info) {
+std::string bond_specimen(World& world, const Scene& scene, const SphereSpecimen& specimen, std::uint64_t seed,
+                          std::map<std::string, double>& info) {
   const dem::LoadingSpec& loading = scene.loading();
   const double r_min = *std::min_element(specimen.radius.begin(), specimen.radius.end());
   const double tolerance = loading.bond_gap_tolerance_m > 0 ? loading.bond_gap_tolerance_m : 0.01 * r_min;
-  const std::size_t bonds = world.install_bonds(tolerance, seed);
-  info["spheres_on_walls"] = static_cast<double>(world.make_wall_contacts_force_free());
+  const bool pressured = specimen.locked_in_stress_pa > 0;
+  // A pressured specimen's contacts keep their whole overlap's force (the locked-in fraction 1).
+  const std::size_t bonds = world.install_bonds(tolerance, seed, pressured ? 1.0 : 0.0);
   info["coordination_number"] = specimen.coordination_number;
   info["mean_overlap_ratio"] = specimen.mean_overlap_ratio;
   info["bonds_per_sphere"] = 2.0 * static_cast<double>(bonds) / static_cast<double>(world.spheres.size());
-  info["locked_in_stress_MPa"] = 0.0;  // every contact force-free as it lies
+  info["locked_in_stress_MPa"] = specimen.locked_in_stress_pa / 1e6;
+  if (pressured) {
+    const std::string failed = relax_out_of_vessel(world, kRelaxationSteps);
+    if (!failed.empty()) return failed;
+    info["locked_in_relaxation_steps"] = static_cast<double>(world.steps_done());
+    info["locked_in_relaxation_breaks"] = static_cast<double>(world.breaks().size());
+  }
+  info["spheres_on_walls"] = static_cast<double>(world.make_wall_contacts_force_free());
   world.start_test();
+  return "";
 }
 
 std::string SphereMonitoredWorld::instability(double platen_velocity_m_s) const {

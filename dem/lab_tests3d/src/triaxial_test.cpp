@@ -18,6 +18,7 @@
 #include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem/confined_series.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
+#include "demcal/dem3d/material_pressure.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
 namespace demcal::dem3d {
@@ -46,13 +47,14 @@ void set_servo_areas(World& w) {
 
 // The specimen in its vessel (platens at the end faces, the cylinder at its
 // wall, each touching the spheres that touched it with no force), bonded.
+// `reason` says why bonding failed (a pressured specimen that did not settle).
 World make_world(const Scene& scene, const std::map<std::string, double>& parameters, const SphereSpecimen& specimen,
-                 const dem::RunOptions& options, std::map<std::string, double>& info) {
+                 const dem::RunOptions& options, std::map<std::string, double>& info, std::string& reason) {
   World world = specimen_world(scene, parameters, specimen, options);
   world.walls = {make_plane({0, 0, 0}, {0, 0, 1}, kPlatenGroup),
                  make_plane({0, 0, specimen.height_m}, {0, 0, -1}, kPlatenGroup),
                  make_cylinder({0, 0, 0}, {0, 0, 1}, 0.5 * specimen.width_m, 0.0, true, kPlatenGroup)};
-  bond_specimen(world, scene, specimen, options.seed, info);
+  reason = bond_specimen(world, scene, specimen, options.seed, info);
   return world;
 }
 
@@ -123,18 +125,28 @@ dem::TestResult run_triaxial(const Scene& scene, const std::map<std::string, dou
   const auto start = std::chrono::steady_clock::now();
   const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
   if (confinements.empty()) throw Error(scene.origin() + ": loading.confining_stresses_MPa: missing");
-  const SphereSpecimen specimen =
-      cached_sphere_specimen(sphere_specimen_spec(scene, parameters, options.seed), options.cache_dir);
   dem::TestResult series;
+  std::map<std::string, double> pressure_info;
+  const PressuredSpecimen prepared = test_specimen(scene, parameters, options, pressure_info);
+  if (!prepared.reason.empty()) {
+    series.reason = prepared.reason;
+    return series;
+  }
+  const SphereSpecimen& specimen = prepared.specimen;
   series.particles = specimen.size();
   series.porosity = specimen.porosity;
   std::vector<double> sigma_3, sigma_1;
   std::chrono::steady_clock::duration loading_time{};
   for (std::size_t k = 0; k < confinements.size(); ++k) {
     const std::string n = std::to_string(k + 1);
-    std::map<std::string, double> info;
-    World world = make_world(scene, parameters, specimen, options, info);
+    std::map<std::string, double> info = pressure_info;
+    std::string failed;
+    World world = make_world(scene, parameters, specimen, options, info, failed);
     if (k == 0) series.specimen_info = info;
+    if (!failed.empty()) {
+      series.reason = "confinement " + n + ": " + failed;
+      break;
+    }
     dem::RunOptions own = options;  // each specimen's snapshots in a folder of its own
     if (!options.vtk_dir.empty()) {
       ::mkdir(options.vtk_dir.c_str(), 0755);

@@ -15,6 +15,7 @@
 #include "demcal/core/error.hpp"
 #include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
+#include "demcal/dem3d/material_pressure.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
 namespace demcal::dem3d {
@@ -80,18 +81,25 @@ dem::TestResult run_ucs_3d(const Scene& scene, const std::map<std::string, doubl
                            const dem::RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const dem::LoadingSpec& loading = scene.loading();
-  const SphereSpecimenSpec spec = sphere_specimen_spec(scene, parameters, options.seed);
-  const SphereSpecimen specimen = cached_sphere_specimen(spec, options.cache_dir);
+  dem::TestResult result;
+  const PressuredSpecimen prepared = test_specimen(scene, parameters, options, result.specimen_info);
+  if (!prepared.reason.empty()) {
+    result.reason = prepared.reason;
+    return result;
+  }
+  const SphereSpecimen& specimen = prepared.specimen;
 
   World world = specimen_world(scene, parameters, specimen, options);
   // The vessel's end faces become the platens, touching the spheres that touched them with no force.
   world.walls = {make_plane({0, 0, 0}, {0, 0, 1}, kPlatenGroup),
                  make_plane({0, 0, specimen.height_m}, {0, 0, -1}, kPlatenGroup)};
-  dem::TestResult result;
-  bond_specimen(world, scene, specimen, options.seed, result.specimen_info);
+  result.reason = bond_specimen(world, scene, specimen, options.seed, result.specimen_info);
+  if (!result.reason.empty()) return result;
 
-  const double D = specimen.width_m, H0 = specimen.height_m, area = 0.25 * M_PI * D * D;
-  const RadialStrainGauge gauge(world.spheres, 0.5 * D, 0.0, H0);
+  // The platens' places from the walls: a pressured specimen's were set back on it after it relaxed.
+  const double bottom_z = world.walls[kBottom].point_m.z;
+  const double D = specimen.width_m, H0 = world.walls[kTop].point_m.z - bottom_z, area = 0.25 * M_PI * D * D;
+  const RadialStrainGauge gauge(world.spheres, 0.5 * D, bottom_z, H0);
   result.particles = specimen.size();
   result.porosity = specimen.porosity;
   result.specimen_info["lateral_gauge_spheres"] = static_cast<double>(gauge.size());

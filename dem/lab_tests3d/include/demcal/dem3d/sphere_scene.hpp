@@ -29,8 +29,10 @@ constexpr std::uint8_t kSpecimenGroup = 0, kPlatenGroup = 1;
 const dem::ContactModelCatalog& sphere_contact_models();
 
 // Creates a model for each of the scene's contact roles (bound to
-// `parameters`) and assigns it to the role's groups.
-void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters);
+// `parameters`, with any "friction" set to 0 when `frictionless`) and
+// assigns it to the role's groups.
+void bind_contact_models(World& world, const Scene& scene, const std::map<std::string, double>& parameters,
+                         bool frictionless = false);
 
 // The scene's "specimen" section at `parameters`: a cylinder (diameter_m,
 // height_m) or a box (width_m, depth_m, height_m), radii, porosity, density.
@@ -61,11 +63,16 @@ World specimen_world(const Scene& scene, const std::map<std::string, double>& pa
                      const std::function<bool(Vec3& centre_m, double radius_m)>& admit = {});
 
 // Bonds the world's spheres (pairs within loading.bond_gap_tolerance_m, or 1 %
-// of the smallest radius; overlaps force-free as they lie), makes the contacts
-// with its walls (placed where the vessel was) force-free, and starts the
-// test. `info` receives what every 3D result states of its specimen.
-void bond_specimen(World& world, const Scene& scene, const SphereSpecimen& specimen, std::uint64_t seed,
-                   std::map<std::string, double>& info);
+// of the smallest radius), makes the contacts with its walls (placed where
+// the vessel was) force-free, and starts the test. A packing's overlaps are
+// made force-free as they lie; a pressured specimen's (locked_in_stress_pa >
+// 0) keep their forces, and the specimen is relaxed out of its vessel and the
+// walls set back where they touch it (material_pressure.hpp): the test reads
+// its platens' places from the walls. `info` receives what every 3D result
+// states of its specimen. The reason when the relaxation fails; empty when
+// the test can go on.
+std::string bond_specimen(World& world, const Scene& scene, const SphereSpecimen& specimen, std::uint64_t seed,
+                          std::map<std::string, double>& info);
 
 // The sphere world as the loading monitor sees it: a run fails on a non-finite
 // value, a sphere through a platen (walls[0] and walls[1], planes whose

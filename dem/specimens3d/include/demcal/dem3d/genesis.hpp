@@ -44,6 +44,9 @@ struct SphereSpecimen {
   double mean_overlap_ratio = 0;    // mean overlap / smaller radius over those contacts
   std::size_t floaters_removed = 0;
   std::uint64_t steps = 0;          // cycles spent packing
+  // The isotropic stress its contacts hold (the material-pressure stage,
+  // material_pressure.hpp); 0 for a packing, whose overlaps bonding makes force-free.
+  double locked_in_stress_pa = 0;
   std::size_t size() const { return x.size(); }
 };
 
