@@ -24,6 +24,8 @@
 #include "demcal/jobs/batch_mpi.hpp"
 #include "demcal/dem/describe.hpp"
 #include "demcal/dem/lammps_data.hpp"
+#include "demcal/dem3d/sphere_export.hpp"
+#include "demcal/dem3d/sphere_scene.hpp"
 #include "demcal/jobs/merge.hpp"
 #include "demcal/dem/result_json.hpp"
 #include "demcal/dem/scene_set.hpp"
@@ -85,6 +87,13 @@ dem::Specimen packed_specimen(const dem::Scene& scene, std::uint64_t seed, const
   return dem::cached_specimen(dem::specimen_spec(scene, scene.resolve({}), seed), cache_dir);
 }
 
+// A 3D scene's packed specimen at its default parameters (from the cache, or packed now).
+dem3d::SphereSpecimen packed_sphere_specimen(const dem::Scene& scene, std::uint64_t seed, const std::string& cache_dir) {
+  if (!scene.has_section("specimen"))
+    throw Error(scene.origin() + ": its test (" + scene.test() + ") has no packed specimen of ours");
+  return dem3d::cached_sphere_specimen(dem3d::sphere_specimen_spec(scene, scene.resolve({}), seed), cache_dir);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,13 +151,14 @@ int main(int argc, char** argv) {
   describe->add_option("--scene", describe_scene, "scene JSON");
   describe->add_option("--space", describe_space, "also check that this parameter space narrows the scene");
   describe->add_flag("--registries", describe_registries, "list the registered lab tests and contact models instead");
-  std::string export_scene, export_lammps;
+  std::string export_scene, export_lammps, export_yade;
   std::uint64_t export_seed = 1;
   CLI::App* export_cmd =
       app.add_subcommand("export", "write a scene's packed specimen (cached or packed now) for another engine");
   export_cmd->add_option("--scene", export_scene, "scene JSON")->required();
   export_cmd->add_option("--seed", export_seed, "packing seed")->capture_default_str();
-  export_cmd->add_option("--lammps", export_lammps, "LAMMPS data file (atom_style sphere, 2D)")->required();
+  export_cmd->add_option("--lammps", export_lammps, "LAMMPS data file (atom_style sphere: a 2D scene's disks or a 3D scene's spheres)");
+  export_cmd->add_option("--yade", export_yade, "text file of x y z r lines as YADE's ymport.text reads them (a 3D scene's spheres)");
   export_cmd->add_option("--cache", cache_dir, "folder of cached packed specimens")->capture_default_str();
   export_cmd->add_flag("--quiet", quiet, "no progress on stderr");
   std::string released_scene;
@@ -232,8 +242,24 @@ int main(int argc, char** argv) {
         throw Error("export: " + export_scene + " is a test list; name one of its scenes");
       dem::Scene scene = dem::Scene::load(export_scene);
       if (scene.is_external()) throw Error("export: " + export_scene + " is an external test: it has no specimen of ours");
+      if (export_lammps.empty() && export_yade.empty()) throw Error("export: give --lammps FILE or --yade FILE");
+      const std::string title = scene.name() + ", seed " + std::to_string(export_seed);
+      if (scene.lab_test().dimension() == 3) {
+        const dem3d::SphereSpecimen s = packed_sphere_specimen(scene, export_seed, cache_dir);
+        if (!export_lammps.empty()) {
+          dem3d::write_lammps_data(s, export_lammps, title);
+          log::info("wrote " + std::to_string(s.size()) + " spheres to " + export_lammps);
+        }
+        if (!export_yade.empty()) {
+          dem3d::write_sphere_text(s, export_yade, title);
+          log::info("wrote " + std::to_string(s.size()) + " spheres to " + export_yade);
+        }
+        return 0;
+      }
+      if (!export_yade.empty())
+        throw Error("export --yade: " + export_scene + " is a 2D scene; YADE takes a 3D scene's spheres (its disks go to LAMMPS with --lammps)");
       const dem::Specimen s = packed_specimen(scene, export_seed, cache_dir);
-      dem::write_lammps_data(s, export_lammps, scene.name() + ", seed " + std::to_string(export_seed));
+      dem::write_lammps_data(s, export_lammps, title);
       log::info("wrote " + std::to_string(s.size()) + " disks to " + export_lammps);
       return 0;
     }

@@ -8,7 +8,6 @@
 #include <sys/resource.h>
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -17,30 +16,10 @@
 #include "demcal/core/error.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/genesis.hpp"
+#include "demcal/dem3d/sphere_export.hpp"
 #include "demcal/dem3d/world.hpp"
 
 using namespace demcal::dem3d;
-
-namespace {
-
-void write_lammps_data(const SphereSpecimen& s, const std::string& path) {
-  std::ofstream out(path);
-  out.precision(17);
-  double low[3] = {1e300, 1e300, 1e300}, high[3] = {-1e300, -1e300, -1e300};
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const double p[3] = {s.x[i], s.y[i], s.z[i]};
-    for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a] - s.radius[i]), high[a] = std::max(high[a], p[a] + s.radius[i]);
-  }
-  out << "demcal 3D specimen\n\n" << s.size() << " atoms\n1 atom types\n\n";
-  const char* names[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) out << low[a] << ' ' << high[a] << ' ' << names[a] << "lo " << names[a] << "hi\n";
-  out << "\nAtoms # sphere\n\n";
-  for (std::size_t i = 0; i < s.size(); ++i)
-    out << i + 1 << " 1 " << 2 * s.radius[i] << ' ' << s.density_kg_m3 << ' ' << s.x[i] << ' ' << s.y[i] << ' ' << s.z[i]
-        << "\n";
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"bench_dem3d_released: a packed 3D specimen released or in its box, for the LAMMPS comparison"};
@@ -77,7 +56,7 @@ int main(int argc, char** argv) {
     const SphereSpecimen s = cached_sphere_specimen(spec, cache);
     const double pack_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - pack_start).count();
     if (!lammps.empty() || pack_only) {
-      if (!lammps.empty()) write_lammps_data(s, lammps);
+      if (!lammps.empty()) write_lammps_data(s, lammps, "bench_dem3d_released, seed " + std::to_string(spec.seed));
       std::cout << nlohmann::json{{"spheres", s.size()}, {"porosity", s.porosity}, {"pack_s", pack_s},
                                   {"coordination_number", s.coordination_number}}
                 << "\n";

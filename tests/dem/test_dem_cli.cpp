@@ -5,6 +5,8 @@
 
 #include <sys/wait.h>
 
+#include <array>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -128,4 +130,61 @@ TEST(DemcalDem, AFailedRunSaysWhyOnStderr) {
   std::ifstream(out) >> result;
   EXPECT_EQ(result.at("status"), "failed");
   EXPECT_NE(r.err.find(result.at("reason").get<std::string>()), std::string::npos) << r.err;
+}
+
+// A 3D scene's packing for the peers: YADE's x y z r lines and a 3D LAMMPS
+// data file, the same spheres in the same order, inside the scene's cylinder.
+TEST(DemcalDem, ExportWritesA3DSceneForYadeAndLammps) {
+  const std::string scene = std::string(DEMCAL_SOURCE_DIR) + "/tests/data/ucs_small_3d.json";
+  const std::string text = temp("spheres.txt"), data = temp("spheres.data");
+  Result r = run("export --scene " + scene + " --yade " + text + " --lammps " + data);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::vector<std::array<double, 4>> spheres;  // x y z r
+  std::ifstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::array<double, 4> s{};
+    std::istringstream fields(line);
+    for (double& v : s) ASSERT_TRUE(fields >> v) << line;
+    spheres.push_back(s);
+  }
+  ASSERT_GT(spheres.size(), 200u);
+  for (const auto& s : spheres) {  // the scene's cylinder: D 10 mm, H 20 mm; radii 0.6-0.9 mm scaled to the porosity
+    EXPECT_LE(std::hypot(s[0], s[1]) + s[3], 0.005 * 1.01);
+    EXPECT_GT(s[3], 0.0);
+    EXPECT_GE(s[2] - s[3], -0.0001);
+    EXPECT_LE(s[2] + s[3], 0.0201);
+  }
+  // The LAMMPS file: as many atoms, each the text file's sphere (diameter, then x y z last) to the last digit.
+  std::ifstream lammps(data);
+  std::string line;
+  std::size_t atoms = 0, row = 0;
+  bool in_atoms = false;
+  while (std::getline(lammps, line)) {
+    if (line.find(" atoms") != std::string::npos && !in_atoms) atoms = std::stoul(line);
+    if (line.rfind("Atoms # sphere", 0) == 0) {
+      in_atoms = true;
+      continue;
+    }
+    if (!in_atoms || line.empty()) continue;
+    std::istringstream fields(line);
+    double id, type, diameter, density, x, y, z;
+    ASSERT_TRUE(fields >> id >> type >> diameter >> density >> x >> y >> z) << line;
+    ASSERT_LT(row, spheres.size());
+    EXPECT_EQ(x, spheres[row][0]);
+    EXPECT_EQ(z, spheres[row][2]);
+    EXPECT_EQ(diameter, 2 * spheres[row][3]);
+    ++row;
+  }
+  EXPECT_EQ(atoms, spheres.size());
+  EXPECT_EQ(row, spheres.size());
+}
+
+TEST(DemcalDem, ExportRefusesYadeForA2DSceneAndNoOutput) {
+  Result r = run("export --scene " + kScene + " --yade " + temp("disks.txt"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--yade"), std::string::npos) << r.err;
+  r = run("export --scene " + kScene);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--lammps FILE or --yade FILE"), std::string::npos) << r.err;
 }
