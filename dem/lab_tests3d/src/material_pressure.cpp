@@ -22,6 +22,8 @@ constexpr double kAtRest = 1e-3;       // force ratio
 // specimen's relaxation out of the vessel takes it to kAtRest.
 constexpr double kPressureHeldAtRest = 1e-2;
 constexpr int kBlock = 50;
+// As the triaxial test's confinement: a stage longer than this is a failed point, not an hour's wait.
+constexpr std::uint64_t kMaxServoSteps = 2000000;
 
 // The vessel's walls, in the order the areas below read them.
 std::vector<Wall> vessel_walls(const SphereSpecimen& s) {
@@ -110,6 +112,11 @@ PressuredSpecimen install_material_pressure(const dem::Scene& scene, const std::
     if (held()) break;
     if (!finite_state(world)) {
       out.reason = "unstable (non-finite positions) while installing the material pressure of " + target;
+      return out;
+    }
+    if (world.steps_done() >= kMaxServoSteps) {
+      out.reason = "the material pressure of " + target + " did not settle within " + std::to_string(kMaxServoSteps) +
+                   " steps (each wall within 1 %, force ratio 1e-2)";
       return out;
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -30,7 +30,9 @@ struct PressuredSpecimen {
 // rest (force ratio 1e-3). The result is moved so its vessel starts at the
 // origin again; its porosity is the one in the new vessel, and its
 // locked_in_stress_pa the mean of the walls' stresses. `info` receives the
-// stage's steps and that stress.
+// stage's steps and the porosity change. The reason, and no specimen, when
+// it is not held within 2,000,000 steps or loading.max_wall_s, or the
+// spheres' positions stop being finite.
 PressuredSpecimen install_material_pressure(const dem::Scene& scene, const std::map<std::string, double>& parameters,
                                             const SphereSpecimen& specimen, double stress_pa,
                                             const dem::RunOptions& options, std::map<std::string, double>& info);
