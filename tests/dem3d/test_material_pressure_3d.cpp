@@ -128,14 +128,15 @@ TEST(MaterialPressure3D, ABoxVesselHoldsItOnSixWalls) {
 TEST(MaterialPressure3D, NoStressLeavesTheCachedPacking) {
   const dem::Scene scene = dem::Scene::load(kScene);
   const auto parameters = scene.resolve({});
-  std::map<std::string, double> info;
-  const PressuredSpecimen p = test_specimen(scene, parameters, options(), info);
+  dem::TestResult result;
+  SphereSpecimen specimen;
+  ASSERT_TRUE(test_specimen(scene, parameters, options(), result, specimen)) << result.reason;
   const SphereSpecimen packed = cached_sphere_specimen(sphere_specimen_spec(scene, parameters, 1), options().cache_dir);
-  EXPECT_TRUE(info.empty());
-  EXPECT_EQ(p.specimen.locked_in_stress_pa, 0.0);
-  EXPECT_EQ(p.specimen.x, packed.x);
-  EXPECT_EQ(p.specimen.z, packed.z);
-  EXPECT_EQ(p.specimen.porosity, packed.porosity);
+  EXPECT_TRUE(result.specimen_info.empty());
+  EXPECT_EQ(specimen.locked_in_stress_pa, 0.0);
+  EXPECT_EQ(specimen.x, packed.x);
+  EXPECT_EQ(specimen.z, packed.z);
+  EXPECT_EQ(specimen.porosity, packed.porosity);
 }
 
 // Out of its vessel a contact-bonded specimen is a linear body unloaded from
@@ -157,21 +158,22 @@ TEST(MaterialPressure3D, TheRelaxedSpecimenExpandsAsElasticityGives) {
                         {"tensile_strength_pa", "pb_sigma_c_MPa*1e6"}, {"shear_strength_pa", "pb_tau_c_MPa*1e6"}}}};
   });
   const auto parameters = scene.resolve({{"pb_sigma_c_MPa", 100}, {"pb_tau_c_MPa", 100}});
-  std::map<std::string, double> info;
-  const PressuredSpecimen p = test_specimen(scene, parameters, options(), info);
-  ASSERT_EQ(p.reason, "");
-  World world = specimen_world(scene, parameters, p.specimen, options());
+  dem::TestResult prepared;
+  SphereSpecimen pressured;
+  ASSERT_TRUE(test_specimen(scene, parameters, options(), prepared, pressured)) << prepared.reason;
+  std::map<std::string, double>& info = prepared.specimen_info;
+  World world = specimen_world(scene, parameters, pressured, options());
   world.walls = {make_plane({0, 0, 0}, {0, 0, 1}, kPlatenGroup),
-                 make_plane({0, 0, p.specimen.height_m}, {0, 0, -1}, kPlatenGroup)};
-  ASSERT_EQ(bond_specimen(world, scene, p.specimen, 1, info), "");
+                 make_plane({0, 0, pressured.height_m}, {0, 0, -1}, kPlatenGroup)};
+  ASSERT_EQ(bond_specimen(world, scene, pressured, 1, info), "");
   EXPECT_EQ(info.at("locked_in_relaxation_breaks"), 0);
   // Least-squares strains of every sphere's displacement (axial about mid-height, radial from the axis); the
   // walls set back on the relaxed specimen would add the spring-back of the spheres that pressed on them.
   double z_du = 0, z_z = 0, r_du = 0, r_r = 0;
   for (std::size_t i = 0; i < world.spheres.size(); ++i) {
     const std::size_t k = world.spheres.id[i];
-    const double z0 = p.specimen.z[k] - 0.5 * p.specimen.height_m, r0 = std::hypot(p.specimen.x[k], p.specimen.y[k]);
-    z_du += z0 * (world.spheres.z[i] - p.specimen.z[k]), z_z += z0 * z0;
+    const double z0 = pressured.z[k] - 0.5 * pressured.height_m, r0 = std::hypot(pressured.x[k], pressured.y[k]);
+    z_du += z0 * (world.spheres.z[i] - pressured.z[k]), z_z += z0 * z0;
     r_du += r0 * (std::hypot(world.spheres.x[i], world.spheres.y[i]) - r0), r_r += r0 * r0;
   }
   const double axial = z_du / z_z, radial = r_du / r_r;

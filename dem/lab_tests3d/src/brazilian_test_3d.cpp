@@ -27,12 +27,8 @@ dem::TestResult run_brazilian_3d(const Scene& scene, const std::map<std::string,
   const auto start = std::chrono::steady_clock::now();
   const dem::LoadingSpec& loading = scene.loading();
   dem::TestResult result;
-  const PressuredSpecimen prepared = test_specimen(scene, parameters, options, result.specimen_info);
-  if (!prepared.reason.empty()) {
-    result.reason = prepared.reason;
-    return result;
-  }
-  const SphereSpecimen& disc = prepared.specimen;
+  SphereSpecimen disc;
+  if (!test_specimen(scene, parameters, options, result, disc)) return result;
   const double D = disc.width_m, t = disc.height_m, flat = 0.5 * D * std::cos(10.0 * M_PI / 180.0);
   // A pressured disc's spheres stay where the stress left them: a moved one would load its neighbours.
   const bool grind_flats = !(disc.locked_in_stress_pa > 0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
@@ -153,13 +154,16 @@ PressuredSpecimen install_material_pressure(const dem::Scene& scene, const std::
   return out;
 }
 
-PressuredSpecimen test_specimen(const dem::Scene& scene, const std::map<std::string, double>& parameters,
-                                const dem::RunOptions& options, std::map<std::string, double>& info) {
-  PressuredSpecimen out;
-  out.specimen = cached_sphere_specimen(sphere_specimen_spec(scene, parameters, options.seed), options.cache_dir);
+bool test_specimen(const dem::Scene& scene, const std::map<std::string, double>& parameters,
+                   const dem::RunOptions& options, dem::TestResult& result, SphereSpecimen& specimen) {
+  specimen = cached_sphere_specimen(sphere_specimen_spec(scene, parameters, options.seed), options.cache_dir);
   const double stress_pa = locked_in_stress_pa(scene, parameters);
-  if (stress_pa > 0) out = install_material_pressure(scene, parameters, out.specimen, stress_pa, options, info);
-  return out;
+  if (!(stress_pa > 0)) return true;
+  PressuredSpecimen pressured =
+      install_material_pressure(scene, parameters, specimen, stress_pa, options, result.specimen_info);
+  result.reason = pressured.reason;
+  specimen = std::move(pressured.specimen);
+  return result.reason.empty();
 }
 
 std::string relax_out_of_vessel(World& world, std::uint64_t max_steps) {

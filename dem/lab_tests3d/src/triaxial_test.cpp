@@ -126,13 +126,9 @@ dem::TestResult run_triaxial(const Scene& scene, const std::map<std::string, dou
   const std::vector<double>& confinements = scene.loading().confining_stresses_pa;
   if (confinements.empty()) throw Error(scene.origin() + ": loading.confining_stresses_MPa: missing");
   dem::TestResult series;
-  std::map<std::string, double> pressure_info;
-  const PressuredSpecimen prepared = test_specimen(scene, parameters, options, pressure_info);
-  if (!prepared.reason.empty()) {
-    series.reason = prepared.reason;
-    return series;
-  }
-  const SphereSpecimen& specimen = prepared.specimen;
+  SphereSpecimen specimen;
+  if (!test_specimen(scene, parameters, options, series, specimen)) return series;
+  const std::map<std::string, double> pressure_info = series.specimen_info;
   series.particles = specimen.size();
   series.porosity = specimen.porosity;
   std::vector<double> sigma_3, sigma_1;

@@ -82,12 +82,8 @@ dem::TestResult run_ucs_3d(const Scene& scene, const std::map<std::string, doubl
   const auto start = std::chrono::steady_clock::now();
   const dem::LoadingSpec& loading = scene.loading();
   dem::TestResult result;
-  const PressuredSpecimen prepared = test_specimen(scene, parameters, options, result.specimen_info);
-  if (!prepared.reason.empty()) {
-    result.reason = prepared.reason;
-    return result;
-  }
-  const SphereSpecimen& specimen = prepared.specimen;
+  SphereSpecimen specimen;
+  if (!test_specimen(scene, parameters, options, result, specimen)) return result;
 
   World world = specimen_world(scene, parameters, specimen, options);
   // The vessel's end faces become the platens, touching the spheres that touched them with no force.

@@ -37,11 +37,12 @@ PressuredSpecimen install_material_pressure(const dem::Scene& scene, const std::
                                             const SphereSpecimen& specimen, double stress_pa,
                                             const dem::RunOptions& options, std::map<std::string, double>& info);
 
-// A test's specimen: the cached packing of the scene's specimen section at
-// `parameters` and options.seed, pressured when the scene asks for a
-// locked-in stress.
-PressuredSpecimen test_specimen(const dem::Scene& scene, const std::map<std::string, double>& parameters,
-                                const dem::RunOptions& options, std::map<std::string, double>& info);
+// A test's specimen into `specimen`: the cached packing of the scene's
+// specimen section at `parameters` and options.seed, pressured when the scene
+// asks for a locked-in stress (the stage's figures in result.specimen_info).
+// False, with result.reason, when the stage fails.
+bool test_specimen(const dem::Scene& scene, const std::map<std::string, double>& parameters,
+                   const dem::RunOptions& options, dem::TestResult& result, SphereSpecimen& specimen);
 
 // After the bonds are installed on a pressured specimen: lifts every wall off
 // (inactive), cycles until the spheres are at rest (force ratio 1e-3), then
