@@ -9,7 +9,8 @@
 namespace demcal::dem {
 
 // Writes ids 1..N in the specimen's order, type 1, diameters, the density in
-// kg/m^3, positions to 17 digits (the same doubles when read back) and z = 0.
+// kg/m^3, positions as the shortest text that reads back to the same doubles,
+// and z = 0.
 // The box is the specimen's, the z extent its thickness. LAMMPS's read_data
 // takes a sphere's mass from the density; an input script for disks sets
 // `set group all density/disc (density x thickness)` after reading, as the
