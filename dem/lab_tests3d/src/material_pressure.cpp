@@ -89,11 +89,7 @@ PressuredSpecimen install_material_pressure(const dem::Scene& scene, const std::
                                             const dem::RunOptions& options, std::map<std::string, double>& info) {
   const auto start = std::chrono::steady_clock::now();
   const dem::LoadingSpec& loading = scene.loading();
-  World world(loading_settings(loading, options));
-  bind_contact_models(world, scene, parameters, /*frictionless=*/true);
-  for (std::size_t k = 0; k < specimen.size(); ++k)
-    world.spheres.add_sphere({specimen.x[k], specimen.y[k], specimen.z[k]}, specimen.radius[k],
-                             specimen.density_kg_m3, kSpecimenGroup, static_cast<std::int64_t>(k));
+  World world = specimen_world(scene, parameters, specimen, options, {}, /*frictionless=*/true);
   world.walls = vessel_walls(specimen);
   for (Wall& w : world.walls) {
     w.servo = true;

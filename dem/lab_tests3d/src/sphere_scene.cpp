@@ -118,9 +118,9 @@ WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOp
 
 World specimen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                      const SphereSpecimen& specimen, const dem::RunOptions& options,
-                     const std::function<bool(Vec3& centre_m, double radius_m)>& admit) {
+                     const std::function<bool(Vec3& centre_m, double radius_m)>& admit, bool frictionless) {
   World world(loading_settings(scene.loading(), options));
-  bind_contact_models(world, scene, parameters);
+  bind_contact_models(world, scene, parameters, frictionless);
   for (std::size_t k : dem::particle_order(specimen.size(), options.particle_order_seed)) {
     Vec3 centre{specimen.x[k], specimen.y[k], specimen.z[k]};
     if (admit && !admit(centre, specimen.radius[k])) continue;

@@ -55,12 +55,14 @@ class PackedSphereTest : public dem::LabTest {
 // factor, density scaling, threads).
 WorldSettings loading_settings(const dem::LoadingSpec& loading, const dem::RunOptions& options);
 
-// A world with the scene's contact models and the specimen's spheres (sphere
-// k with id k), entering in the order options.particle_order_seed gives;
-// `admit`, when given, may move a sphere's centre or leave it out (false).
+// A world with the scene's contact models (friction 0 when `frictionless`)
+// and the specimen's spheres (sphere k with id k), entering in the order
+// options.particle_order_seed gives; `admit`, when given, may move a sphere's
+// centre or leave it out (false).
 World specimen_world(const Scene& scene, const std::map<std::string, double>& parameters,
                      const SphereSpecimen& specimen, const dem::RunOptions& options,
-                     const std::function<bool(Vec3& centre_m, double radius_m)>& admit = {});
+                     const std::function<bool(Vec3& centre_m, double radius_m)>& admit = {},
+                     bool frictionless = false);
 
 // Bonds the world's spheres (pairs within loading.bond_gap_tolerance_m, or 1 %
 // of the smallest radius), makes the contacts with its walls (placed where
