@@ -1,6 +1,7 @@
 // demcal-dem run as users call it: a result file, and one-line errors.
 #include <gtest/gtest.h>
 
+#include "../common/lammps_atoms.hpp"
 #include "../common/scratch.hpp"
 
 #include <sys/wait.h>
@@ -156,28 +157,15 @@ TEST(DemcalDem, ExportWritesA3DSceneForYadeAndLammps) {
     EXPECT_LE(s[2] + s[3], 0.0201);
   }
   // The LAMMPS file: as many atoms, each the text file's sphere (diameter, then x y z last) to the last digit.
-  std::ifstream lammps(data);
-  std::string line;
-  std::size_t atoms = 0, row = 0;
-  bool in_atoms = false;
-  while (std::getline(lammps, line)) {
-    if (line.find(" atoms") != std::string::npos && !in_atoms) atoms = std::stoul(line);
-    if (line.rfind("Atoms # sphere", 0) == 0) {
-      in_atoms = true;
-      continue;
-    }
-    if (!in_atoms || line.empty()) continue;
-    std::istringstream fields(line);
-    double id, type, diameter, density, x, y, z;
-    ASSERT_TRUE(fields >> id >> type >> diameter >> density >> x >> y >> z) << line;
-    ASSERT_LT(row, spheres.size());
-    EXPECT_EQ(x, spheres[row][0]);
-    EXPECT_EQ(z, spheres[row][2]);
-    EXPECT_EQ(diameter, 2 * spheres[row][3]);
-    ++row;
+  std::size_t declared = 0;
+  const std::vector<demcal::test::LammpsAtom> atoms = demcal::test::read_lammps_atoms(data, declared);
+  EXPECT_EQ(declared, spheres.size());
+  ASSERT_EQ(atoms.size(), spheres.size());
+  for (std::size_t k = 0; k < atoms.size(); ++k) {
+    EXPECT_EQ(atoms[k].x, spheres[k][0]);
+    EXPECT_EQ(atoms[k].z, spheres[k][2]);
+    EXPECT_EQ(atoms[k].diameter, 2 * spheres[k][3]);
   }
-  EXPECT_EQ(atoms, spheres.size());
-  EXPECT_EQ(row, spheres.size());
 }
 
 TEST(DemcalDem, ExportRefusesYadeForA2DSceneAndNoOutput) {

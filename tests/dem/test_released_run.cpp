@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/lammps_atoms.hpp"
 #include "../common/scratch.hpp"
 
 namespace {
@@ -26,32 +27,6 @@ int run(const std::string& arguments, const std::string& stdout_path) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-struct Disk {
-  double x, y, r;
-};
-
-std::vector<Disk> read_lammps_disks(const std::string& path, std::size_t& declared) {
-  std::ifstream in(path);
-  std::string line;
-  std::vector<Disk> disks;
-  bool atoms = false;
-  declared = 0;
-  while (std::getline(in, line)) {
-    if (line.find(" atoms") != std::string::npos && !atoms) declared = std::stoul(line);
-    if (line.rfind("Atoms # sphere", 0) == 0) {
-      atoms = true;
-      continue;
-    }
-    if (!atoms || line.empty()) continue;
-    std::istringstream fields(line);
-    long id, type;
-    double diameter, density, x, y, z;
-    fields >> id >> type >> diameter >> density >> x >> y >> z;
-    disks.push_back({x, y, 0.5 * diameter});
-  }
-  return disks;
-}
-
 }  // namespace
 
 TEST(ReleasedRun, FrictionlessReleaseTurnsTheSpringEnergyOfTheExportedSpecimenIntoMotion) {
@@ -59,7 +34,7 @@ TEST(ReleasedRun, FrictionlessReleaseTurnsTheSpringEnergyOfTheExportedSpecimenIn
   const std::string data = demcal::test::scratch_path("specimen.data"), log = demcal::test::scratch_path("export.txt");
   ASSERT_EQ(run("export --scene " + scene + " --seed 1 --lammps " + data, log), 0);
   std::size_t declared = 0;
-  const std::vector<Disk> disks = read_lammps_disks(data, declared);
+  const std::vector<demcal::test::LammpsAtom> disks = demcal::test::read_lammps_atoms(data, declared);
   ASSERT_GT(disks.size(), 200u);
   EXPECT_EQ(disks.size(), declared);
 
@@ -67,7 +42,8 @@ TEST(ReleasedRun, FrictionlessReleaseTurnsTheSpringEnergyOfTheExportedSpecimenIn
   double spring_energy_j = 0;
   for (std::size_t i = 0; i < disks.size(); ++i)
     for (std::size_t j = i + 1; j < disks.size(); ++j) {
-      const double overlap = disks[i].r + disks[j].r - std::hypot(disks[j].x - disks[i].x, disks[j].y - disks[i].y);
+      const double overlap = 0.5 * disks[i].diameter + 0.5 * disks[j].diameter -
+                             std::hypot(disks[j].x - disks[i].x, disks[j].y - disks[i].y);
       if (overlap > 0) spring_energy_j += 0.5 * kn * overlap * overlap;
     }
   ASSERT_GT(spring_energy_j, 0.0) << "genesis leaves overlaps, so the release has energy to give";
