@@ -9,6 +9,7 @@
 
 #include "demcal/dem3d/builtin_models.hpp"
 #include "demcal/dem3d/linear_base.hpp"
+#include "demcal/dem3d/linear_batch.hpp"
 
 namespace demcal::dem3d {
 namespace {
@@ -18,9 +19,8 @@ class LinearModel : public LinearBase {
   using LinearBase::LinearBase;
   std::string name() const override { return "linear"; }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    for_sphere_pairs(
-        c, s, [&](std::size_t k, const PairContact& p) { linear_touch(c, k, out, p, step.dt_s); },
-        [&](std::size_t k) { linear_leave(c, k, out); });
+    // The scalar loop's bits (for_sphere_pairs with linear_touch), vectorised.
+    linear_batch::linear_sphere_forces(c, s, out, step.dt_s);
   }
 };
 

@@ -15,6 +15,7 @@
 #include <cstring>
 
 #include "demcal/dem/contact_geometry.hpp"
+#include "demcal/dem/select.hpp"
 
 namespace demcal::dem {
 
@@ -44,20 +45,6 @@ struct ForceBatch {
   alignas(64) PairFlags broke[kPairBatch];
   alignas(64) PairFlags tension[kPairBatch];  // the break's mode: 1 tension, 0 shear
 };
-
-// cond ? a : b, bit for bit, as masks: with a ?: the optimiser moves the
-// loads only one side needs behind a branch, and a loop with a branch does
-// not vectorise.
-inline double select(bool cond, double a, double b) {
-  std::uint64_t ua, ub;
-  std::memcpy(&ua, &a, sizeof ua);
-  std::memcpy(&ub, &b, sizeof ub);
-  const std::uint64_t mask = -static_cast<std::uint64_t>(cond);
-  const std::uint64_t bits = (ua & mask) | (ub & ~mask);
-  double out;
-  std::memcpy(&out, &bits, sizeof out);
-  return out;
-}
 
 // The geometry of the block's pairs [from, from + n), n <= kPairBatch, as
 // for_disk_pairs computes it (the contact point, needed only for a break, is
