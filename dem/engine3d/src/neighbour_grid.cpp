@@ -65,6 +65,14 @@ std::uint64_t spread_bits(std::uint64_t v) {
   return v;
 }
 
+// Whether two spheres at centre offset (dx, dy, dz) are within the skin of
+// each other, the same bits in either order (the neighbour search and the
+// kept bonds must agree on every pair).
+inline bool within_skin(double dx, double dy, double dz, double radius_a, double radius_b, double skin_m) {
+  const double reach = (radius_a + radius_b) + skin_m;
+  return dx * dx + dy * dy + dz * dz < reach * reach;
+}
+
 double largest_radius(const Spheres& s) {
   double r = 0;
   for (double v : s.radius) r = std::max(r, v);
@@ -76,65 +84,104 @@ double largest_radius(const Spheres& s) {
 void World::reorder_spheres() {
   const std::size_t n = spheres.size();
   const Grid g = make_grid(spheres, 2 * largest_radius(spheres) + skin_m_);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> code(n);
+  // Sorted by (code, id), a total order: any sort gives the same order. Most
+  // rebuilds find the spheres still in it (they moved less than a skin since
+  // the last), and then nothing moves.
+  struct Key {
+    std::uint64_t code;
+    std::uint32_t id, index;
+    bool operator<(const Key& o) const { return code < o.code || (code == o.code && id < o.id); }
+  };
+  std::vector<Key> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto cx = static_cast<std::uint64_t>(g.coordinate(spheres.x[i], g.x0, g.nx));
     const auto cy = static_cast<std::uint64_t>(g.coordinate(spheres.y[i], g.y0, g.ny));
     const auto cz = static_cast<std::uint64_t>(g.coordinate(spheres.z[i], g.z0, g.nz));
-    code[i] = {spread_bits(cx) | spread_bits(cy) << 1 | spread_bits(cz) << 2, spheres.id[i]};
+    keys[i] = {spread_bits(cx) | spread_bits(cy) << 1 | spread_bits(cz) << 2, spheres.id[i], static_cast<std::uint32_t>(i)};
   }
+  if (std::is_sorted(keys.begin(), keys.end())) return;
+  std::sort(keys.begin(), keys.end());
   std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return code[a] < code[b]; });
+  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].index;
   spheres.permute(order);
 }
 
 void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {
   const Spheres& s = spheres;
   const std::size_t n = s.size();
-  // Each model's pairs as (first, second) storage indices, first < second.
-  // Sphere `first` runs in storage order and its partners are sorted, so every
-  // list comes out in (first, second) order without a sort of the whole list.
+  // Each model's pairs as (first, second) storage indices, first < second,
+  // in (first, second) order.
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(models_.size());
   if (n > 1) {
     const Grid g = make_grid(s, 2 * largest_radius(s) + skin_m_);
     const auto cells = static_cast<std::size_t>(g.nx * g.ny * g.nz);
-    // The spheres by cell (a counting sort): cell c holds by_cell[start[c], start[c + 1]).
-    std::vector<std::uint32_t> start(cells + 1, 0), by_cell(n);
-    std::vector<std::int64_t> cx(n), cy(n), cz(n);
+    // The spheres by cell (a counting sort): cell c holds entries [start[c],
+    // start[c + 1]), and a row of cells along x is one run of entries. Their
+    // centres and reaches are copied in that order, so the search below reads
+    // runs of memory.
+    std::vector<std::uint32_t> start(cells + 1, 0), by_cell(n), cell_of(n);
     for (std::size_t i = 0; i < n; ++i) {
-      cx[i] = g.coordinate(s.x[i], g.x0, g.nx), cy[i] = g.coordinate(s.y[i], g.y0, g.ny);
-      cz[i] = g.coordinate(s.z[i], g.z0, g.nz);
-      ++start[static_cast<std::size_t>(g.index(cx[i], cy[i], cz[i])) + 1];
+      cell_of[i] = static_cast<std::uint32_t>(g.index(g.coordinate(s.x[i], g.x0, g.nx),
+                                                      g.coordinate(s.y[i], g.y0, g.ny),
+                                                      g.coordinate(s.z[i], g.z0, g.nz)));
+      ++start[cell_of[i] + std::size_t{1}];
     }
     for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      by_cell[next[static_cast<std::size_t>(g.index(cx[i], cy[i], cz[i]))]++] = static_cast<std::uint32_t>(i);
-    for (auto& list : found) list.reserve(4 * n);
-    std::vector<std::pair<std::uint32_t, std::uint8_t>> partners;  // sphere a's, before sorting
-    for (std::size_t a = 0; a < n; ++a) {
-      partners.clear();
-      const double xa = s.x[a], ya = s.y[a], za = s.z[a], reach_a = s.radius[a] + skin_m_;
-      for (std::int64_t z = std::max<std::int64_t>(cz[a] - 1, 0); z <= std::min(cz[a] + 1, g.nz - 1); ++z)
-        for (std::int64_t y = std::max<std::int64_t>(cy[a] - 1, 0); y <= std::min(cy[a] + 1, g.ny - 1); ++y) {
-          // The three cells of this row are consecutive in by_cell.
-          const std::int64_t x0 = std::max<std::int64_t>(cx[a] - 1, 0), x1 = std::min(cx[a] + 1, g.nx - 1);
-          const std::uint32_t from = start[static_cast<std::size_t>(g.index(x0, y, z))];
-          const std::uint32_t to = start[static_cast<std::size_t>(g.index(x1, y, z)) + 1];
-          for (std::uint32_t e = from; e < to; ++e) {
-            const std::size_t b = by_cell[e];
-            if (b <= a) continue;  // each pair once, from its first sphere
-            const double ddx = s.x[b] - xa, ddy = s.y[b] - ya, ddz = s.z[b] - za, reach = reach_a + s.radius[b];
-            if (ddx * ddx + ddy * ddy + ddz * ddz >= reach * reach) continue;
-            const std::uint8_t model = model_for(s.group[a], s.group[b]);
-            if (model == kNoModel || (s.fixed[a] && s.fixed[b])) continue;
-            if (s.clump[a] >= 0 && s.clump[a] == s.clump[b]) continue;  // one rigid body
-            partners.emplace_back(static_cast<std::uint32_t>(b), model);
+    {
+      std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+      for (std::size_t i = 0; i < n; ++i) by_cell[next[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+    }
+    std::vector<double> cx(n), cy(n), cz(n), cr(n);
+    for (std::size_t e = 0; e < n; ++e) {
+      const std::uint32_t i = by_cell[e];
+      cx[e] = s.x[i], cy[e] = s.y[i], cz[e] = s.z[i], cr[e] = s.radius[i];
+    }
+    // Each pair once, from the entry that comes first in cell order: the rest
+    // of its own cell and the next one along x, the row above in y, and the
+    // three rows above in z (13 of the 26 neighbour cells).
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> close;  // (first, second) storage indices
+    close.reserve(8 * n);
+    for (std::size_t e = 0; e < n; ++e) {
+      const std::int64_t c = cell_of[by_cell[e]];
+      const std::int64_t x = c % g.nx, y = (c / g.nx) % g.ny, z = c / (g.nx * g.ny);
+      const std::int64_t x0 = std::max<std::int64_t>(x - 1, 0), x1 = std::min(x + 1, g.nx - 1);
+      const double xa = cx[e], ya = cy[e], za = cz[e], ra = cr[e];
+      const auto scan = [&](std::size_t from, std::size_t to) {
+        for (std::size_t q = from; q < to; ++q) {
+          if (within_skin(cx[q] - xa, cy[q] - ya, cz[q] - za, ra, cr[q], skin_m_)) {
+            const std::uint32_t a = by_cell[e], b = by_cell[q];
+            close.emplace_back(std::min(a, b), std::max(a, b));
           }
         }
-      std::sort(partners.begin(), partners.end());
-      for (const auto& [b, model] : partners) found[model].emplace_back(static_cast<std::uint32_t>(a), b);
+      };
+      const auto row = [&](std::int64_t ry, std::int64_t rz) {
+        scan(start[static_cast<std::size_t>(g.index(x0, ry, rz))], start[static_cast<std::size_t>(g.index(x1, ry, rz)) + 1]);
+      };
+      scan(e + 1, start[static_cast<std::size_t>(g.index(x1, y, z)) + 1]);
+      if (y + 1 < g.ny) row(y + 1, z);
+      if (z + 1 < g.nz)
+        for (std::int64_t ry = std::max<std::int64_t>(y - 1, 0); ry <= std::min(y + 1, g.ny - 1); ++ry) row(ry, z + 1);
+    }
+    // In (first, second) order: by first (a counting sort), then each first's short row by second.
+    std::vector<std::uint32_t> row_start(n + 1, 0);
+    for (const auto& [a, b] : close) ++row_start[a + std::size_t{1}];
+    for (std::size_t i = 0; i < n; ++i) row_start[i + 1] += row_start[i];
+    std::vector<std::uint32_t> second(close.size());
+    {
+      std::vector<std::uint32_t> next(row_start.begin(), row_start.end() - 1);
+      for (const auto& [a, b] : close) second[next[a]++] = b;
+    }
+    for (auto& list : found) list.reserve(close.size());
+    for (std::size_t a = 0; a < n; ++a) {
+      const auto first = second.begin() + row_start[a], last = second.begin() + row_start[a + 1];
+      std::sort(first, last);
+      for (auto it = first; it != last; ++it) {
+        const std::uint32_t b = *it;
+        const std::uint8_t model = model_for(s.group[a], s.group[b]);
+        if (model == kNoModel || (s.fixed[a] && s.fixed[b])) continue;
+        if (s.clump[a] >= 0 && s.clump[a] == s.clump[b]) continue;  // one rigid body
+        found[model].emplace_back(static_cast<std::uint32_t>(a), b);
+      }
     }
   }
   keep_bonded_pairs(found);
@@ -177,9 +224,7 @@ void World::keep_bonded_pairs(std::vector<std::vector<std::pair<std::uint32_t, s
     const std::uint32_t a = std::min(p, q), b = std::max(p, q);
     if ((s.fixed[a] && s.fixed[b]) || (s.clump[a] >= 0 && s.clump[a] == s.clump[b])) continue;
     // The search's own test, so a pair is found once: by it or here.
-    const double ddx = s.x[b] - s.x[a], ddy = s.y[b] - s.y[a], ddz = s.z[b] - s.z[a];
-    const double reach = s.radius[a] + skin_m_ + s.radius[b];
-    if (ddx * ddx + ddy * ddy + ddz * ddz < reach * reach) continue;
+    if (within_skin(s.x[b] - s.x[a], s.y[b] - s.y[a], s.z[b] - s.z[a], s.radius[a], s.radius[b], skin_m_)) continue;
     const std::uint8_t model = pairs_.model[k];
     found[model].emplace_back(a, b);
     grown[model] = 1;
