@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "demcal/core/error.hpp"
+#include "demcal/dem/select.hpp"
 #include "world_internals.hpp"
 
 namespace demcal::dem3d {
@@ -476,28 +477,90 @@ inline double damped_velocity(double v, double force, double alpha, double to_ve
   return v + (force - alpha * std::abs(force) * sign_of(v)) * to_velocity;
 }
 
+// What a step's update of the spheres reads and writes.
+struct SphereArrays {
+  double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz;
+  const double *fx, *fy, *fz, *mx, *my, *mz;  // the summed forces and moments
+  const double *mass, *inverse_mass, *inverse_inertia;
+  const double *x_built, *y_built, *z_built;  // the positions at the last build
+  const std::uint8_t* fixed;
+  const std::int32_t* clump;
+};
+
+// Spheres [lo, hi) after a step under their summed forces and moments, as one
+// vectorised loop: a fixed sphere stops, a clump's member waits for its clump
+// (both by selects, not branches). Returns the largest squared move since the
+// last build.
+[[gnu::noinline]] double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, double dt, double alpha, Vec3 g) {
+  double* __restrict x = a.x;
+  double* __restrict y = a.y;
+  double* __restrict z = a.z;
+  double* __restrict vx = a.vx;
+  double* __restrict vy = a.vy;
+  double* __restrict vz = a.vz;
+  double* __restrict wx = a.wx;
+  double* __restrict wy = a.wy;
+  double* __restrict wz = a.wz;
+  const double* __restrict fx = a.fx;
+  const double* __restrict fy = a.fy;
+  const double* __restrict fz = a.fz;
+  const double* __restrict mx = a.mx;
+  const double* __restrict my = a.my;
+  const double* __restrict mz = a.mz;
+  const double* __restrict mass = a.mass;
+  const double* __restrict inverse_mass = a.inverse_mass;
+  const double* __restrict inverse_inertia = a.inverse_inertia;
+  const double* __restrict x_built = a.x_built;
+  const double* __restrict y_built = a.y_built;
+  const double* __restrict z_built = a.z_built;
+  const std::uint8_t* __restrict fixed = a.fixed;
+  const std::int32_t* __restrict clump = a.clump;
+  double largest = 0;
+#pragma omp simd reduction(max : largest)
+  for (std::size_t i = lo; i < hi; ++i) {
+    const bool still = fixed[i] != 0, moves = !still & (clump[i] < 0);  // & not &&: no branch
+    const double m = mass[i];
+    const double to_v = inverse_mass[i] * dt, to_w = inverse_inertia[i] * dt;
+    const double new_vx = damped_velocity(vx[i], fx[i] + m * g.x, alpha, to_v);
+    const double new_vy = damped_velocity(vy[i], fy[i] + m * g.y, alpha, to_v);
+    const double new_vz = damped_velocity(vz[i], fz[i] + m * g.z, alpha, to_v);
+    const double new_wx = damped_velocity(wx[i], mx[i], alpha, to_w);
+    const double new_wy = damped_velocity(wy[i], my[i], alpha, to_w);
+    const double new_wz = damped_velocity(wz[i], mz[i], alpha, to_w);
+    const double new_x = x[i] + new_vx * dt, new_y = y[i] + new_vy * dt, new_z = z[i] + new_vz * dt;
+    vx[i] = dem::select(moves, new_vx, dem::select(still, 0.0, vx[i]));
+    vy[i] = dem::select(moves, new_vy, dem::select(still, 0.0, vy[i]));
+    vz[i] = dem::select(moves, new_vz, dem::select(still, 0.0, vz[i]));
+    wx[i] = dem::select(moves, new_wx, dem::select(still, 0.0, wx[i]));
+    wy[i] = dem::select(moves, new_wy, dem::select(still, 0.0, wy[i]));
+    wz[i] = dem::select(moves, new_wz, dem::select(still, 0.0, wz[i]));
+    x[i] = dem::select(moves, new_x, x[i]);
+    y[i] = dem::select(moves, new_y, y[i]);
+    z[i] = dem::select(moves, new_z, z[i]);
+    const double dx = new_x - x_built[i], dy = new_y - y_built[i], dz = new_z - z_built[i];
+    const double move2 = dem::select(moves, dx * dx + dy * dy + dz * dz, 0.0);
+    largest = largest < move2 ? move2 : largest;
+  }
+  return largest;
+}
+
 }  // namespace
 
 void World::integrate() {
   Internals& in = *internals_;
   const std::size_t n = spheres.size();
-  const double dt = dt_s_, alpha = settings_.damping;
-  const Vec3 g = settings_.gravity_m_s2;
+  const int team = threads_in_use_;
   const PairForceArrays& sp = in.sphere_pair_forces;
   const PairForceArrays& pp = in.wall_pair_forces;
-  const bool direct = in.direct;
-  Spheres& s = spheres;
-  double max_move2 = in.max_move2;
-  const int team = threads_in_use_;
-#pragma omp parallel for num_threads(team) if (team > 1) schedule(static) reduction(max : max_move2)
-  for (std::size_t i = 0; i < n; ++i) {
-    // The sphere's pairs in pair order, then its wall pairs: the same sum on
-    // any thread and in any storage order. The force's sign by the entry's low
-    // bit (a product by +-1 is exact), the moment at the entry itself.
-    double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
-    if (direct) {
-      fx = in.sum_fx[i], fy = in.sum_fy[i], fz = in.sum_fz[i], mx = in.sum_mx[i], my = in.sum_my[i], mz = in.sum_mz[i];
-    } else {
+  // Each sphere's force and moment into the sums: its pairs in pair order (on
+  // one thread they are there already), then its wall pairs. The same sum on
+  // any thread and in any storage order. The force's sign by the entry's low
+  // bit (a product by +-1 is exact), the moment at the entry itself.
+  if (!in.direct) {
+    for (auto* v : {&in.sum_fx, &in.sum_fy, &in.sum_fz, &in.sum_mx, &in.sum_my, &in.sum_mz}) v->resize(n);
+#pragma omp parallel for num_threads(team) if (team > 1) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
       for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
         const std::uint32_t entry = in.sum_entry[e];
         const std::size_t k = entry >> 1;
@@ -505,35 +568,37 @@ void World::integrate() {
         fx += sign * sp.fx[k], fy += sign * sp.fy[k], fz += sign * sp.fz[k];
         mx += sp.mx[entry], my += sp.my[entry], mz += sp.mz[entry];
       }
+      in.sum_fx[i] = fx, in.sum_fy[i] = fy, in.sum_fz[i] = fz, in.sum_mx[i] = mx, in.sum_my[i] = my, in.sum_mz[i] = mz;
     }
-    for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
-      const std::size_t k = in.wall_entry[e];
-      fx += pp.fx[k], fy += pp.fy[k], fz += pp.fz[k];
-      mx += pp.mx[2 * k], my += pp.my[2 * k], mz += pp.mz[2 * k];
-    }
-    if (s.fixed[i]) {
-      s.vx[i] = s.vy[i] = s.vz[i] = s.wx[i] = s.wy[i] = s.wz[i] = 0;
-      continue;
-    }
-    if (s.clump[i] >= 0) {  // its clump moves it (integrate_clumps)
-      in.member_fx[i] = fx, in.member_fy[i] = fy, in.member_fz[i] = fz;
-      in.member_mx[i] = mx, in.member_my[i] = my, in.member_mz[i] = mz;
-      continue;
-    }
-    const double m = s.mass[i];
-    fx += m * g.x, fy += m * g.y, fz += m * g.z;
-    const double to_v = in.inverse_mass[i] * dt, to_w = in.inverse_inertia[i] * dt;
-    s.vx[i] = damped_velocity(s.vx[i], fx, alpha, to_v);
-    s.vy[i] = damped_velocity(s.vy[i], fy, alpha, to_v);
-    s.vz[i] = damped_velocity(s.vz[i], fz, alpha, to_v);
-    s.wx[i] = damped_velocity(s.wx[i], mx, alpha, to_w);
-    s.wy[i] = damped_velocity(s.wy[i], my, alpha, to_w);
-    s.wz[i] = damped_velocity(s.wz[i], mz, alpha, to_w);
-    s.x[i] += s.vx[i] * dt;
-    s.y[i] += s.vy[i] * dt;
-    s.z[i] += s.vz[i] * dt;
-    const double dx = s.x[i] - in.x_built[i], dy = s.y[i] - in.y_built[i], dz = s.z[i] - in.z_built[i];
-    max_move2 = std::max(max_move2, dx * dx + dy * dy + dz * dz);
+  }
+  if (wall_pairs_.size() > 0)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
+        const std::size_t k = in.wall_entry[e];
+        in.sum_fx[i] += pp.fx[k], in.sum_fy[i] += pp.fy[k], in.sum_fz[i] += pp.fz[k];
+        in.sum_mx[i] += pp.mx[2 * k], in.sum_my[i] += pp.my[2 * k], in.sum_mz[i] += pp.mz[2 * k];
+      }
+  if (!clumps_.empty())  // a clump's members give their sums to their clump (integrate_clumps)
+    for (std::size_t i = 0; i < n; ++i)
+      if (spheres.clump[i] >= 0) {
+        in.member_fx[i] = in.sum_fx[i], in.member_fy[i] = in.sum_fy[i], in.member_fz[i] = in.sum_fz[i];
+        in.member_mx[i] = in.sum_mx[i], in.member_my[i] = in.sum_my[i], in.member_mz[i] = in.sum_mz[i];
+      }
+  // The free spheres' update, one vectorised loop over each thread's share.
+  Spheres& s = spheres;
+  const SphereArrays arrays{s.x.data(), s.y.data(), s.z.data(), s.vx.data(), s.vy.data(), s.vz.data(),
+                            s.wx.data(), s.wy.data(), s.wz.data(), in.sum_fx.data(), in.sum_fy.data(),
+                            in.sum_fz.data(), in.sum_mx.data(), in.sum_my.data(), in.sum_mz.data(),
+                            s.mass.data(), in.inverse_mass.data(), in.inverse_inertia.data(), in.x_built.data(),
+                            in.y_built.data(), in.z_built.data(), s.fixed.data(), s.clump.data()};
+  const double dt = dt_s_, alpha = settings_.damping;
+  const Vec3 g = settings_.gravity_m_s2;
+  double max_move2 = in.max_move2;
+#pragma omp parallel num_threads(team) if (team > 1) reduction(max : max_move2)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+    max_move2 = std::max(max_move2, update_spheres(n * t / parts, n * (t + 1) / parts, arrays, dt, alpha, g));
   }
   if (!clumps_.empty()) integrate_clumps(max_move2);
   in.max_move2 = max_move2;
