@@ -25,7 +25,9 @@
 #include "demcal/dem/bond_strength.hpp"
 #include "demcal/dem/model_parameters.hpp"
 #include "demcal/dem3d/builtin_models.hpp"
+#include "demcal/dem/select.hpp"
 #include "demcal/dem3d/linear_base.hpp"
+#include "demcal/dem3d/linear_batch.hpp"
 
 namespace demcal::dem3d {
 namespace {
@@ -93,9 +95,21 @@ class ParallelBondModel : public LinearBase {
     return true;
   }
 
+  // In batches (parallel_bond_batch below): the arithmetic of the scalar
+  // law, pair by pair (for_bondable_pairs with linear_touch for a pair
+  // without a bond, the bond law for one with it), vectorised.
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    for_bondable_pairs(c, s, out, step.dt_s,
-                       [&](std::size_t k, const PairContact& p) { bonded(c, k, s, out, p, step.dt_s); });
+    linear_batch::Batch b;
+    alignas(64) std::uint8_t broke[linear_batch::kBatch], tension[linear_batch::kBatch];
+    for (std::size_t from = 0; from < c.size; from += linear_batch::kBatch) {
+      const std::size_t n = std::min(linear_batch::kBatch, c.size - from);
+      const bool any_broke = batch(c, s, from, n, step.dt_s, b, broke, tension);
+      if (any_broke)
+        for (std::size_t p = 0; p < n; ++p)
+          if (broke[p]) c.flags[from + p] = mark_break(c.flags[from + p], tension[p] != 0);
+      for (std::size_t p = 0; p < n; ++p)
+        out.set(from + p, {b.fx[p], b.fy[p], b.fz[p]}, {b.mix[p], b.miy[p], b.miz[p]}, {b.mjx[p], b.mjy[p], b.mjz[p]});
+    }
   }
 
   // The bond's springs in parallel with the contact's (kept after a break,
@@ -139,48 +153,170 @@ class ParallelBondModel : public LinearBase {
     tau = norm(fs) / b.area + beta_ * std::abs(c.column[kBondMt][k]) * rb / b.polar;
   }
 
-  void bonded(PairBlock& c, std::size_t k, const Spheres& s, const PairForces& out, const PairContact& p,
-              double dt_s) const {
-    // The linear contact, while the spheres touch.
-    double fn = 0;
-    Vec3 fs;
-    const bool touching = p.overlap_m > 0;
-    if (touching)
-      fs = linear_forces(c, k, p, dt_s, fn);
-    else
-      forget_shear(c, k);
-    // The bond's increments: j's motion relative to i's.
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const Section b = section_of(c.column[kBondRadius][k]);
-    const double kn_b = c.column[kBondKn][k], ks_b = c.column[kBondKs][k];
-    const Vec3 n = p.normal;
-    const double bond_fn = c.column[kBondFn][k] - kn_b * b.area * dot(p.relative_velocity_m_s, n) * dt_s;
-    const Vec3 bond_fs = incremented_shear({c.column[kBondFsX][k], c.column[kBondFsY][k], c.column[kBondFsZ][k]}, n,
-                                           p.plane_spin_rad_s, dt_s, p.relative_velocity_m_s, ks_b * b.area * dt_s);
-    const Vec3 relative_spin = s.spin(j) - s.spin(i);
-    const double bond_mt = c.column[kBondMt][k] + ks_b * b.polar * dot(relative_spin, n) * dt_s;
-    const Vec3 bond_mb = incremented_shear({c.column[kBondMbX][k], c.column[kBondMbY][k], c.column[kBondMbZ][k]}, n,
-                                           p.plane_spin_rad_s, dt_s, relative_spin, kn_b * b.inertia * dt_s);
-    c.column[kBondFn][k] = bond_fn;
-    c.column[kBondFsX][k] = bond_fs.x, c.column[kBondFsY][k] = bond_fs.y, c.column[kBondFsZ][k] = bond_fs.z;
-    c.column[kBondMt][k] = bond_mt;
-    c.column[kBondMbX][k] = bond_mb.x, c.column[kBondMbY][k] = bond_mb.y, c.column[kBondMbZ][k] = bond_mb.z;
-    double sigma = 0, tau = 0;
-    stresses(c, k, sigma, tau);
-    const bool tension = sigma >= c.column[kTensileStrength][k];
-    const bool broke = tension || tau >= c.column[kShearStrength][k];
-    dem::PairFlags flags = c.flags[k] & ~static_cast<dem::PairFlags>(dem::kTouching);
-    if (touching) flags |= dem::kTouching;
-    if (broke) {
-      flags = mark_break(flags & ~static_cast<dem::PairFlags>(dem::kBonded), tension);
-      for (std::size_t column = kBondFn; column <= kBondMbZ; ++column) c.column[column][k] = 0.0;
-      c.flags[k] = flags;
-      set_contact_force(out, k, p, fs - fn * n, fs);
-      return;
+  // The block's pairs [from, from + n) in one vectorised loop, every pair
+  // through the linear contact and the bond, the results picked by selects:
+  //   - no bond: the linear contact while the spheres touch (distance below
+  //     the radii summed), nothing otherwise;
+  //   - a bond: the linear contact while they overlap, the bond's increments
+  //     (j's motion relative to i's), its stresses from the stored values,
+  //     and a break in tension or shear: the bond's columns cleared, the
+  //     linear contact's force alone.
+  // Flags: kTouching and kBonded here; a break's marks by the caller, from
+  // `broke` and `tension`. Returns whether any bond broke.
+  bool batch(PairBlock& c, const Spheres& s, std::size_t from, std::size_t n, double dt_s, linear_batch::Batch& b,
+             std::uint8_t* __restrict broke_out, std::uint8_t* __restrict tension_out) const {
+    const std::int32_t* __restrict ci = c.i + from;
+    const std::int32_t* __restrict cj = c.j + from;
+    dem::PairFlags* __restrict flags = c.flags + from;
+    const auto column = [&](std::size_t k) { return &c.column(k, from); };
+    const double* __restrict kn = column(kKn);
+    const double* __restrict ks = column(kKs);
+    const double* __restrict friction = column(kFriction);
+    const double* __restrict reference = column(kReferenceOverlap);
+    double* __restrict shear_x = column(kShearX);
+    double* __restrict shear_y = column(kShearY);
+    double* __restrict shear_z = column(kShearZ);
+    const double* __restrict bond_kn = column(kBondKn);
+    const double* __restrict bond_ks = column(kBondKs);
+    const double* __restrict bond_radius = column(kBondRadius);
+    double* __restrict bond_fn_col = column(kBondFn);
+    double* __restrict bond_fsx_col = column(kBondFsX);
+    double* __restrict bond_fsy_col = column(kBondFsY);
+    double* __restrict bond_fsz_col = column(kBondFsZ);
+    double* __restrict bond_mt_col = column(kBondMt);
+    double* __restrict bond_mbx_col = column(kBondMbX);
+    double* __restrict bond_mby_col = column(kBondMbY);
+    double* __restrict bond_mbz_col = column(kBondMbZ);
+    const double* __restrict tensile = column(kTensileStrength);
+    const double* __restrict shear_strength = column(kShearStrength);
+    const double* __restrict x = s.x.data();
+    const double* __restrict y = s.y.data();
+    const double* __restrict z = s.z.data();
+    const double* __restrict r = s.radius.data();
+    const double* __restrict vx = s.vx.data();
+    const double* __restrict vy = s.vy.data();
+    const double* __restrict vz = s.vz.data();
+    const double* __restrict wx = s.wx.data();
+    const double* __restrict wy = s.wy.data();
+    const double* __restrict wz = s.wz.data();
+    const double half_dt = 0.5 * dt_s, beta = beta_;
+    using dem::select;
+    unsigned any_broke = 0;
+#pragma omp simd reduction(| : any_broke)
+    for (std::size_t p = 0; p < n; ++p) {
+      const std::int32_t i = ci[p], j = cj[p];
+      const bool has_bond = (flags[p] & dem::kBonded) != 0;
+      // fill_pair_contact
+      const double dx = x[j] - x[i], dy = y[j] - y[i], dz = z[j] - z[i];
+      const double reach = r[i] + r[j], distance2 = dx * dx + dy * dy + dz * dz;
+      const double distance = std::sqrt(distance2);
+      const double inverse = 1.0 / distance;
+      const double nx = inverse * dx, ny = inverse * dy, nz = inverse * dz;
+      const double overlap = reach - distance;
+      const double arm_i = r[i] - 0.5 * overlap, arm_j = r[j] - 0.5 * overlap;
+      const double ax = arm_i * nx, ay = arm_i * ny, az = arm_i * nz;
+      const double vix = vx[i] + (wy[i] * az - wz[i] * ay);
+      const double viy = vy[i] + (wz[i] * ax - wx[i] * az);
+      const double viz = vz[i] + (wx[i] * ay - wy[i] * ax);
+      const double minus_arm_j = -arm_j;
+      const double bx = minus_arm_j * nx, by = minus_arm_j * ny, bz = minus_arm_j * nz;
+      const double vjx = vx[j] + (wy[j] * bz - wz[j] * by);
+      const double vjy = vy[j] + (wz[j] * bx - wx[j] * bz);
+      const double vjz = vz[j] + (wx[j] * by - wy[j] * bx);
+      const double rvx = vjx - vix, rvy = vjy - viy, rvz = vjz - viz;
+      const double msx = 0.5 * (wx[i] + wx[j]), msy = 0.5 * (wy[i] + wy[j]), msz = 0.5 * (wz[i] + wz[j]);
+      const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i], dvz = vz[j] - vz[i];
+      const double about = msx * nx + msy * ny + msz * nz;
+      const double psx = inverse * (ny * dvz - nz * dvy) + about * nx;
+      const double psy = inverse * (nz * dvx - nx * dvz) + about * ny;
+      const double psz = inverse * (nx * dvy - ny * dvx) + about * nz;
+      const double hx = half_dt * psx, hy = half_dt * psy, hz = half_dt * psz;
+      const double factor = 2.0 - 2.0 * (hx * hx + hy * hy + hz * hz);
+      // A stored tangential vector turned with the contact plane and grown by
+      // stiffness_dt times the tangential part of a rate (incremented_shear).
+      const auto increment = [&](double sx, double sy, double sz, double rx, double ry, double rz, double stiffness_dt,
+                                 double& ox, double& oy, double& oz) {
+        const double cx = sx + (hy * sz - hz * sy), cy = sy + (hz * sx - hx * sz), cz = sz + (hx * sy - hy * sx);
+        const double tx = sx + factor * (hy * cz - hz * cy);
+        const double ty = sy + factor * (hz * cx - hx * cz);
+        const double tz = sz + factor * (hx * cy - hy * cx);
+        const double along = tx * nx + ty * ny + tz * nz;
+        const double rate_n = rx * nx + ry * ny + rz * nz;
+        ox = (tx - along * nx) + stiffness_dt * (rx - rate_n * nx);
+        oy = (ty - along * ny) + stiffness_dt * (ry - rate_n * ny);
+        oz = (tz - along * nz) + stiffness_dt * (rz - rate_n * nz);
+      };
+      // The linear contact (linear_shear_force), kept while the spheres touch.
+      const bool touching = (has_bond & (overlap > 0)) | (!has_bond & (distance2 < reach * reach));  // & |: no branch
+      const double squeeze = overlap - reference[p];
+      const double fn_linear = kn[p] * select(0.0 < squeeze, squeeze, 0.0);
+      double lx, ly, lz;
+      increment(shear_x[p], shear_y[p], shear_z[p], rvx, rvy, rvz, ks[p] * dt_s, lx, ly, lz);
+      const double limit = friction[p] * fn_linear, size2 = lx * lx + ly * ly + lz * lz;
+      const double scale = select(size2 > limit * limit, limit / std::sqrt(size2), 1.0);
+      const double fsx = select(touching, scale * lx, 0.0);
+      const double fsy = select(touching, scale * ly, 0.0);
+      const double fsz = select(touching, scale * lz, 0.0);
+      const double fn = select(touching, fn_linear, 0.0);
+      shear_x[p] = fsx, shear_y[p] = fsy, shear_z[p] = fsz;
+      // The bond.
+      const double rb = bond_radius[p], rb2 = rb * rb;
+      const double area = M_PI * rb2, inertia = 0.25 * M_PI * rb2 * rb2, polar = 0.5 * M_PI * rb2 * rb2;
+      const double kn_b = bond_kn[p], ks_b = bond_ks[p];
+      const double rv_n = rvx * nx + rvy * ny + rvz * nz;
+      const double bond_fn = bond_fn_col[p] - kn_b * area * rv_n * dt_s;
+      double bfx, bfy, bfz;
+      increment(bond_fsx_col[p], bond_fsy_col[p], bond_fsz_col[p], rvx, rvy, rvz, ks_b * area * dt_s, bfx, bfy, bfz);
+      const double rsx = wx[j] - wx[i], rsy = wy[j] - wy[i], rsz = wz[j] - wz[i];
+      const double bond_mt = bond_mt_col[p] + ks_b * polar * (rsx * nx + rsy * ny + rsz * nz) * dt_s;
+      double bmx, bmy, bmz;
+      increment(bond_mbx_col[p], bond_mby_col[p], bond_mbz_col[p], rsx, rsy, rsz, kn_b * inertia * dt_s, bmx, bmy, bmz);
+      // stresses(): from the values as stored.
+      const double mb_norm = std::sqrt(bmx * bmx + bmy * bmy + bmz * bmz);
+      const double fs_norm = std::sqrt(bfx * bfx + bfy * bfy + bfz * bfz);
+      const double sigma = -bond_fn / area + beta * mb_norm * rb / inertia;
+      const double tau = fs_norm / area + beta * std::abs(bond_mt) * rb / polar;
+      const bool tension = sigma >= tensile[p];
+      const bool broke = has_bond & (tension | (tau >= shear_strength[p]));
+      const bool holds = has_bond & !broke;
+      bond_fn_col[p] = select(holds, bond_fn, select(broke, 0.0, bond_fn_col[p]));
+      bond_fsx_col[p] = select(holds, bfx, select(broke, 0.0, bond_fsx_col[p]));
+      bond_fsy_col[p] = select(holds, bfy, select(broke, 0.0, bond_fsy_col[p]));
+      bond_fsz_col[p] = select(holds, bfz, select(broke, 0.0, bond_fsz_col[p]));
+      bond_mt_col[p] = select(holds, bond_mt, select(broke, 0.0, bond_mt_col[p]));
+      bond_mbx_col[p] = select(holds, bmx, select(broke, 0.0, bond_mbx_col[p]));
+      bond_mby_col[p] = select(holds, bmy, select(broke, 0.0, bond_mby_col[p]));
+      bond_mbz_col[p] = select(holds, bmz, select(broke, 0.0, bond_mbz_col[p]));
+      const dem::PairFlags cleared = flags[p] & ~(dem::kTouching | dem::kBonded * static_cast<dem::PairFlags>(broke));
+      flags[p] = cleared | dem::kTouching * static_cast<dem::PairFlags>(touching);
+      broke_out[p] = broke;
+      tension_out[p] = tension;
+      any_broke |= broke;
+      // The forces (set_contact_force; linear_touch for a pair without a bond).
+      const double shx = fsx + select(holds, bfx, 0.0), shy = fsy + select(holds, bfy, 0.0),
+                   shz = fsz + select(holds, bfz, 0.0);
+      const double fn_sum = fn + select(holds, bond_fn, 0.0);
+      const double force_x = select(holds, shx - fn_sum * nx, fsx - fn * nx);
+      const double force_y = select(holds, shy - fn_sum * ny, fsy - fn * ny);
+      const double force_z = select(holds, shz - fn_sum * nz, fsz - fn * nz);
+      const double tx = select(holds, shx, fsx), ty = select(holds, shy, fsy), tz = select(holds, shz, fsz);
+      const double ncx = ny * tz - nz * ty, ncy = nz * tx - nx * tz, ncz = nx * ty - ny * tx;
+      const double ex = select(holds, bond_mt * nx + bmx, 0.0), ey = select(holds, bond_mt * ny + bmy, 0.0),
+                   ez = select(holds, bond_mt * nz + bmz, 0.0);
+      const double mix = arm_i * ncx, miy = arm_i * ncy, miz = arm_i * ncz;
+      const double mjx = arm_j * ncx, mjy = arm_j * ncy, mjz = arm_j * ncz;
+      const bool apart = !has_bond & !touching;
+      b.fx[p] = select(apart, 0.0, force_x);
+      b.fy[p] = select(apart, 0.0, force_y);
+      b.fz[p] = select(apart, 0.0, force_z);
+      b.mix[p] = select(apart, 0.0, select(has_bond, mix + ex, mix));
+      b.miy[p] = select(apart, 0.0, select(has_bond, miy + ey, miy));
+      b.miz[p] = select(apart, 0.0, select(has_bond, miz + ez, miz));
+      b.mjx[p] = select(apart, 0.0, select(has_bond, mjx - ex, mjx));
+      b.mjy[p] = select(apart, 0.0, select(has_bond, mjy - ey, mjy));
+      b.mjz[p] = select(apart, 0.0, select(has_bond, mjz - ez, mjz));
     }
-    c.flags[k] = flags;
-    const Vec3 shear = fs + bond_fs;
-    set_contact_force(out, k, p, shear - (fn + bond_fn) * n, shear, bond_mt * n + bond_mb);
+    return any_broke != 0;
   }
 
   double bond_modulus_pa_, bond_kn_ks_, lambda_;
