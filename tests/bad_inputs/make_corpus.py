@@ -199,10 +199,10 @@ case("scene/does_not_exist", describe(missing(S, "does_not_exist.json")), path(S
 case("scene/directory", describe(directory("as_file.json")), f"{HERE}/dir/as_file.json")
 # 3D scenes: each test checks its contact models against its own engine's registry.
 scene3d = load("tests/data/ucs_small_3d.json")
-case("scene/3d_two_d_only_model",
-     describe(write(S, "3d_two_d_only_model.json",
-                    edited(scene3d, lambda d: d["contacts"]["particle-particle"].update(model="jkr")))),
-     path(S, "3d_two_d_only_model.json"), "jkr")
+case("scene/2d_three_d_only_model",
+     describe(write(S, "2d_three_d_only_model.json",
+                    edited(scene, lambda d: d["contacts"]["particle-particle"].update(model="sjkr")))),
+     path(S, "2d_three_d_only_model.json"), "sjkr")
 case("scene/3d_bond_without_its_modulus",
      describe(write(S, "3d_bond_without_its_modulus.json",
                     edited(scene3d, lambda d: d["contacts"]["particle-particle"]["parameters"].pop("bond_modulus_pa")))),

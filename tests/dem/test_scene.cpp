@@ -337,7 +337,7 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   // Each engine whose tests are registered, with its own models.
   EXPECT_EQ(registries["contact_models"],
             json({{"2d", {"linear", "parallel_bond", "contact_bond", "flat_joint", "hertz_mindlin", "jkr"}},
-                  {"3d", {"linear", "hertz_mindlin", "contact_bond", "parallel_bond", "flat_joint"}}}));
+                  {"3d", {"linear", "hertz_mindlin", "jkr", "sjkr", "contact_bond", "parallel_bond", "flat_joint"}}}));
   EXPECT_EQ(registries["test_dimensions"]["ucs_3d"], 3);
 }
 

@@ -61,6 +61,22 @@ void World::integrate_clumps(double& max_move2) {
     c.velocity_m_s = c.velocity_m_s + (dt / c.mass_kg) * f_d;
     c.centre_m = c.centre_m + dt * c.velocity_m_s;
     c.angular_momentum = c.angular_momentum + dt * m_d;
+    if (!in.rolling_limit.empty()) {
+      // Type A rolling resistance: the members' couple limits, as Coulomb
+      // friction in rotation against the clump's own spin; held still while
+      // they exceed what would turn it.
+      double limit = 0;
+      for (std::size_t i : index) limit += in.rolling_limit[i];
+      const Vec3 trial = c.spin();
+      const double size = norm(trial);
+      if (limit > 0 && size > 0) {
+        const Vec3 direction = (1.0 / size) * trial;
+        const double slowing = limit * dt;
+        c.angular_momentum = dot(c.angular_momentum, direction) > slowing
+                                 ? c.angular_momentum - slowing * direction
+                                 : Vec3{};
+      }
+    }
     const Quaternion half = normalised(rotation_by((0.5 * dt) * c.spin_at(c.orientation)) * c.orientation);
     c.orientation = normalised(rotation_by(dt * c.spin_at(half)) * c.orientation);
     const Vec3 new_spin = c.spin();

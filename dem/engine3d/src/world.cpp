@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
 #include "demcal/dem/select.hpp"
 #include "world_internals.hpp"
 
@@ -58,6 +59,20 @@ void World::rebuild() {
       skin_m_ = n > 0 ? 0.25 * sum / static_cast<double>(n) : 1e-3;
     }
   }
+  // A pair still pulling across a gap the skin does not cover would leave the
+  // list at this build and lose its force and history.
+  double attached = 0;
+  {
+    double radius_max = 0;
+    for (double r : spheres.radius) radius_max = std::max(radius_max, r);
+    for (const auto& model : models_) attached = std::max(attached, model->attachment_gap_m(radius_max));
+  }
+  // The default skin follows the models' need as the spheres grow; one set by hand must already cover it.
+  if (settings_.skin_m <= 0) skin_m_ = std::max(skin_m_, 2.0 * attached);
+  if (attached > 0 && attached >= skin_m_)
+    throw Error("the neighbour-list skin (" + format_double(skin_m_) + " m) does not exceed the largest gap a contact "
+                "model's pairs pull across (" + format_double(attached) +
+                " m, JKR's delta_c at the largest sphere): raise the skin above it");
   if (n > 0) reorder_spheres();
   // The clumps' members at their new places.
   {
@@ -485,13 +500,28 @@ struct SphereArrays {
   const double *x_built, *y_built, *z_built;  // the positions at the last build
   const std::uint8_t* fixed;
   const std::int32_t* clump;
+  const double* rolling_limit;  // type A rolling resistance's couple per sphere; nullptr: none
 };
+
+// A spin after one step of Coulomb friction in rotation: `trial` (the spin the
+// other moments would give) shrunk towards zero by `slowing` (the rolling
+// limit's couple times dt / I) along its own direction, and held at zero when
+// the limit exceeds what would turn it: static rolling resistance.
+inline void rolling_friction_spin(double& wx, double& wy, double& wz, double slowing) {
+  const double size = std::sqrt(wx * wx + wy * wy + wz * wz);
+  const double left = size - slowing;
+  const double scale = dem::select(left > 0, left / size, 0.0);
+  wx *= scale, wy *= scale, wz *= scale;
+}
 
 // Spheres [lo, hi) after a step under their summed forces and moments, as one
 // vectorised loop: a fixed sphere stops, a clump's member waits for its clump
 // (both by selects, not branches). Returns the largest squared move since the
 // last build.
-[[gnu::noinline]] double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, double dt, double alpha, Vec3 g) {
+// With rolling limits the spin takes rolling_friction_spin (a separate
+// instance of the loop: without them the arithmetic, and so the bits, stay).
+template <bool kRollingLimits>
+double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, double dt, double alpha, Vec3 g) {
   double* __restrict x = a.x;
   double* __restrict y = a.y;
   double* __restrict z = a.z;
@@ -515,6 +545,7 @@ struct SphereArrays {
   const double* __restrict z_built = a.z_built;
   const std::uint8_t* __restrict fixed = a.fixed;
   const std::int32_t* __restrict clump = a.clump;
+  const double* __restrict rolling_limit = a.rolling_limit;
   double largest = 0;
 #pragma omp simd reduction(max : largest)
   for (std::size_t i = lo; i < hi; ++i) {
@@ -524,9 +555,10 @@ struct SphereArrays {
     const double new_vx = damped_velocity(vx[i], fx[i] + m * g.x, alpha, to_v);
     const double new_vy = damped_velocity(vy[i], fy[i] + m * g.y, alpha, to_v);
     const double new_vz = damped_velocity(vz[i], fz[i] + m * g.z, alpha, to_v);
-    const double new_wx = damped_velocity(wx[i], mx[i], alpha, to_w);
-    const double new_wy = damped_velocity(wy[i], my[i], alpha, to_w);
-    const double new_wz = damped_velocity(wz[i], mz[i], alpha, to_w);
+    double new_wx = damped_velocity(wx[i], mx[i], alpha, to_w);
+    double new_wy = damped_velocity(wy[i], my[i], alpha, to_w);
+    double new_wz = damped_velocity(wz[i], mz[i], alpha, to_w);
+    if constexpr (kRollingLimits) rolling_friction_spin(new_wx, new_wy, new_wz, rolling_limit[i] * to_w);
     const double new_x = x[i] + new_vx * dt, new_y = y[i] + new_vy * dt, new_z = z[i] + new_vz * dt;
     vx[i] = dem::select(moves, new_vx, dem::select(still, 0.0, vx[i]));
     vy[i] = dem::select(moves, new_vy, dem::select(still, 0.0, vy[i]));
@@ -578,6 +610,17 @@ void World::integrate() {
         in.sum_fx[i] += pp.fx[k], in.sum_fy[i] += pp.fy[k], in.sum_fz[i] += pp.fz[k];
         in.sum_mx[i] += pp.mx[2 * k], in.sum_my[i] += pp.my[2 * k], in.sum_mz[i] += pp.mz[2 * k];
       }
+  // Type A rolling resistance: each touching pair's share of its spheres' couple limits, in pair order.
+  in.rolling_limit.clear();
+  if (std::any_of(models_.begin(), models_.end(), [](const auto& m) { return m->adds_rolling_limits(); })) {
+    in.rolling_limit.assign(n, 0.0);
+    for (std::uint8_t m : run_models_)
+      models_[m]->add_rolling_limits(static_cast<const dem::ContactSet&>(pairs_).block(m), spheres, false,
+                                     in.rolling_limit.data());
+    for (std::uint8_t m : wall_run_models_)
+      models_[m]->add_rolling_limits(static_cast<const dem::ContactSet&>(wall_pairs_).block(m), spheres, true,
+                                     in.rolling_limit.data());
+  }
   if (!clumps_.empty())  // a clump's members give their sums to their clump (integrate_clumps)
     for (std::size_t i = 0; i < n; ++i)
       if (spheres.clump[i] >= 0) {
@@ -590,7 +633,8 @@ void World::integrate() {
                             s.wx.data(), s.wy.data(), s.wz.data(), in.sum_fx.data(), in.sum_fy.data(),
                             in.sum_fz.data(), in.sum_mx.data(), in.sum_my.data(), in.sum_mz.data(),
                             s.mass.data(), in.inverse_mass.data(), in.inverse_inertia.data(), in.x_built.data(),
-                            in.y_built.data(), in.z_built.data(), s.fixed.data(), s.clump.data()};
+                            in.y_built.data(), in.z_built.data(), s.fixed.data(), s.clump.data(),
+                            in.rolling_limit.empty() ? nullptr : in.rolling_limit.data()};
   const double dt = dt_s_, alpha = settings_.damping;
   const Vec3 g = settings_.gravity_m_s2;
   double max_move2 = in.max_move2;
@@ -598,7 +642,9 @@ void World::integrate() {
   {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto parts = static_cast<std::size_t>(omp_get_num_threads());
-    max_move2 = std::max(max_move2, update_spheres(n * t / parts, n * (t + 1) / parts, arrays, dt, alpha, g));
+    const std::size_t lo = n * t / parts, hi = n * (t + 1) / parts;
+    max_move2 = std::max(max_move2, arrays.rolling_limit ? update_spheres<true>(lo, hi, arrays, dt, alpha, g)
+                                                         : update_spheres<false>(lo, hi, arrays, dt, alpha, g));
   }
   if (!clumps_.empty()) integrate_clumps(max_move2);
   in.max_move2 = max_move2;

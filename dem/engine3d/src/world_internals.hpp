@@ -57,6 +57,9 @@ struct World::Internals {
   std::vector<std::vector<std::size_t>> member_index;
   std::vector<double> member_fx, member_fy, member_fz, member_mx, member_my, member_mz;
   std::vector<Vec3> clump_force;
+  // Type A rolling resistance: each sphere's couple limit this step (empty
+  // when no model adds one).
+  std::vector<double> rolling_limit;
 };
 
 }  // namespace demcal::dem3d

@@ -1,7 +1,7 @@
 // JKR cohesion on Hertz-Mindlin (hertz_base.hpp), parameterised by the work of
-// adhesion w (J/m^2), the energy per area to separate two surfaces:
-//   F = 4 E* a^3 / (3 R*) - sqrt(8 pi w E* a^3),   delta = a^2 / R* - sqrt(2 pi w a / E*)
-// whose least force is the classic pull-off -1.5 pi w R*. Codes that write
+// adhesion w (J/m^2), the energy per area to separate two surfaces: the curve
+// of jkr_curve.hpp (shared with 3D), whose least force is the classic pull-off
+// -1.5 pi w R*. Codes that write
 // the same law with a surface energy gamma mean gamma = w / 2 (LAMMPS: pull-off
 // 3 pi gamma R); EDEM documents 1.5 pi gamma R* with that law, so its gamma is
 // our w or off by two: convert with care (docs/explanation/contact_models.md).
@@ -20,6 +20,7 @@
 
 #include "demcal/dem/builtin_models.hpp"
 #include "demcal/dem/hertz_base.hpp"
+#include "demcal/dem/jkr_curve.hpp"
 #include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
@@ -30,9 +31,7 @@ constexpr std::size_t kSeparationLimit = kHertzColumns;  // delta_c, m
 class JkrModel : public HertzBase {
  public:
   JkrModel(const nlohmann::json& p, const std::string& where)
-      : HertzBase(p, where), work_of_adhesion_j_m2_(non_negative(p, "work_of_adhesion_j_m2", where)) {
-    adhesion_ = std::sqrt(2.0 * M_PI * work_of_adhesion_j_m2_ / e_eff_pa_);
-  }
+      : HertzBase(p, where), curve_(e_eff_pa_, non_negative(p, "work_of_adhesion_j_m2", where)) {}
   std::string name() const override { return "jkr"; }
 
   std::vector<std::string> state_columns() const override {
@@ -42,18 +41,19 @@ class JkrModel : public HertzBase {
   }
   void initialise(PairBlock& c, std::size_t k, const PairInfo& pair, double thickness_m) const override {
     HertzBase::initialise(c, k, pair, thickness_m);
-    c.column[kSeparationLimit][k] = separation_limit(c.column[kRadiusEff][k]);
+    c.column[kSeparationLimit][k] = curve_.separation_limit(c.column[kRadiusEff][k]);
   }
   // delta_c grows as the cube root of R*, whose largest value is a disk's own
   // radius against a wall.
   double attachment_gap_m(double radius_max_m) const override {
-    return radius_max_m > 0 ? separation_limit(radius_max_m) : 0.0;
+    return radius_max_m > 0 ? curve_.separation_limit(radius_max_m) : 0.0;
   }
   double normal_force_n(const ConstPairBlock& c, std::size_t k, double overlap_m) const override {
     const double radius = c.column[kRadiusEff][k];
     if (overlap_m < -c.column[kSeparationLimit][k]) return 0.0;
-    const double a = contact_radius(overlap_m, radius, 0.0);
-    return 4.0 * e_eff_pa_ * a * a * a / (3.0 * radius) - std::sqrt(8.0 * M_PI * work_of_adhesion_j_m2_ * e_eff_pa_ * a * a * a);
+    const double a = curve_.contact_radius(overlap_m, radius, 0.0);
+    return 4.0 * e_eff_pa_ * a * a * a / (3.0 * radius) -
+           std::sqrt(8.0 * M_PI * curve_.work_of_adhesion_j_m2 * e_eff_pa_ * a * a * a);
   }
 
   void disk_forces(PairBlock& c, Bodies& b, const StepContext& step) const override {
@@ -66,12 +66,6 @@ class JkrModel : public HertzBase {
   }
 
  private:
-  // delta_c = -delta(a_c) for the effective radius R*.
-  double separation_limit(double radius) const {
-    const double ac = std::cbrt(M_PI * work_of_adhesion_j_m2_ * radius * radius / (8.0 * e_eff_pa_));
-    return std::max(0.0, -(ac * ac / radius - adhesion_ * std::sqrt(ac)));
-  }
-
   // Not yet in contact: apart while there is a gap. In contact: until the curve ends.
   static bool apart(const PairBlock& c, std::size_t k, double gap) {
     const bool formed = c.flags[k] & kTouching;
@@ -80,42 +74,17 @@ class JkrModel : public HertzBase {
     return true;
   }
 
-  // a on the stable branch (a >= a_c) for overlap delta: the root of
-  // s^4 / R - c s - delta in s = sqrt(a). The function is convex and rising
-  // there, so Newton from a point right of the root falls to it monotonically;
-  // the pair's last a is such a point when it is not left of the root.
-  double contact_radius(double delta, double radius, double last_a) const {
-    if (adhesion_ == 0.0) return std::sqrt(radius * std::max(0.0, delta));
-    auto excess = [&](double s) { return s * s * s * s / radius - adhesion_ * s - delta; };
-    // s >= s_c = cbrt(adhesion R / 4) is where the curve rises: 4 s^3 / R >= adhesion. Tested that way, the
-    // cube root (a tenth of a heap's time) is taken only on the rare paths that need its value.
-    auto rising = [&](double s) { return 4.0 * s * s * s / radius - adhesion_; };
-    double s = std::sqrt(last_a);
-    if (!(rising(s) >= 0 && excess(s) >= 0))
-      s = std::max(std::sqrt(std::sqrt(2.0 * radius * std::max(0.0, delta))), std::cbrt(2.0 * adhesion_ * radius));
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      const double slope = rising(s);
-      if (!(slope > 0)) break;  // at a_c itself: the root is s_critical
-      const double step = excess(s) / slope;
-      s -= step;
-      if (!(step > 1e-15 * s)) break;
-    }
-    if (!(rising(s) > 0)) s = std::max(s, std::cbrt(0.25 * adhesion_ * radius));
-    return s * s;
-  }
-
   PairForce force(const PairBlock& c, std::size_t k, const Geometry& g, double dt_s) const {
     const double radius = c.column[kRadiusEff][k];
     NormalForce n;
-    const double a = contact_radius(g.overlap, radius, c.column[kContactRadius][k]);
+    const double a = curve_.contact_radius(g.overlap, radius, c.column[kContactRadius][k]);
     n.contact_radius_m = a;
-    n.repulsive_n = 4.0 / 3.0 * e_eff_pa_ * a * a * a / radius;  // as hertz_mindlin writes it: w = 0 gives its bits
-    n.total_n = n.repulsive_n - std::sqrt(8.0 * M_PI * work_of_adhesion_j_m2_ * e_eff_pa_ * a * a * a);
+    n.repulsive_n = curve_.repulsive_n(a, radius);
+    n.total_n = curve_.total_n(n.repulsive_n, a);
     return hertz_force(c, k, g, dt_s, n);
   }
 
-  double work_of_adhesion_j_m2_;
-  double adhesion_ = 0;  // sqrt(2 pi w / E*), m^(1/2)
+  JkrCurve curve_;
 };
 
 }  // namespace

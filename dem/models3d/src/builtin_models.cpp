@@ -18,6 +18,8 @@ ContactModelRegistry& ContactModelRegistry::instance() {
 void register_builtin_models(ContactModelRegistry& registry) {
   register_linear_model(registry);
   register_hertz_mindlin_model(registry);
+  register_jkr_model(registry);
+  register_sjkr_model(registry);
   register_contact_bond_model(registry);
   register_parallel_bond_model(registry);
   register_flat_joint_model(registry);

@@ -163,6 +163,21 @@ class ContactModel {
   // True when the model's forces depend on the masses it was given in
   // PairInfo (a damping set for a restitution): density scaling is then refused.
   virtual bool depends_on_masses() const { return false; }
+  // The largest gap across which a pair of spheres no larger than
+  // `radius_max_m` stays in contact (an adhesive model's); the neighbour
+  // list's skin must exceed it, which the world checks.
+  virtual double attachment_gap_m(double radius_max_m) const {
+    (void)radius_max_m;
+    return 0.0;
+  }
+  // Rolling resistance of type A: each touching pair of the block adds to
+  // `limit_nm` (per sphere) the couple it can give each of its spheres against
+  // that sphere's own spin; the world applies the sums as Coulomb friction in
+  // rotation. `walls`: a block of sphere-wall pairs (only c.i is a sphere).
+  virtual bool adds_rolling_limits() const { return false; }
+  virtual void add_rolling_limits(const ConstPairBlock& c, const Spheres& s, bool walls, double* limit_nm) const {
+    (void)c, (void)s, (void)walls, (void)limit_nm;
+  }
 };
 
 // The 3D models by name (a model of the same name in 2D is another law with

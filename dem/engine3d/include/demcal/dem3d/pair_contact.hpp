@@ -51,16 +51,22 @@ inline void sphere_pair_geometry(const Spheres& s, std::size_t i, std::size_t j,
   fill_pair_contact(s, i, j, d, s.radius[i] + s.radius[j], dot(d, d), c);
 }
 
-// Sphere i against the wall of geometry g's pair k (block-local); false when apart.
-inline bool wall_pair_contact(const Spheres& s, std::size_t i, const WallGeometry& g, std::size_t k, PairContact& c) {
+// Sphere i against the wall of geometry g's pair k (block-local), touching
+// or not (an adhesive contact holds across a gap).
+inline void wall_pair_geometry(const Spheres& s, std::size_t i, const WallGeometry& g, std::size_t k, PairContact& c) {
   c.overlap_m = g.overlap_m[k];
-  if (!(c.overlap_m > 0)) return false;
   c.normal = {g.nx[k], g.ny[k], g.nz[k]};
   c.arm_i_m = s.radius[i] - 0.5 * c.overlap_m;
   c.arm_j_m = 0.0;
   const Vec3 vi = s.velocity(i) + cross(s.spin(i), c.arm_i_m * c.normal);
   c.relative_velocity_m_s = Vec3{g.vx[k], g.vy[k], g.vz[k]} - vi;
   c.plane_spin_rad_s = (0.5 * dot(s.spin(i), c.normal)) * c.normal;
+}
+
+// The same; false when apart.
+inline bool wall_pair_contact(const Spheres& s, std::size_t i, const WallGeometry& g, std::size_t k, PairContact& c) {
+  if (!(g.overlap_m[k] > 0)) return false;
+  wall_pair_geometry(s, i, g, k, c);
   return true;
 }
 

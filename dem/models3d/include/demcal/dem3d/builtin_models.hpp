@@ -7,6 +7,8 @@ class ContactModelRegistry;
 
 void register_linear_model(ContactModelRegistry& registry);
 void register_hertz_mindlin_model(ContactModelRegistry& registry);
+void register_jkr_model(ContactModelRegistry& registry);
+void register_sjkr_model(ContactModelRegistry& registry);
 void register_contact_bond_model(ContactModelRegistry& registry);
 void register_parallel_bond_model(ContactModelRegistry& registry);
 void register_flat_joint_model(ContactModelRegistry& registry);

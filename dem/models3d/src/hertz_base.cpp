@@ -1,0 +1,173 @@
+#include "demcal/dem3d/hertz_base.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/dem/model_parameters.hpp"
+#include "demcal/dem3d/linear_contact.hpp"
+
+namespace demcal::dem3d {
+
+std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra) {
+  std::vector<std::string> keys = {"shear_modulus_pa", "poisson",  "shear_modulus_2_pa",     "poisson_2",
+                                   "restitution",      "friction", "time_step_overlap_ratio"};
+  for (const char* key : dem::RollingResistance::kParameters) keys.push_back(key);
+  for (const char* key : extra) keys.push_back(key);
+  return keys;
+}
+
+double sphere_rolling_inertia_kg_m2(double mass_i_kg, double radius_i_m, double mass_j_kg, double radius_j_m) {
+  const double a = mass_i_kg * radius_i_m * radius_i_m, b = mass_j_kg * radius_j_m * radius_j_m;
+  if (a <= 0) return 1.4 * b;
+  if (b <= 0) return 1.4 * a;
+  return 1.4 * a * b / (a + b);
+}
+
+namespace {
+
+double poisson_of(const nlohmann::json& p, const char* key, const std::string& where) {
+  if (!p.contains(key)) throw Error(where + ": missing parameter \"" + key + "\"");
+  if (!p.at(key).is_number() || !std::isfinite(p.at(key).get<double>()))
+    throw Error(where + ": parameter \"" + key + "\" must be a finite number");
+  const double nu = p.at(key).get<double>();
+  if (!(nu > -1.0 && nu < 0.5)) throw Error(where + ": " + key + " must lie in (-1, 0.5) (got " + format_double(nu) + ")");
+  return nu;
+}
+
+}  // namespace
+
+HertzBase::HertzBase(const nlohmann::json& p, const std::string& where) {
+  const double g1 = dem::positive(p, "shear_modulus_pa", where);
+  const double nu1 = poisson_of(p, "poisson", where);
+  const double g2 = p.contains("shear_modulus_2_pa") ? dem::positive(p, "shear_modulus_2_pa", where) : g1;
+  const double nu2 = p.contains("poisson_2") ? poisson_of(p, "poisson_2", where) : nu1;
+  const double e1 = 2 * g1 * (1 + nu1), e2 = 2 * g2 * (1 + nu2);
+  e_eff_pa_ = 1.0 / ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2);
+  g_eff_pa_ = 1.0 / ((2 - nu1) / g1 + (2 - nu2) / g2);
+  const double e = dem::positive(p, "restitution", where);
+  if (e > 1) throw Error(where + ": restitution must lie in (0, 1] (got " + format_double(e) + ")");
+  const double log_e = std::log(e);
+  damping_ = -2.0 * std::sqrt(5.0 / 6.0) * log_e / std::sqrt(log_e * log_e + M_PI * M_PI);
+  friction_ = dem::non_negative(p, "friction", where);
+  overlap_ratio_ = p.contains("time_step_overlap_ratio") ? dem::positive(p, "time_step_overlap_ratio", where) : 0.01;
+  rolling_ = dem::RollingResistance::read(p, where);
+}
+
+std::vector<std::string> HertzBase::state_columns() const {
+  return {"radius_eff_m",         "mass_eff_kg",          "shear_force_x_n",        "shear_force_y_n",
+          "shear_force_z_n",      "max_contact_radius_m", "rolling_inertia_kg_m2",  "rolling_moment_x_nm",
+          "rolling_moment_y_nm",  "rolling_moment_z_nm",  "contact_radius_m"};
+}
+
+void HertzBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair) const {
+  const double ri = pair.radius_i, rj = pair.radius_j;
+  c.column[kRadiusEff][k] = pair.wall ? ri : ri * rj / (ri + rj);
+  const double mi = pair.mass_i_kg, mj = pair.mass_j_kg;
+  c.column[kMassEff][k] = mi > 0 && mj > 0 ? mi * mj / (mi + mj) : std::max(mi, mj);
+  c.column[kRollingInertia][k] = sphere_rolling_inertia_kg_m2(mi, ri, mj, rj);
+}
+
+void HertzBase::release(PairBlock& c, std::size_t k, const PairForces& out) {
+  for (std::size_t column : {kShearX, kShearY, kShearZ, kRollingX, kRollingY, kRollingZ, kContactRadius})
+    c.column[column][k] = 0;
+  c.flags[k] &= ~static_cast<dem::PairFlags>(dem::kTouching);
+  out.set(k, {}, {}, {});
+}
+
+void HertzBase::hertz_touch(PairBlock& c, std::size_t k, const PairForces& out, const PairContact& p, double dt,
+                            const NormalForce& f, Vec3 spin_i, Vec3 spin_j) const {
+  const Vec3 n = p.normal, relative_velocity = p.relative_velocity_m_s, plane_spin = p.plane_spin_rad_s;
+  const double arm_i = p.arm_i_m, arm_j = p.arm_j_m;
+  const double radius = c.column[kRadiusEff][k], mass = c.column[kMassEff][k];
+  const double a = f.contact_radius_m;
+  const double sn = 2.0 * e_eff_pa_ * a, st = 8.0 * g_eff_pa_ * a;
+  c.column[kMaxContactRadius][k] = std::max(c.column[kMaxContactRadius][k], a);
+  c.column[kContactRadius][k] = a;
+  const double vn = dot(relative_velocity, n);  // < 0 approaching
+  // The dashpot may pull at the end of an impact: clipping it would change e.
+  const double normal = f.total_n - damping_ * std::sqrt(sn * mass) * vn;
+  const Vec3 vt = relative_velocity - vn * n;
+  // The stored shear spring, turned with the contact plane, incremented, capped.
+  Vec3 spring = turned_shear({c.column[kShearX][k], c.column[kShearY][k], c.column[kShearZ][k]}, n, plane_spin, dt);
+  spring = spring + (st * dt) * vt;
+  const double limit = friction_ * std::max(0.0, f.repulsive_n), size = norm(spring);
+  Vec3 shear;
+  if (size >= limit) {
+    spring = (size > 0 ? limit / size : 0.0) * spring;
+    shear = spring;
+  } else {
+    shear = spring + (damping_ * std::sqrt(st * mass)) * vt;
+  }
+  c.column[kShearX][k] = spring.x, c.column[kShearY][k] = spring.y, c.column[kShearZ][k] = spring.z;
+  c.flags[k] |= dem::kTouching;
+  const Vec3 force = shear - normal * n;
+  const Vec3 n_cross_fs = cross(n, shear);
+  Vec3 moment_i = arm_i * n_cross_fs, moment_j = arm_j * n_cross_fs;
+  if (rolling_.type == dem::RollingResistance::Type::Epsd || rolling_.type == dem::RollingResistance::Type::CdtRelative) {
+    // The rolling part of j's spin relative to i's, and the couple on j.
+    const Vec3 relative_spin = spin_j - spin_i;
+    const Vec3 rolling = relative_spin - dot(relative_spin, n) * n;
+    const double rolling_limit = rolling_.friction * radius * std::max(0.0, f.repulsive_n);
+    Vec3 couple;
+    if (rolling_.type == dem::RollingResistance::Type::CdtRelative) {
+      couple = (-rolling_limit / std::max(norm(rolling), rolling_.threshold_rad_s)) * rolling;
+    } else {
+      const double kr = rolling_.spring_nm_rad(sn, radius);
+      Vec3 elastic = turned_shear({c.column[kRollingX][k], c.column[kRollingY][k], c.column[kRollingZ][k]}, n,
+                                  plane_spin, dt);
+      elastic = elastic - (kr * dt) * rolling;
+      const double elastic_size = norm(elastic);
+      if (elastic_size >= rolling_limit) {  // fully mobilised: plastic, no dashpot
+        elastic = (elastic_size > 0 ? rolling_limit / elastic_size : 0.0) * elastic;
+        couple = elastic;
+      } else {
+        const double dashpot = rolling_.damping * 2.0 * std::sqrt(c.column[kRollingInertia][k] * kr);
+        couple = elastic - dashpot * rolling;
+      }
+      c.column[kRollingX][k] = elastic.x, c.column[kRollingY][k] = elastic.y, c.column[kRollingZ][k] = elastic.z;
+    }
+    moment_i = moment_i - couple;
+    moment_j = moment_j + couple;
+  }
+  out.set(k, force, moment_i, moment_j);
+}
+
+void HertzBase::stiffness(const ConstPairBlock& c, std::size_t k, double arm_m, double& translational_n_m,
+                          double& rotational_nm_rad) const {
+  const double radius = c.column[kRadiusEff][k];
+  const double a = std::max(c.column[kMaxContactRadius][k], radius * std::sqrt(overlap_ratio_));
+  const double sn = 2.0 * e_eff_pa_ * a, st = 8.0 * g_eff_pa_ * a;
+  translational_n_m = std::max(sn, st);
+  rotational_nm_rad = st * arm_m * arm_m + rolling_.spring_nm_rad(sn, radius);
+}
+
+double HertzBase::stiffness_estimate(double radius_m) const {
+  const double a = 0.5 * radius_m * std::sqrt(overlap_ratio_);  // two equal spheres: R* = r / 2
+  return std::max(2.0 * e_eff_pa_ * a, 8.0 * g_eff_pa_ * a);
+}
+
+double HertzBase::max_damping_ratio() const {
+  const double tangential = std::sqrt(3.5) * 0.5 * damping_;
+  return std::max(tangential, rolling_.type == dem::RollingResistance::Type::Epsd ? rolling_.damping : 0.0);
+}
+
+void HertzBase::add_rolling_limits(const ConstPairBlock& c, const Spheres& s, bool walls, double* limit_nm) const {
+  if (rolling_.type != dem::RollingResistance::Type::Cdt) return;
+  for (std::size_t k = 0; k < c.size; ++k) {
+    if (!(c.flags[k] & dem::kTouching)) continue;
+    const double a = c.column[kContactRadius][k];
+    const double repulsive = 4.0 / 3.0 * e_eff_pa_ * a * a * a / c.column[kRadiusEff][k];
+    const auto i = static_cast<std::size_t>(c.i[k]);
+    limit_nm[i] += rolling_.friction * s.radius[i] * repulsive;
+    if (!walls) {
+      const auto j = static_cast<std::size_t>(c.j[k]);
+      limit_nm[j] += rolling_.friction * s.radius[j] * repulsive;
+    }
+  }
+}
+
+}  // namespace demcal::dem3d
