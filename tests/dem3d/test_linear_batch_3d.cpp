@@ -38,7 +38,7 @@ class BatchedLinear : public LinearBase {
   using LinearBase::LinearBase;
   std::string name() const override { return "batched linear"; }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    linear_batch::linear_sphere_forces(c, s, out, step.dt_s);
+    linear_batch::linear_sphere_forces(c, s, out, step);
   }
 };
 

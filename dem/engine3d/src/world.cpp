@@ -11,6 +11,7 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/select.hpp"
+#include "demcal/dem3d/sphere_records.hpp"
 #include "world_internals.hpp"
 
 namespace demcal::dem3d {
@@ -371,17 +372,27 @@ void World::step() {
 
 void World::compute_pair_forces() {
   Internals& in = *internals_;
-  const StepContext step{dt_s_, time_s_};
   compute_wall_geometry();
   const int team = threads_in_use_;
+  // The spheres' records for the vectorised laws, each thread its share.
+  const std::size_t n = spheres.size();
+  in.records.resize(kRecordSize * n);
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+    pack_sphere_records(spheres, n * t / parts, n * (t + 1) / parts, in.records.data());
+  }
+  const StepContext step{dt_s_, time_s_, in.records.data()};
   in.direct = team == 1;
   PairForces sphere_out = in.sphere_pair_forces.view();
   const PairForces wall_out = in.wall_pair_forces.view();
   if (in.direct) {
-    for (auto* v : {&in.sum_fx, &in.sum_fy, &in.sum_fz, &in.sum_mx, &in.sum_my, &in.sum_mz})
-      v->assign(spheres.size(), 0.0);
-    sphere_out.sum_fx = in.sum_fx.data(), sphere_out.sum_fy = in.sum_fy.data(), sphere_out.sum_fz = in.sum_fz.data();
-    sphere_out.sum_mx = in.sum_mx.data(), sphere_out.sum_my = in.sum_my.data(), sphere_out.sum_mz = in.sum_mz.data();
+    in.sums.assign(kSumStride * spheres.size(), 0.0);
+    double* sums = in.sums.data();
+    sphere_out.sum_fx = sums + kSumFx, sphere_out.sum_fy = sums + kSumFy, sphere_out.sum_fz = sums + kSumFz;
+    sphere_out.sum_mx = sums + kSumMx, sphere_out.sum_my = sums + kSumMy, sphere_out.sum_mz = sums + kSumMz;
+    sphere_out.sum_stride = kSumStride;
     sphere_out.i = pairs_.i.data(), sphere_out.j = pairs_.j.data();
   }
   const WallGeometry geometry = in.wall_geometry.view();
@@ -495,7 +506,7 @@ inline double damped_velocity(double v, double force, double alpha, double to_ve
 // What a step's update of the spheres reads and writes.
 struct SphereArrays {
   double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz;
-  const double *fx, *fy, *fz, *mx, *my, *mz;  // the summed forces and moments
+  const double* sums;  // the summed forces and moments, kSumStride a sphere
   const double *mass, *inverse_mass, *inverse_inertia;
   const double *x_built, *y_built, *z_built;  // the positions at the last build
   const std::uint8_t* fixed;
@@ -531,12 +542,7 @@ double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, dou
   double* __restrict wx = a.wx;
   double* __restrict wy = a.wy;
   double* __restrict wz = a.wz;
-  const double* __restrict fx = a.fx;
-  const double* __restrict fy = a.fy;
-  const double* __restrict fz = a.fz;
-  const double* __restrict mx = a.mx;
-  const double* __restrict my = a.my;
-  const double* __restrict mz = a.mz;
+  const double* __restrict sums = a.sums;
   const double* __restrict mass = a.mass;
   const double* __restrict inverse_mass = a.inverse_mass;
   const double* __restrict inverse_inertia = a.inverse_inertia;
@@ -552,12 +558,12 @@ double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, dou
     const bool still = fixed[i] != 0, moves = !still & (clump[i] < 0);  // & not &&: no branch
     const double m = mass[i];
     const double to_v = inverse_mass[i] * dt, to_w = inverse_inertia[i] * dt;
-    const double new_vx = damped_velocity(vx[i], fx[i] + m * g.x, alpha, to_v);
-    const double new_vy = damped_velocity(vy[i], fy[i] + m * g.y, alpha, to_v);
-    const double new_vz = damped_velocity(vz[i], fz[i] + m * g.z, alpha, to_v);
-    double new_wx = damped_velocity(wx[i], mx[i], alpha, to_w);
-    double new_wy = damped_velocity(wy[i], my[i], alpha, to_w);
-    double new_wz = damped_velocity(wz[i], mz[i], alpha, to_w);
+    const double new_vx = damped_velocity(vx[i], sums[kSumStride * i + kSumFx] + m * g.x, alpha, to_v);
+    const double new_vy = damped_velocity(vy[i], sums[kSumStride * i + kSumFy] + m * g.y, alpha, to_v);
+    const double new_vz = damped_velocity(vz[i], sums[kSumStride * i + kSumFz] + m * g.z, alpha, to_v);
+    double new_wx = damped_velocity(wx[i], sums[kSumStride * i + kSumMx], alpha, to_w);
+    double new_wy = damped_velocity(wy[i], sums[kSumStride * i + kSumMy], alpha, to_w);
+    double new_wz = damped_velocity(wz[i], sums[kSumStride * i + kSumMz], alpha, to_w);
     if constexpr (kRollingLimits) rolling_friction_spin(new_wx, new_wy, new_wz, rolling_limit[i] * to_w);
     const double new_x = x[i] + new_vx * dt, new_y = y[i] + new_vy * dt, new_z = z[i] + new_vz * dt;
     vx[i] = dem::select(moves, new_vx, dem::select(still, 0.0, vx[i]));
@@ -589,7 +595,7 @@ void World::integrate() {
   // any thread and in any storage order. The force's sign by the entry's low
   // bit (a product by +-1 is exact), the moment at the entry itself.
   if (!in.direct) {
-    for (auto* v : {&in.sum_fx, &in.sum_fy, &in.sum_fz, &in.sum_mx, &in.sum_my, &in.sum_mz}) v->resize(n);
+    in.sums.resize(kSumStride * n);
 #pragma omp parallel for num_threads(team) if (team > 1) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
@@ -600,15 +606,17 @@ void World::integrate() {
         fx += sign * sp.fx[k], fy += sign * sp.fy[k], fz += sign * sp.fz[k];
         mx += sp.mx[entry], my += sp.my[entry], mz += sp.mz[entry];
       }
-      in.sum_fx[i] = fx, in.sum_fy[i] = fy, in.sum_fz[i] = fz, in.sum_mx[i] = mx, in.sum_my[i] = my, in.sum_mz[i] = mz;
+      double* sum = &in.sums[kSumStride * i];
+      sum[kSumFx] = fx, sum[kSumFy] = fy, sum[kSumFz] = fz, sum[kSumMx] = mx, sum[kSumMy] = my, sum[kSumMz] = mz;
     }
   }
   if (wall_pairs_.size() > 0)
     for (std::size_t i = 0; i < n; ++i)
       for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
         const std::size_t k = in.wall_entry[e];
-        in.sum_fx[i] += pp.fx[k], in.sum_fy[i] += pp.fy[k], in.sum_fz[i] += pp.fz[k];
-        in.sum_mx[i] += pp.mx[2 * k], in.sum_my[i] += pp.my[2 * k], in.sum_mz[i] += pp.mz[2 * k];
+        double* sum = &in.sums[kSumStride * i];
+        sum[kSumFx] += pp.fx[k], sum[kSumFy] += pp.fy[k], sum[kSumFz] += pp.fz[k];
+        sum[kSumMx] += pp.mx[2 * k], sum[kSumMy] += pp.my[2 * k], sum[kSumMz] += pp.mz[2 * k];
       }
   // Type A rolling resistance: each touching pair's share of its spheres' couple limits, in pair order.
   in.rolling_limit.clear();
@@ -624,14 +632,14 @@ void World::integrate() {
   if (!clumps_.empty())  // a clump's members give their sums to their clump (integrate_clumps)
     for (std::size_t i = 0; i < n; ++i)
       if (spheres.clump[i] >= 0) {
-        in.member_fx[i] = in.sum_fx[i], in.member_fy[i] = in.sum_fy[i], in.member_fz[i] = in.sum_fz[i];
-        in.member_mx[i] = in.sum_mx[i], in.member_my[i] = in.sum_my[i], in.member_mz[i] = in.sum_mz[i];
+        const double* sum = &in.sums[kSumStride * i];
+        in.member_fx[i] = sum[kSumFx], in.member_fy[i] = sum[kSumFy], in.member_fz[i] = sum[kSumFz];
+        in.member_mx[i] = sum[kSumMx], in.member_my[i] = sum[kSumMy], in.member_mz[i] = sum[kSumMz];
       }
   // The free spheres' update, one vectorised loop over each thread's share.
   Spheres& s = spheres;
   const SphereArrays arrays{s.x.data(), s.y.data(), s.z.data(), s.vx.data(), s.vy.data(), s.vz.data(),
-                            s.wx.data(), s.wy.data(), s.wz.data(), in.sum_fx.data(), in.sum_fy.data(),
-                            in.sum_fz.data(), in.sum_mx.data(), in.sum_my.data(), in.sum_mz.data(),
+                            s.wx.data(), s.wy.data(), s.wz.data(), in.sums.data(),
                             s.mass.data(), in.inverse_mass.data(), in.inverse_inertia.data(), in.x_built.data(),
                             in.y_built.data(), in.z_built.data(), s.fixed.data(), s.clump.data(),
                             in.rolling_limit.empty() ? nullptr : in.rolling_limit.data()};

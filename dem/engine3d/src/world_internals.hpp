@@ -9,6 +9,9 @@
 
 namespace demcal::dem3d {
 
+enum SumField : std::size_t { kSumFx, kSumFy, kSumFz, kSumMx, kSumMy, kSumMz };
+constexpr std::size_t kSumStride = 8;
+
 // Nine values per pair: the force on i, and the moments about both centres (i's at 2k, j's at 2k + 1).
 struct PairForceArrays {
   std::vector<double> fx, fy, fz, mx, my, mz;
@@ -42,7 +45,9 @@ struct World::Internals {
   std::vector<std::uint32_t> sum_begin, sum_entry, wall_begin, wall_entry;
   // On one thread the sphere pairs add straight into these per-sphere sums
   // (PairForces direct), in pair order: the same sums as the stored path.
-  std::vector<double> sum_fx, sum_fy, sum_fz, sum_mx, sum_my, sum_mz;
+  // Each sphere's sums side by side: fx, fy, fz, mx, my, mz at kSum* of its
+  // kSumStride values (one cache line).
+  std::vector<double> sums;
   bool direct = false;
   std::vector<double> x_built, y_built, z_built;
   // The walls as they were at the last build, and the spheres' extent then
@@ -57,6 +62,8 @@ struct World::Internals {
   std::vector<std::vector<std::size_t>> member_index;
   std::vector<double> member_fx, member_fy, member_fz, member_mx, member_my, member_mz;
   std::vector<Vec3> clump_force;
+  // Each sphere's record for the vectorised laws (sphere_records.hpp), refreshed each step.
+  std::vector<double> records;
   // Type A rolling resistance: each sphere's couple limit this step (empty
   // when no model adds one).
   std::vector<double> rolling_limit;

@@ -20,7 +20,7 @@ class LinearModel : public LinearBase {
   std::string name() const override { return "linear"; }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
     // The scalar loop's bits (for_sphere_pairs with linear_touch), vectorised.
-    linear_batch::linear_sphere_forces(c, s, out, step.dt_s);
+    linear_batch::linear_sphere_forces(c, s, out, step);
   }
 };
 

@@ -28,6 +28,7 @@
 #include "demcal/dem/select.hpp"
 #include "demcal/dem3d/linear_base.hpp"
 #include "demcal/dem3d/linear_batch.hpp"
+#include "demcal/dem3d/sphere_records.hpp"
 
 namespace demcal::dem3d {
 namespace {
@@ -99,16 +100,18 @@ class ParallelBondModel : public LinearBase {
   // law, pair by pair (for_bondable_pairs with linear_touch for a pair
   // without a bond, the bond law for one with it), vectorised.
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
+    std::vector<double> own;
+    const double* records = step.records;
+    if (!records) own = sphere_records(s), records = own.data();
     linear_batch::Batch b;
     alignas(64) std::uint8_t broke[linear_batch::kBatch], tension[linear_batch::kBatch];
     for (std::size_t from = 0; from < c.size; from += linear_batch::kBatch) {
       const std::size_t n = std::min(linear_batch::kBatch, c.size - from);
-      const bool any_broke = batch(c, s, from, n, step.dt_s, b, broke, tension);
+      const bool any_broke = batch(c, records, from, n, step.dt_s, b, broke, tension);
       if (any_broke)
         for (std::size_t p = 0; p < n; ++p)
           if (broke[p]) c.flags[from + p] = mark_break(c.flags[from + p], tension[p] != 0);
-      for (std::size_t p = 0; p < n; ++p)
-        out.set(from + p, {b.fx[p], b.fy[p], b.fz[p]}, {b.mix[p], b.miy[p], b.miz[p]}, {b.mjx[p], b.mjy[p], b.mjz[p]});
+      linear_batch::put_batch(out, from, n, b, nullptr);
     }
   }
 
@@ -163,7 +166,8 @@ class ParallelBondModel : public LinearBase {
   //     linear contact's force alone.
   // Flags: kTouching and kBonded here; a break's marks by the caller, from
   // `broke` and `tension`. Returns whether any bond broke.
-  bool batch(PairBlock& c, const Spheres& s, std::size_t from, std::size_t n, double dt_s, linear_batch::Batch& b,
+  bool batch(PairBlock& c, const double* __restrict records, std::size_t from, std::size_t n, double dt_s,
+             linear_batch::Batch& b,
              std::uint8_t* __restrict broke_out, std::uint8_t* __restrict tension_out) const {
     const std::int32_t* __restrict ci = c.i + from;
     const std::int32_t* __restrict cj = c.j + from;
@@ -189,43 +193,34 @@ class ParallelBondModel : public LinearBase {
     double* __restrict bond_mbz_col = column(kBondMbZ);
     const double* __restrict tensile = column(kTensileStrength);
     const double* __restrict shear_strength = column(kShearStrength);
-    const double* __restrict x = s.x.data();
-    const double* __restrict y = s.y.data();
-    const double* __restrict z = s.z.data();
-    const double* __restrict r = s.radius.data();
-    const double* __restrict vx = s.vx.data();
-    const double* __restrict vy = s.vy.data();
-    const double* __restrict vz = s.vz.data();
-    const double* __restrict wx = s.wx.data();
-    const double* __restrict wy = s.wy.data();
-    const double* __restrict wz = s.wz.data();
     const double half_dt = 0.5 * dt_s, beta = beta_;
     using dem::select;
     unsigned any_broke = 0;
 #pragma omp simd reduction(| : any_broke)
     for (std::size_t p = 0; p < n; ++p) {
-      const std::int32_t i = ci[p], j = cj[p];
+      const linear_batch::SphereView i{records, kRecordSize * static_cast<std::size_t>(ci[p])};
+      const linear_batch::SphereView j{records, kRecordSize * static_cast<std::size_t>(cj[p])};
       const bool has_bond = (flags[p] & dem::kBonded) != 0;
       // fill_pair_contact
-      const double dx = x[j] - x[i], dy = y[j] - y[i], dz = z[j] - z[i];
-      const double reach = r[i] + r[j], distance2 = dx * dx + dy * dy + dz * dz;
+      const double dx = j.x() - i.x(), dy = j.y() - i.y(), dz = j.z() - i.z();
+      const double reach = i.r() + j.r(), distance2 = dx * dx + dy * dy + dz * dz;
       const double distance = std::sqrt(distance2);
       const double inverse = 1.0 / distance;
       const double nx = inverse * dx, ny = inverse * dy, nz = inverse * dz;
       const double overlap = reach - distance;
-      const double arm_i = r[i] - 0.5 * overlap, arm_j = r[j] - 0.5 * overlap;
+      const double arm_i = i.r() - 0.5 * overlap, arm_j = j.r() - 0.5 * overlap;
       const double ax = arm_i * nx, ay = arm_i * ny, az = arm_i * nz;
-      const double vix = vx[i] + (wy[i] * az - wz[i] * ay);
-      const double viy = vy[i] + (wz[i] * ax - wx[i] * az);
-      const double viz = vz[i] + (wx[i] * ay - wy[i] * ax);
+      const double vix = i.vx() + (i.wy() * az - i.wz() * ay);
+      const double viy = i.vy() + (i.wz() * ax - i.wx() * az);
+      const double viz = i.vz() + (i.wx() * ay - i.wy() * ax);
       const double minus_arm_j = -arm_j;
       const double bx = minus_arm_j * nx, by = minus_arm_j * ny, bz = minus_arm_j * nz;
-      const double vjx = vx[j] + (wy[j] * bz - wz[j] * by);
-      const double vjy = vy[j] + (wz[j] * bx - wx[j] * bz);
-      const double vjz = vz[j] + (wx[j] * by - wy[j] * bx);
+      const double vjx = j.vx() + (j.wy() * bz - j.wz() * by);
+      const double vjy = j.vy() + (j.wz() * bx - j.wx() * bz);
+      const double vjz = j.vz() + (j.wx() * by - j.wy() * bx);
       const double rvx = vjx - vix, rvy = vjy - viy, rvz = vjz - viz;
-      const double msx = 0.5 * (wx[i] + wx[j]), msy = 0.5 * (wy[i] + wy[j]), msz = 0.5 * (wz[i] + wz[j]);
-      const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i], dvz = vz[j] - vz[i];
+      const double msx = 0.5 * (i.wx() + j.wx()), msy = 0.5 * (i.wy() + j.wy()), msz = 0.5 * (i.wz() + j.wz());
+      const double dvx = j.vx() - i.vx(), dvy = j.vy() - i.vy(), dvz = j.vz() - i.vz();
       const double about = msx * nx + msy * ny + msz * nz;
       const double psx = inverse * (ny * dvz - nz * dvy) + about * nx;
       const double psy = inverse * (nz * dvx - nx * dvz) + about * ny;
@@ -267,7 +262,7 @@ class ParallelBondModel : public LinearBase {
       const double bond_fn = bond_fn_col[p] - kn_b * area * rv_n * dt_s;
       double bfx, bfy, bfz;
       increment(bond_fsx_col[p], bond_fsy_col[p], bond_fsz_col[p], rvx, rvy, rvz, ks_b * area * dt_s, bfx, bfy, bfz);
-      const double rsx = wx[j] - wx[i], rsy = wy[j] - wy[i], rsz = wz[j] - wz[i];
+      const double rsx = j.wx() - i.wx(), rsy = j.wy() - i.wy(), rsz = j.wz() - i.wz();
       const double bond_mt = bond_mt_col[p] + ks_b * polar * (rsx * nx + rsy * ny + rsz * nz) * dt_s;
       double bmx, bmy, bmz;
       increment(bond_mbx_col[p], bond_mby_col[p], bond_mbz_col[p], rsx, rsy, rsz, kn_b * inertia * dt_s, bmx, bmy, bmz);

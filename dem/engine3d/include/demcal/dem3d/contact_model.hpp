@@ -51,6 +51,9 @@ inline unsigned shear_breaks(dem::PairFlags flags) { return (flags >> kShearBrea
 struct StepContext {
   double dt_s = 0;
   double time_s = 0;
+  // The spheres' records this step (sphere_records.hpp), for a vectorised
+  // law; nullptr when a caller (a test) gives none.
+  const double* records = nullptr;
 };
 
 // Where a block's sphere pair k puts what it gives: the force on sphere i
@@ -65,9 +68,12 @@ struct StepContext {
 struct PairForces {
   double *fx, *fy, *fz;
   double *mx, *my, *mz;  // two per pair
-  // Direct: the spheres' sums and the block's pair ends (nullptr when stored).
+  // Direct: the spheres' sums and the block's pair ends (nullptr when stored);
+  // sphere a's sums at a * sum_stride (the world keeps a sphere's six sums in
+  // one cache line: a pair's scatter then touches two lines, not twelve).
   double *sum_fx = nullptr, *sum_fy = nullptr, *sum_fz = nullptr, *sum_mx = nullptr, *sum_my = nullptr,
          *sum_mz = nullptr;
+  std::size_t sum_stride = 1;
   const std::int32_t *i = nullptr, *j = nullptr;
 
   // The same from pair `first` on (a block's, or a thread's part of it).
@@ -83,7 +89,7 @@ struct PairForces {
   void set(std::size_t k, Vec3 force, Vec3 moment_i, Vec3 moment_j) const {
     fx[k] = force.x, fy[k] = force.y, fz[k] = force.z;
     if (sum_fx) {
-      const auto a = static_cast<std::size_t>(i[k]), b = static_cast<std::size_t>(j[k]);
+      const std::size_t a = static_cast<std::size_t>(i[k]) * sum_stride, b = static_cast<std::size_t>(j[k]) * sum_stride;
       sum_fx[a] += force.x, sum_fy[a] += force.y, sum_fz[a] += force.z;
       sum_mx[a] += moment_i.x, sum_my[a] += moment_i.y, sum_mz[a] += moment_i.z;
       sum_fx[b] -= force.x, sum_fy[b] -= force.y, sum_fz[b] -= force.z;

@@ -12,9 +12,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "demcal/dem/select.hpp"
 #include "demcal/dem3d/linear_base.hpp"
+#include "demcal/dem3d/sphere_records.hpp"
 
 namespace demcal::dem3d::linear_batch {
 
@@ -33,9 +35,27 @@ struct Batch {
   alignas(64) double mjz[kBatch];
 };
 
+// A sphere's record (sphere_records.hpp), read by name: the records and the
+// record's first index (an index, not a pointer, so a loop over pairs
+// vectorises with gathers).
+struct SphereView {
+  const double* __restrict records;
+  std::size_t at;
+  double x() const { return records[at + kRecX]; }
+  double y() const { return records[at + kRecY]; }
+  double z() const { return records[at + kRecZ]; }
+  double r() const { return records[at + kRecRadius]; }
+  double vx() const { return records[at + kRecVx]; }
+  double vy() const { return records[at + kRecVy]; }
+  double vz() const { return records[at + kRecVz]; }
+  double wx() const { return records[at + kRecWx]; }
+  double wy() const { return records[at + kRecWy]; }
+  double wz() const { return records[at + kRecWz]; }
+};
+
 // The block's pairs [from, from + n): their shear forces and flags updated in
 // the state, their forces and moments into `b` (zero for a pair apart).
-inline void linear_law(PairBlock& c, const Spheres& s, std::size_t from, std::size_t n, double dt_s,
+inline void linear_law(PairBlock& c, const double* __restrict records, std::size_t from, std::size_t n, double dt_s,
                        Batch& __restrict b) {
   const std::int32_t* __restrict ci = c.i + from;
   const std::int32_t* __restrict cj = c.j + from;
@@ -47,41 +67,32 @@ inline void linear_law(PairBlock& c, const Spheres& s, std::size_t from, std::si
   double* __restrict shear_x = &c.column(kShearX, from);
   double* __restrict shear_y = &c.column(kShearY, from);
   double* __restrict shear_z = &c.column(kShearZ, from);
-  const double* __restrict x = s.x.data();
-  const double* __restrict y = s.y.data();
-  const double* __restrict z = s.z.data();
-  const double* __restrict r = s.radius.data();
-  const double* __restrict vx = s.vx.data();
-  const double* __restrict vy = s.vy.data();
-  const double* __restrict vz = s.vz.data();
-  const double* __restrict wx = s.wx.data();
-  const double* __restrict wy = s.wy.data();
-  const double* __restrict wz = s.wz.data();
   const double half_dt = 0.5 * dt_s;
 #pragma omp simd
   for (std::size_t p = 0; p < n; ++p) {
-    const std::int32_t i = ci[p], j = cj[p];
+    const SphereView i{records, kRecordSize * static_cast<std::size_t>(ci[p])};
+    const SphereView j{records, kRecordSize * static_cast<std::size_t>(cj[p])};
     // fill_pair_contact
-    const double dx = x[j] - x[i], dy = y[j] - y[i], dz = z[j] - z[i];
-    const double reach = r[i] + r[j], distance2 = dx * dx + dy * dy + dz * dz;
+    const double dx = j.x() - i.x(), dy = j.y() - i.y(), dz = j.z() - i.z();
+    const double reach = i.r() + j.r(), distance2 = dx * dx + dy * dy + dz * dz;
     const bool touching = distance2 < reach * reach;
     const double distance = std::sqrt(distance2);
     const double inverse = 1.0 / distance;
     const double nx = inverse * dx, ny = inverse * dy, nz = inverse * dz;
     const double overlap = reach - distance;
-    const double arm_i = r[i] - 0.5 * overlap, arm_j = r[j] - 0.5 * overlap;
+    const double arm_i = i.r() - 0.5 * overlap, arm_j = j.r() - 0.5 * overlap;
     const double ax = arm_i * nx, ay = arm_i * ny, az = arm_i * nz;  // arm_i n
-    const double vix = vx[i] + (wy[i] * az - wz[i] * ay);
-    const double viy = vy[i] + (wz[i] * ax - wx[i] * az);
-    const double viz = vz[i] + (wx[i] * ay - wy[i] * ax);
+    const double vix = i.vx() + (i.wy() * az - i.wz() * ay);
+    const double viy = i.vy() + (i.wz() * ax - i.wx() * az);
+    const double viz = i.vz() + (i.wx() * ay - i.wy() * ax);
     const double minus_arm_j = -arm_j;
     const double bx = minus_arm_j * nx, by = minus_arm_j * ny, bz = minus_arm_j * nz;  // -arm_j n
-    const double vjx = vx[j] + (wy[j] * bz - wz[j] * by);
-    const double vjy = vy[j] + (wz[j] * bx - wx[j] * bz);
-    const double vjz = vz[j] + (wx[j] * by - wy[j] * bx);
+    const double vjx = j.vx() + (j.wy() * bz - j.wz() * by);
+    const double vjy = j.vy() + (j.wz() * bx - j.wx() * bz);
+    const double vjz = j.vz() + (j.wx() * by - j.wy() * bx);
     const double rvx = vjx - vix, rvy = vjy - viy, rvz = vjz - viz;
-    const double msx = 0.5 * (wx[i] + wx[j]), msy = 0.5 * (wy[i] + wy[j]), msz = 0.5 * (wz[i] + wz[j]);
-    const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i], dvz = vz[j] - vz[i];
+    const double msx = 0.5 * (i.wx() + j.wx()), msy = 0.5 * (i.wy() + j.wy()), msz = 0.5 * (i.wz() + j.wz());
+    const double dvx = j.vx() - i.vx(), dvy = j.vy() - i.vy(), dvz = j.vz() - i.vz();
     const double turn_x = inverse * (ny * dvz - nz * dvy);
     const double turn_y = inverse * (nz * dvx - nx * dvz);
     const double turn_z = inverse * (nx * dvy - ny * dvx);
@@ -124,22 +135,69 @@ inline void linear_law(PairBlock& c, const Spheres& s, std::size_t from, std::si
   }
 }
 
+// The batch's forces into `out` for the block's pairs [from, from + n), in
+// pair order, as PairForces::set puts them (the pointers held in locals, so
+// the stores through them do not make the loop reload them). With `touches`,
+// a pair apart adds nothing to the spheres' sums (each starts at +0, which a
+// zero term leaves as it is).
+inline void put_batch(const PairForces& out, std::size_t from, std::size_t n, const Batch& b,
+                      const std::uint8_t* touches) {
+  double* __restrict fx = out.fx + from;
+  double* __restrict fy = out.fy + from;
+  double* __restrict fz = out.fz + from;
+  for (std::size_t p = 0; p < n; ++p) fx[p] = b.fx[p], fy[p] = b.fy[p], fz[p] = b.fz[p];
+  if (!out.sum_fx) {
+    double* __restrict mx = out.mx + 2 * from;
+    double* __restrict my = out.my + 2 * from;
+    double* __restrict mz = out.mz + 2 * from;
+    for (std::size_t p = 0; p < n; ++p) {
+      mx[2 * p] = b.mix[p], my[2 * p] = b.miy[p], mz[2 * p] = b.miz[p];
+      mx[2 * p + 1] = b.mjx[p], my[2 * p + 1] = b.mjy[p], mz[2 * p + 1] = b.mjz[p];
+    }
+    return;
+  }
+  double* __restrict sum_fx = out.sum_fx;
+  double* __restrict sum_fy = out.sum_fy;
+  double* __restrict sum_fz = out.sum_fz;
+  double* __restrict sum_mx = out.sum_mx;
+  double* __restrict sum_my = out.sum_my;
+  double* __restrict sum_mz = out.sum_mz;
+  const std::int32_t* __restrict ci = out.i + from;
+  const std::int32_t* __restrict cj = out.j + from;
+  const std::size_t stride = out.sum_stride;
+  for (std::size_t p = 0; p < n; ++p) {
+    if (touches && !touches[p]) continue;
+    const std::size_t i = static_cast<std::size_t>(ci[p]) * stride, j = static_cast<std::size_t>(cj[p]) * stride;
+    sum_fx[i] += b.fx[p], sum_fy[i] += b.fy[p], sum_fz[i] += b.fz[p];
+    sum_mx[i] += b.mix[p], sum_my[i] += b.miy[p], sum_mz[i] += b.miz[p];
+    sum_fx[j] -= b.fx[p], sum_fy[j] -= b.fy[p], sum_fz[j] -= b.fz[p];
+    sum_mx[j] += b.mjx[p], sum_my[j] += b.mjy[p], sum_mz[j] += b.mjz[p];
+  }
+}
+
+// Asks for the cache lines of the block's pairs [from, from + n)'s second
+// spheres' sums before the law runs, so they arrive while it computes: the
+// first sphere's sums stay in cache from pair to pair (the pairs run by it),
+// the second's are the misses of the scatter (half its time at 1e5 spheres).
+inline void prefetch_sums(const PairForces& out, std::size_t from, std::size_t n) {
+  if (!out.sum_fx) return;
+  for (std::size_t p = 0; p < n; ++p)
+    __builtin_prefetch(out.sum_fx + static_cast<std::size_t>(out.j[from + p]) * out.sum_stride, 1, 3);
+}
+
 // Whether each of the block's pairs [from, from + n) touches
 // (fill_pair_contact's test); returns how many do.
-inline std::size_t touching(const PairBlock& c, const Spheres& s, std::size_t from, std::size_t n,
+inline std::size_t touching(const PairBlock& c, const double* __restrict records, std::size_t from, std::size_t n,
                             std::uint8_t* __restrict touches) {
   const std::int32_t* __restrict ci = c.i + from;
   const std::int32_t* __restrict cj = c.j + from;
-  const double* __restrict x = s.x.data();
-  const double* __restrict y = s.y.data();
-  const double* __restrict z = s.z.data();
-  const double* __restrict r = s.radius.data();
   std::size_t count = 0;
 #pragma omp simd reduction(+ : count)
   for (std::size_t p = 0; p < n; ++p) {
-    const std::int32_t i = ci[p], j = cj[p];
-    const double dx = x[j] - x[i], dy = y[j] - y[i], dz = z[j] - z[i];
-    const double reach = r[i] + r[j];
+    const SphereView i{records, kRecordSize * static_cast<std::size_t>(ci[p])};
+    const SphereView j{records, kRecordSize * static_cast<std::size_t>(cj[p])};
+    const double dx = j.x() - i.x(), dy = j.y() - i.y(), dz = j.z() - i.z();
+    const double reach = i.r() + j.r();
     touches[p] = dx * dx + dy * dy + dz * dz < reach * reach;
     count += touches[p];
   }
@@ -150,12 +208,15 @@ inline std::size_t touching(const PairBlock& c, const Spheres& s, std::size_t fr
 // order. A batch where no pair touches only forgets its shear forces; a pair
 // apart adds nothing to the spheres' sums (each starts at +0, which a zero
 // term leaves as it is), so only touching pairs are added.
-inline void linear_sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, double dt_s) {
+inline void linear_sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) {
+  std::vector<double> own;
+  const double* records = step.records;
+  if (!records) own = sphere_records(s), records = own.data();
   Batch b;
   alignas(64) std::uint8_t touches[kBatch];
   for (std::size_t from = 0; from < c.size; from += kBatch) {
     const std::size_t n = std::min(kBatch, c.size - from);
-    if (touching(c, s, from, n, touches) == 0) {
+    if (touching(c, records, from, n, touches) == 0) {
       for (std::size_t p = 0; p < n; ++p) {
         c.flags[from + p] &= ~static_cast<dem::PairFlags>(dem::kTouching);
         c.column(kShearX, from + p) = c.column(kShearY, from + p) = c.column(kShearZ, from + p) = 0.0;
@@ -167,14 +228,9 @@ inline void linear_sphere_forces(PairBlock& c, const Spheres& s, const PairForce
       }
       continue;
     }
-    linear_law(c, s, from, n, dt_s, b);
-    for (std::size_t p = 0; p < n; ++p) {
-      if (out.sum_fx && !touches[p]) {
-        out.fx[from + p] = out.fy[from + p] = out.fz[from + p] = 0.0;
-        continue;
-      }
-      out.set(from + p, {b.fx[p], b.fy[p], b.fz[p]}, {b.mix[p], b.miy[p], b.miz[p]}, {b.mjx[p], b.mjy[p], b.mjz[p]});
-    }
+    prefetch_sums(out, from, n);
+    linear_law(c, records, from, n, step.dt_s, b);
+    put_batch(out, from, n, b, touches);
   }
 }
 
