@@ -506,7 +506,7 @@ inline double damped_velocity(double v, double force, double alpha, double to_ve
 // What a step's update of the spheres reads and writes.
 struct SphereArrays {
   double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz;
-  const double* sums;  // the summed forces and moments, kSumStride a sphere
+  const double* sums;  // the summed forces and moments, kSumStride a sphere, from sphere `lo` of update_spheres
   const double *mass, *inverse_mass, *inverse_inertia;
   const double *x_built, *y_built, *z_built;  // the positions at the last build
   const std::uint8_t* fixed;
@@ -558,12 +558,12 @@ double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, dou
     const bool still = fixed[i] != 0, moves = !still & (clump[i] < 0);  // & not &&: no branch
     const double m = mass[i];
     const double to_v = inverse_mass[i] * dt, to_w = inverse_inertia[i] * dt;
-    const double new_vx = damped_velocity(vx[i], sums[kSumStride * i + kSumFx] + m * g.x, alpha, to_v);
-    const double new_vy = damped_velocity(vy[i], sums[kSumStride * i + kSumFy] + m * g.y, alpha, to_v);
-    const double new_vz = damped_velocity(vz[i], sums[kSumStride * i + kSumFz] + m * g.z, alpha, to_v);
-    double new_wx = damped_velocity(wx[i], sums[kSumStride * i + kSumMx], alpha, to_w);
-    double new_wy = damped_velocity(wy[i], sums[kSumStride * i + kSumMy], alpha, to_w);
-    double new_wz = damped_velocity(wz[i], sums[kSumStride * i + kSumMz], alpha, to_w);
+    const double new_vx = damped_velocity(vx[i], sums[kSumStride * (i - lo) + kSumFx] + m * g.x, alpha, to_v);
+    const double new_vy = damped_velocity(vy[i], sums[kSumStride * (i - lo) + kSumFy] + m * g.y, alpha, to_v);
+    const double new_vz = damped_velocity(vz[i], sums[kSumStride * (i - lo) + kSumFz] + m * g.z, alpha, to_v);
+    double new_wx = damped_velocity(wx[i], sums[kSumStride * (i - lo) + kSumMx], alpha, to_w);
+    double new_wy = damped_velocity(wy[i], sums[kSumStride * (i - lo) + kSumMy], alpha, to_w);
+    double new_wz = damped_velocity(wz[i], sums[kSumStride * (i - lo) + kSumMz], alpha, to_w);
     if constexpr (kRollingLimits) rolling_friction_spin(new_wx, new_wy, new_wz, rolling_limit[i] * to_w);
     const double new_x = x[i] + new_vx * dt, new_y = y[i] + new_vy * dt, new_z = z[i] + new_vz * dt;
     vx[i] = dem::select(moves, new_vx, dem::select(still, 0.0, vx[i]));
@@ -590,34 +590,6 @@ void World::integrate() {
   const int team = threads_in_use_;
   const PairForceArrays& sp = in.sphere_pair_forces;
   const PairForceArrays& pp = in.wall_pair_forces;
-  // Each sphere's force and moment into the sums: its pairs in pair order (on
-  // one thread they are there already), then its wall pairs. The same sum on
-  // any thread and in any storage order. The force's sign by the entry's low
-  // bit (a product by +-1 is exact), the moment at the entry itself.
-  if (!in.direct) {
-    in.sums.resize(kSumStride * n);
-#pragma omp parallel for num_threads(team) if (team > 1) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
-      for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
-        const std::uint32_t entry = in.sum_entry[e];
-        const std::size_t k = entry >> 1;
-        const double sign = 1.0 - 2.0 * static_cast<double>(entry & 1u);
-        fx += sign * sp.fx[k], fy += sign * sp.fy[k], fz += sign * sp.fz[k];
-        mx += sp.mx[entry], my += sp.my[entry], mz += sp.mz[entry];
-      }
-      double* sum = &in.sums[kSumStride * i];
-      sum[kSumFx] = fx, sum[kSumFy] = fy, sum[kSumFz] = fz, sum[kSumMx] = mx, sum[kSumMy] = my, sum[kSumMz] = mz;
-    }
-  }
-  if (wall_pairs_.size() > 0)
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
-        const std::size_t k = in.wall_entry[e];
-        double* sum = &in.sums[kSumStride * i];
-        sum[kSumFx] += pp.fx[k], sum[kSumFy] += pp.fy[k], sum[kSumFz] += pp.fz[k];
-        sum[kSumMx] += pp.mx[2 * k], sum[kSumMy] += pp.my[2 * k], sum[kSumMz] += pp.mz[2 * k];
-      }
   // Type A rolling resistance: each touching pair's share of its spheres' couple limits, in pair order.
   in.rolling_limit.clear();
   if (std::any_of(models_.begin(), models_.end(), [](const auto& m) { return m->adds_rolling_limits(); })) {
@@ -629,30 +601,68 @@ void World::integrate() {
       models_[m]->add_rolling_limits(static_cast<const dem::ContactSet&>(wall_pairs_).block(m), spheres, true,
                                      in.rolling_limit.data());
   }
-  if (!clumps_.empty())  // a clump's members give their sums to their clump (integrate_clumps)
-    for (std::size_t i = 0; i < n; ++i)
-      if (spheres.clump[i] >= 0) {
-        const double* sum = &in.sums[kSumStride * i];
-        in.member_fx[i] = sum[kSumFx], in.member_fy[i] = sum[kSumFy], in.member_fz[i] = sum[kSumFz];
-        in.member_mx[i] = sum[kSumMx], in.member_my[i] = sum[kSumMy], in.member_mz[i] = sum[kSumMz];
-      }
-  // The free spheres' update, one vectorised loop over each thread's share.
+  // Each sphere's force and moment: its pairs in pair order, then its wall
+  // pairs. The same sum on any thread and in any storage order. On one thread
+  // the pairs are in the sums already; on several, each thread sums its
+  // spheres 64 at a time into a small buffer (the force's sign by the entry's
+  // low bit, a product by +-1 is exact; the moment at the entry itself) and
+  // moves them at once, while the buffer is in cache.
+  const auto add_walls = [&](std::size_t i, double* sum) {
+    for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
+      const std::size_t k = in.wall_entry[e];
+      sum[kSumFx] += pp.fx[k], sum[kSumFy] += pp.fy[k], sum[kSumFz] += pp.fz[k];
+      sum[kSumMx] += pp.mx[2 * k], sum[kSumMy] += pp.my[2 * k], sum[kSumMz] += pp.mz[2 * k];
+    }
+  };
+  const auto give_to_clump = [&](std::size_t i, const double* sum) {  // integrate_clumps moves the members
+    in.member_fx[i] = sum[kSumFx], in.member_fy[i] = sum[kSumFy], in.member_fz[i] = sum[kSumFz];
+    in.member_mx[i] = sum[kSumMx], in.member_my[i] = sum[kSumMy], in.member_mz[i] = sum[kSumMz];
+  };
+  if (in.direct && wall_pairs_.size() > 0)
+    for (std::size_t i = 0; i < n; ++i) add_walls(i, &in.sums[kSumStride * i]);
   Spheres& s = spheres;
-  const SphereArrays arrays{s.x.data(), s.y.data(), s.z.data(), s.vx.data(), s.vy.data(), s.vz.data(),
-                            s.wx.data(), s.wy.data(), s.wz.data(), in.sums.data(),
-                            s.mass.data(), in.inverse_mass.data(), in.inverse_inertia.data(), in.x_built.data(),
-                            in.y_built.data(), in.z_built.data(), s.fixed.data(), s.clump.data(),
-                            in.rolling_limit.empty() ? nullptr : in.rolling_limit.data()};
+  SphereArrays arrays{s.x.data(), s.y.data(), s.z.data(), s.vx.data(), s.vy.data(), s.vz.data(),
+                      s.wx.data(), s.wy.data(), s.wz.data(), nullptr,
+                      s.mass.data(), in.inverse_mass.data(), in.inverse_inertia.data(), in.x_built.data(),
+                      in.y_built.data(), in.z_built.data(), s.fixed.data(), s.clump.data(),
+                      in.rolling_limit.empty() ? nullptr : in.rolling_limit.data()};
   const double dt = dt_s_, alpha = settings_.damping;
   const Vec3 g = settings_.gravity_m_s2;
+  const bool direct = in.direct, clumps = !clumps_.empty();
   double max_move2 = in.max_move2;
-#pragma omp parallel num_threads(team) if (team > 1) reduction(max : max_move2)
+#pragma omp parallel num_threads(team) if (team > 1) reduction(max : max_move2) firstprivate(arrays)
   {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto parts = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t lo = n * t / parts, hi = n * (t + 1) / parts;
-    max_move2 = std::max(max_move2, arrays.rolling_limit ? update_spheres<true>(lo, hi, arrays, dt, alpha, g)
-                                                         : update_spheres<false>(lo, hi, arrays, dt, alpha, g));
+    constexpr std::size_t kChunk = 64;
+    alignas(64) double local[kChunk * kSumStride];
+    for (std::size_t first = lo; first < hi; first += kChunk) {
+      const std::size_t last = std::min(hi, first + kChunk);
+      if (direct) {
+        arrays.sums = &in.sums[kSumStride * first];
+      } else {
+        for (std::size_t i = first; i < last; ++i) {
+          double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
+          for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
+            const std::uint32_t entry = in.sum_entry[e];
+            const std::size_t k = entry >> 1;
+            const double sign = 1.0 - 2.0 * static_cast<double>(entry & 1u);
+            fx += sign * sp.fx[k], fy += sign * sp.fy[k], fz += sign * sp.fz[k];
+            mx += sp.mx[entry], my += sp.my[entry], mz += sp.mz[entry];
+          }
+          double* sum = &local[kSumStride * (i - first)];
+          sum[kSumFx] = fx, sum[kSumFy] = fy, sum[kSumFz] = fz, sum[kSumMx] = mx, sum[kSumMy] = my, sum[kSumMz] = mz;
+          add_walls(i, sum);
+        }
+        arrays.sums = local;
+      }
+      if (clumps)
+        for (std::size_t i = first; i < last; ++i)
+          if (s.clump[i] >= 0) give_to_clump(i, &arrays.sums[kSumStride * (i - first)]);
+      max_move2 = std::max(max_move2, arrays.rolling_limit ? update_spheres<true>(first, last, arrays, dt, alpha, g)
+                                                           : update_spheres<false>(first, last, arrays, dt, alpha, g));
+    }
   }
   if (!clumps_.empty()) integrate_clumps(max_move2);
   in.max_move2 = max_move2;
