@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <set>
 #include <random>
 
 #include <nlohmann/json.hpp>
@@ -148,6 +149,34 @@ TEST(World3D, TheNeighbourListHoldsEveryPairWithinTheSkin) {
       expected += dot(d, d) < reach * reach;
     }
   EXPECT_EQ(w.pairs().size(), expected);
+}
+
+// A few spheres far from the rest (two of them touching each other) make the
+// grid span the middle of the cloud and fall into its edge cells: still every
+// pair within the skin, far ones included, and nothing else.
+TEST(World3D, EscapedSpheresLoseNoPair) {
+  const Cloud placed = cloud(1200, 5);
+  World w;
+  w.assign(0, 0, w.add_model(ContactModelRegistry::instance().create(
+                     "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.5}}, "test")));
+  for (std::size_t k = 0; k < placed.placed.size(); ++k)
+    w.spheres.add_sphere(placed.placed[k].centre, placed.placed[k].radius, 2650, 0, static_cast<std::int64_t>(k));
+  const std::vector<Vec3> far = {{1000, 0.01, 0.01}, {1000.0019, 0.01, 0.01}, {-500, -500, 0.01}, {0.01, 0.01, 2000},
+                                 {0.0005, 0.0005, -0.003}};
+  for (std::size_t k = 0; k < far.size(); ++k) w.spheres.add_sphere(far[k], 0.001, 2650, 0, static_cast<std::int64_t>(5000 + k));
+  w.refresh();
+  std::set<std::pair<std::uint32_t, std::uint32_t>> expected, listed;
+  const Spheres& s = w.spheres;
+  for (std::size_t a = 0; a < s.size(); ++a)
+    for (std::size_t b = a + 1; b < s.size(); ++b) {
+      const Vec3 d = s.position(b) - s.position(a);
+      const double reach = s.radius[a] + s.radius[b] + w.skin_m();
+      if (dot(d, d) < reach * reach) expected.insert(std::minmax(s.id[a], s.id[b]));
+    }
+  for (std::size_t k = 0; k < w.pairs().size(); ++k)
+    listed.insert(std::minmax(s.id[static_cast<std::size_t>(w.pairs().i[k])], s.id[static_cast<std::size_t>(w.pairs().j[k])]));
+  EXPECT_EQ(listed, expected);
+  EXPECT_EQ(expected.count({5000u, 5001u}), 1u);  // the far pair is there
 }
 
 TEST(World3D, ModelsAreCheckedByTheirOwnRegistry) {

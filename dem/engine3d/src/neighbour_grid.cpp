@@ -9,6 +9,7 @@
 #include <numeric>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "demcal/core/error.hpp"
 #include "demcal/dem3d/world.hpp"
@@ -45,6 +46,31 @@ Grid make_grid(const Spheres& s, double cell_m) {
   }
   g.cell = cell_m;
   const double most_cells = 4.0 * static_cast<double>(s.size()) + 64;
+  const auto cells_over = [&](double xa, double xb, double ya, double yb, double za, double zb) {
+    return (std::floor((xb - xa) / g.cell) + 1) * (std::floor((yb - ya) / g.cell) + 1) *
+           (std::floor((zb - za) / g.cell) + 1);
+  };
+  if (cells_over(g.x0, x1, g.y0, y1, g.z0, z1) > most_cells && s.size() >= 1000) {
+    // A few spheres far from the rest (escaped from a vessel, flung out of a
+    // drum) would make every cell huge and the search quadratic. The grid
+    // then spans the middle 99.8 % of the spheres on each axis, a cell wider,
+    // and the rest fall into its edge cells: coordinate() clamps, which never
+    // puts two spheres closer than a cell more than one cell apart, so no pair
+    // is lost.
+    const auto middle = [&](const std::vector<double>& v, double& low, double& high) {
+      std::vector<double> sorted = v;
+      const std::size_t a = sorted.size() / 1000, b = sorted.size() - 1 - sorted.size() / 1000;
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(a), sorted.end());
+      const double q_low = sorted[a];
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(b), sorted.end());
+      const double q_high = sorted[b];
+      low = std::max(low, q_low - g.cell);
+      high = std::min(high, q_high + g.cell);
+    };
+    middle(s.x, g.x0, x1);
+    middle(s.y, g.y0, y1);
+    middle(s.z, g.z0, z1);
+  }
   for (;;) {
     g.nx = static_cast<std::int64_t>((x1 - g.x0) / g.cell) + 1;
     g.ny = static_cast<std::int64_t>((y1 - g.y0) / g.cell) + 1;
