@@ -28,14 +28,14 @@ import time
 
 import numpy as np
 
-from . import calibrate_runs, commands, executables, kriging, outputs, trust_region
+from . import calibrate_runs, commands, executables, outputs, trust_region
+from . import searches
+from .calibrate_limits import INITIAL_RADIUS, MAX_ROUNDS
 from .calibrate_report import pct, report
 from .calibration_problem import Problem
 from .errors import Problems, StudyError, fail, load_json
 from .files import write_target
 
-INITIAL_RADIUS = 0.25    # coded units: +- a quarter of each coordinate's half-range (about a decade of a ratio)
-SMALLEST_RADIUS = 0.01
 # The local fit weighs points within about this many coded units even when the step box is smaller: slopes from
 # a few close points would be mostly specimen noise, and a correction step or a scale factor built on them misses.
 SMALLEST_FIT_RADIUS = 0.125
@@ -44,7 +44,6 @@ CRN_FRACTION = 1.0 / 3.0  # specimen 1 must meet the targets within this fractio
 # initial box, so their scatter is partly curvature, and an allowance near the tolerance stopped searches at the
 # band's edge (wang2017_sandstone stopped at +5.5 % before this cap, docs/explanation/calibration_benchmark.md).
 NOISE_CAP_FRACTION = 0.5
-MAX_ROUNDS = 12
 FIRST_VERIFICATION_SEEDS = 5
 MAX_VERIFICATION_SEEDS = 20
 CHECK_SEEDS = 4  # specimens of each check test at the solution
@@ -352,8 +351,8 @@ class Calibration:
         if best is None:
             return self.finish("failed", "no DEM point of the first design ran", EXIT_FAILED)
         centre = np.array(best["u"])
-        search = self.search_kriging if self.config.get("strategy") == "kriging" else self.search_trust_region
-        centre, radius, best, converged, blocked = search(centre, best)
+        search = searches.by_name(self.config.get("strategy", "trust-region"))
+        centre, radius, best, converged, blocked = search.run(self, centre, best)
         self.crn = {"converged": converged, "centre": centre.tolist(), "rounds": len(self.rounds), "residuals_pct":
                     (100 * self.measured_residuals(best)).tolist()}
         if not converged and blocked:
@@ -366,60 +365,6 @@ class Calibration:
                                centre=centre)
         return self.verify_loop(centre, radius)
 
-    def search_trust_region(self, centre, best, label="r"):
-        """Rounds of one Gauss-Newton candidate and one poising point on specimen 1 (section 3 of the docs), stored
-        as rounds/LABEL02, LABEL03, ... Returns (centre, radius, best point, converged, blocked at the bounds)."""
-        p = self.problem
-        converged, blocked = False, False
-        radius = INITIAL_RADIUS
-        reserve = self.verification_reserve()
-        rejected = 0
-        for k in range(2, 2 + MAX_ROUNDS):
-            current = self.measured_residuals(best)
-            model = self.fit(centre, radius)
-            if self.close_enough(current, self.residual_noise(model)) or (
-                    rejected >= 2 and np.max(np.abs(current)) <= self.tolerance):
-                converged = True
-                break
-            if self.runs + 2 * self.tests > self.budget - reserve:
-                blocked = False  # stopped by the budget, not by the bounds
-                break
-            offset = np.zeros(len(p.modelled_outputs()))
-            r0, jac = self.jacobian(model.significant(), centre, offset)
-            delta, predicted, held = trust_region.step(r0, jac, centre, radius)
-            candidate = np.clip(centre + delta, -1, 1)
-            at_bounds = [p.coordinates[i].name for i in held if abs(candidate[i]) >= 1 - 1e-9]
-            step_length = float(np.max(np.abs(delta))) if len(delta) else 0.0
-            if at_bounds and step_length < SMALLEST_RADIUS and np.max(np.abs(predicted)) > self.tolerance:
-                blocked = True  # the model would leave the space to go on: nothing left to try inside it
-                break
-            s, _, _ = self.scale_at(model, candidate, offset)
-            poise = np.clip(candidate + radius * trust_region.poising_direction(
-                [q["u"] for q in self.points], candidate, radius), -1, 1)
-            sp, _, _ = self.scale_at(model, poise, offset)
-            added = self.run_round(f"{label}{k:02d}", [(candidate, s), (poise, sp)])
-            measured = self.measured_residuals(added[0])
-            phi_now = float(np.sum(current ** 2))
-            phi_new = float(np.sum(measured ** 2)) if measured is not None else math.inf
-            phi_pred = float(np.sum(np.asarray(predicted) ** 2))
-            radius, accepted = trust_region.update_radius(radius, phi_now - phi_new, phi_now - phi_pred, step_length,
-                                                          smallest=SMALLEST_RADIUS, largest=1.0)
-            if accepted:
-                centre, best = candidate, added[0]
-            rejected = 0 if accepted else rejected + 1
-            self.rounds.append({"round": k if label == "r" else f"{label}{k}",
-                                "centre_residuals_pct": (100 * current).tolist(),
-                                "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
-                                "predicted_residuals_pct": (100 * np.asarray(predicted)).tolist(),
-                                "accepted": accepted, "radius": radius, "held_at_bounds": at_bounds,
-                                "scale": s, "runs": self.runs, "bounded_scale": self.bounded_scale})
-            self.say(f"round {k}: candidate " + self.format_residuals(measured) +
-                     f" ({'accepted' if accepted else 'rejected'}), radius {radius:.3g}, {self.runs} runs")
-            blocked = bool(at_bounds) and np.max(np.abs(predicted)) > self.tolerance
-            if radius <= SMALLEST_RADIUS and not accepted:
-                break
-        return centre, radius, best, converged, blocked
-
     def close_enough(self, residuals, noise):
         """Specimen 1 meets the dimensionless targets within a third of the tolerance, or within what the scatter of
         nearby points lets a model tell apart, capped at half the tolerance (the verification's offset does the
@@ -429,85 +374,6 @@ class Calibration:
 
     def verification_reserve(self):
         return min((FIRST_VERIFICATION_SEEDS + 10) * self.tests, self.budget // 3)
-
-    def search_kriging(self, centre, best):
-        """The alternative: Gaussian processes of the responses over every point on specimen 1, and each round the
-        two points of largest expected improvement of the misfit (the second by the kriging believer: the first
-        added at its predicted mean), inside a box of +-2 initial radii around the best point. Returns as
-        search_trust_region (the radius is the initial one: the verification's local model uses it)."""
-        p = self.problem
-        names = p.modelled_outputs()
-        a, c = self.residual_map()
-        misfit = lambda z: ((z @ a.T + c) ** 2).sum(axis=-1)  # noqa: E731
-        converged, blocked = False, False
-        reserve = self.verification_reserve()
-        half = 2 * INITIAL_RADIUS
-        d = len(centre)
-        stale = 0
-        for k in range(2, 2 + MAX_ROUNDS):
-            rows = self.usable()
-            x = np.array([r[0] for r in rows])
-            z = np.array([r[1] for r in rows])
-            current = self.measured_residuals(best)
-            gps = [kriging.fit(x, z[:, j], seed=k) for j in range(len(names))]
-            noise = np.sqrt(((a ** 2) * np.array([gp.nugget2 for gp in gps])).sum(axis=1))
-            if self.close_enough(current, noise):
-                converged = True
-                break
-            if self.runs + 2 * self.tests > self.budget - reserve:
-                break
-            if stale >= 2 and self.nowhere_within_tolerance(gps, d) and np.any(np.abs(centre) >= 0.98):
-                blocked = True  # two rounds without a better point, and the GPs see nothing better anywhere
-                break
-            rng = np.random.default_rng(k)
-            low, high = np.maximum(centre - half, -1.0), np.minimum(centre + half, 1.0)
-            candidates = np.vstack([rng.uniform(low, high, size=(3000, d)),
-                                    np.clip(centre + 0.05 * rng.standard_normal((1000, d)), low, high)])
-            best_misfit = float(np.sum(current ** 2))
-            ei, mean = kriging.expected_improvement(gps, misfit, candidates, best_misfit, seed=k)
-            # No draw improves anywhere: take the lowest predicted misfit rather than an arbitrary candidate.
-            first = int(np.argmax(ei)) if np.max(ei) > 0 else int(np.argmin(misfit(mean)))
-            believed = [kriging.GP(np.vstack([x, candidates[first]]), np.append(z[:, j], mean[first, j]), gp.length,
-                                   gp.signal2, gp.nugget2) for j, gp in enumerate(gps)]
-            ei2, mean2 = kriging.expected_improvement(believed, misfit, candidates, best_misfit, seed=k)
-            ei2[first] = -1.0
-            if np.max(ei2) > 0:
-                second = int(np.argmax(ei2))
-            else:
-                order = np.argsort(misfit(mean2))
-                second = int(order[1] if order[0] == first else order[0])
-            picks = [candidates[first], candidates[second]]
-            entries = []
-            for u in picks:
-                zu = dict(zip(names, [gp.predict(u[None, :])[0][0] for gp in gps]))
-                s = p.scale_for(zu)
-                lo, hi = p.scale_interval(u)
-                entries.append((u, min(max(s, lo), hi)))
-            added = self.run_round(f"r{k:02d}", entries)
-            improved = False
-            for q in added:
-                r = self.measured_residuals(q)
-                if r is not None and float(np.sum(r ** 2)) < float(np.sum(self.measured_residuals(best) ** 2)):
-                    best, centre, improved = q, np.array(q["u"]), True
-            stale = 0 if improved else stale + 1
-            measured = self.measured_residuals(added[0]) if added else None
-            self.rounds.append({"round": k, "centre_residuals_pct": (100 * current).tolist(),
-                                "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
-                                "predicted_residuals_pct": (100 * (mean[first] @ a.T + c)).tolist(),
-                                "accepted": improved, "radius": half, "held_at_bounds": [],
-                                "expected_improvement": float(ei[first]), "scale": entries[0][1], "runs": self.runs})
-            self.say(f"round {k}: EI points " + self.format_residuals(measured) +
-                     f" ({'improved' if improved else 'no better'}), best " +
-                     self.format_residuals(self.measured_residuals(best)) + f", {self.runs} runs")
-        return centre, INITIAL_RADIUS, best, converged, blocked
-
-    def nowhere_within_tolerance(self, gps, d):
-        """Whether the GPs' means miss the tolerance on some target everywhere in the space (20,000 points,
-        seeded): the tolerance applies to each residual."""
-        a, c = self.residual_map()
-        anywhere = np.random.default_rng(0).uniform(-1, 1, size=(20000, d))
-        means = np.stack([gp.predict(anywhere)[0] for gp in gps], axis=1)
-        return float(np.min(np.max(np.abs(means @ a.T + c), axis=1))) > self.tolerance
 
     def residual_map(self):
         """The residuals are affine in the modelled responses: r = A z + c."""
@@ -568,8 +434,8 @@ class Calibration:
                          f"({interval[0]:.4g} to {interval[1]:.4g}): searching on with the scale at its bound and "
                          f"{p.scale_target} as a residual")
                 best = self.best_point()  # by the residuals with the scale term now
-                centre, radius, best, converged, blocked = self.search_trust_region(np.array(best["u"]), best,
-                                                                                    label="b")
+                centre, radius, best, converged, blocked = searches.by_name("trust-region").run(
+                    self, np.array(best["u"]), best, label="b")
                 self.crn = dict(self.crn or {}, bounded={
                     "converged": converged, "centre": centre.tolist(), "residuals_pct":
                     None if self.measured_residuals(best) is None else (100 * self.measured_residuals(best)).tolist()})
@@ -776,7 +642,7 @@ class Calibration:
         return {n: {"lowest_error_pct": lo, "highest_error_pct": hi} for n, (lo, hi) in out.items()}
 
 
-STRATEGIES = ("trust-region", "kriging")
+STRATEGIES = searches.NAMES
 
 
 def number_option(value, what, problems, whole=False):

@@ -125,7 +125,7 @@ def verify(tools, solution, scene, space, verification, work, out, md=None, csv=
 
 
 def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=None, fixed=None, scale_parameter=None,
-              check_resolution=None, check_tests=()):
+              check_resolution=None, check_tests=(), search=None):
     """python -m demcal_study calibrate: the trust-region calibration (docs/explanation/calibration_method.md) of a
     "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget)."""
     args = stage(tools, "calibrate", "--scene", scene)
@@ -142,6 +142,8 @@ def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=No
         args += ["--check-resolution", repr(check_resolution)]
     for path in check_tests:
         args += ["--check-test", path]
+    if search and search != "trust-region":  # the default stays off the line, so stored calibrations resume
+        args += ["--strategy", search]
     return args + ["--name", name, "--out-root", out_root]
 
 

@@ -129,7 +129,7 @@ def trust_region_rules(study, scene, out):
                               space=study.get("space"), fixed=study.get("fixed"),
                               scale_parameter=study.get("scale_parameter"),
                               check_resolution=study.get("check_resolution"),
-                              check_tests=study.get("check_tests", []))
+                              check_tests=study.get("check_tests", []), search=study.get("search"))
     code = " ".join(os.path.join(os.path.relpath(PACKAGE), name) for name in TRUST_REGION_CODE)
     return [f"$(D)/report.md: $(D)/config/study.json {scene_files(files[0])} {' '.join(files[1:])} {code}",
             "\t" + for_make(args) + "; code=$$?; [ $$code -eq 0 ] || [ $$code -eq 3 ] || [ $$code -eq 4 ]",

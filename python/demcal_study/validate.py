@@ -20,7 +20,7 @@ def validate(study, path):
         return validate_trust_region(study, where)
     if "space" not in study:
         fail(f"{where}: missing \"space\" (the parameter space file)")
-    for key in ("budget", "scale_parameter", "check_resolution", "check_tests"):
+    for key in ("budget", "scale_parameter", "check_resolution", "check_tests", "search"):
         if key in study:
             fail(f"{where}: \"{key}\" applies to strategy trust_region only")
     if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):

@@ -227,3 +227,22 @@ def test_a_trust_region_study_plans_one_calibration_into_its_folder(tmp_path, bi
     assert recipe[0].endswith("; code=$$?; [ $$code -eq 0 ] || [ $$code -eq 3 ] || [ $$code -eq 4 ]")
     rule = [line for line in plan.splitlines() if line.startswith("$(D)/report.md:")]
     assert len(rule) == 1 and "data/scenes/brazilian_rock_fj.json" in rule[0] and "mohr.py" in rule[0]
+
+
+def test_a_trust_region_study_picks_its_search(tmp_path, bin_dir):
+    # "search": "kriging" reaches make calibrate's --strategy; the default stays off the line (stored
+    # calibrations resume); a surrogate study has no search; an unknown one is named.
+    study = edited(four_targets, lambda d: d.update(search="kriging"))
+    path = tmp_path / "kriging.json"
+    path.write_text(json.dumps(study))
+    out = tmp_path / "studies" / "k"
+    done = run_study_layer(["plan", str(path), str(out)], bin_dir)
+    assert done.returncode == 0, done.stderr
+    recipe = [line for line in (out / "plan.mk").read_text().splitlines() if "demcal_study calibrate" in line]
+    assert len(recipe) == 1 and "--strategy kriging" in recipe[0]
+    done = run_study_layer(["plan", "data/studies/rock_four_targets.json", str(tmp_path / "studies" / "d")], bin_dir)
+    assert "--strategy" not in (tmp_path / "studies" / "d" / "plan.mk").read_text()
+    assert '"search" applies to strategy trust_region only' in plan_error(
+        tmp_path, edited(demo, lambda d: d.update(search="kriging")), bin_dir)
+    assert "search must be trust-region or kriging" in plan_error(
+        tmp_path, edited(four_targets, lambda d: d.update(search="bayes")), bin_dir)
