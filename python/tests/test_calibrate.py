@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from demcal_study import calibrate, calibrate_runs, commands, executables, outputs, trust_region
+from demcal_study import calibrate, calibrate_runs, calibrate_verify, commands, executables, outputs, trust_region
 from demcal_study.calibration_problem import Problem
 from demcal_study.calibrate_report import report
 from demcal_study.errors import StudyError
@@ -523,22 +523,22 @@ def test_the_offset_is_a_trimmed_mean_that_one_far_seed_does_not_move():
     clean = rng.normal(0.0, 0.012, size=(19, 2))
     far = np.vstack([clean, [[0.0, 0.33]]])
     assert abs(far[:, 1].mean() - clean[:, 1].mean()) > 0.015
-    assert abs(calibrate.trimmed_mean(far, calibrate.OFFSET_TRIM)[1] - np.median(clean[:, 1])) < 0.006
+    assert abs(calibrate_verify.trimmed_mean(far, calibrate_verify.OFFSET_TRIM)[1] - np.median(clean[:, 1])) < 0.006
     # Five seeds lose the lowest and the highest; two or three seeds keep them all.
-    np.testing.assert_allclose(calibrate.trimmed_mean([[1.0], [2.0], [3.0], [4.0], [100.0]], 0.2), [3.0])
-    np.testing.assert_allclose(calibrate.trimmed_mean([[1.0], [2.0], [9.0]], 0.2), [4.0])
+    np.testing.assert_allclose(calibrate_verify.trimmed_mean([[1.0], [2.0], [3.0], [4.0], [100.0]], 0.2), [3.0])
+    np.testing.assert_allclose(calibrate_verify.trimmed_mean([[1.0], [2.0], [9.0]], 0.2), [4.0])
 
 
 def test_the_secant_update_takes_the_measured_change_along_the_step_and_keeps_the_rest():
     jac = np.array([[1.0, 0.0], [0.0, 2.0]])
     c1, c2 = np.array([0.0, 0.0]), np.array([0.5, 0.0])
     r1, r2 = np.array([0.1, 0.2]), np.array([0.1 + 0.8, 0.2 + 0.05])  # along the step: 1.6 and 0.1 per unit
-    new = calibrate.secant_update(jac, (c1, r1), (c2, r2))
+    new = calibrate_verify.secant_update(jac, (c1, r1), (c2, r2))
     np.testing.assert_allclose(new @ (c2 - c1), r2 - r1)
     np.testing.assert_allclose(new[:, 1], jac[:, 1])  # across the step: unchanged
     # No step, or residual vectors of another length (the bounded scale term came on): as it was.
-    np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c1, r2)), jac)
-    np.testing.assert_array_equal(calibrate.secant_update(jac, (c1, r1), (c2, np.append(r2, 0.0))), jac)
+    np.testing.assert_array_equal(calibrate_verify.secant_update(jac, (c1, r1), (c1, r2)), jac)
+    np.testing.assert_array_equal(calibrate_verify.secant_update(jac, (c1, r1), (c2, np.append(r2, 0.0))), jac)
 
 
 def test_an_invocation_stopped_by_an_error_still_counts_its_wall_time(fake, tmp_path, bin_dir, monkeypatch):
@@ -573,29 +573,29 @@ def test_the_secant_update_keeps_only_the_part_of_a_mismatch_its_means_tell_from
     # Along the step the Jacobian expects +0.5 and 0.0; the means measured +0.5 + 0.03 and 0.0 + 0.2.
     r2 = np.array([0.1 + 0.5 + 0.03, 0.2 + 0.2])
     var1, var2 = np.array([0.02 ** 2, 0.01 ** 2]), np.array([0.02 ** 2, 0.01 ** 2])
-    new = calibrate.secant_update(jac, (c1, r1, var1), (c2, r2, var2))
+    new = calibrate_verify.secant_update(jac, (c1, r1, var1), (c2, r2, var2))
     # First residual: a mismatch of 0.03 against a noise SD of 0.028 keeps 1 - 0.0008 / 0.0009 of it.
     # Second: 0.2 against 0.014 keeps 1 - 0.0002 / 0.04 = 99.5 %.
     np.testing.assert_allclose(new @ (c2 - c1) - jac @ (c2 - c1), [0.03 * (1 - 0.0008 / 0.0009), 0.2 * 0.995])
     np.testing.assert_allclose(new[:, 1], jac[:, 1])
     # A mismatch smaller than its noise changes nothing; without variances the whole mismatch is taken.
-    quiet = calibrate.secant_update(jac, (c1, r1, var1), (c2, np.array([0.1 + 0.5 + 0.02, 0.2]), var2))
+    quiet = calibrate_verify.secant_update(jac, (c1, r1, var1), (c2, np.array([0.1 + 0.5 + 0.02, 0.2]), var2))
     np.testing.assert_allclose(quiet, jac)
-    np.testing.assert_allclose(calibrate.secant_update(jac, (c1, r1), (c2, r2)) @ (c2 - c1), r2 - r1)
+    np.testing.assert_allclose(calibrate_verify.secant_update(jac, (c1, r1), (c2, r2)) @ (c2 - c1), r2 - r1)
 
 
 def test_the_trimmed_mean_variance_is_the_plain_means_without_a_cut_and_matches_repeated_trimmed_means():
     rng = np.random.default_rng(11)
     rows = rng.normal(0.0, 1.0, size=(20, 2))
-    np.testing.assert_allclose(calibrate.trimmed_mean_variance(rows, 0.0), rows.var(axis=0, ddof=1) / 20)
+    np.testing.assert_allclose(calibrate_verify.trimmed_mean_variance(rows, 0.0), rows.var(axis=0, ddof=1) / 20)
     # Over 4,000 samples of 20 normal values, the 20 %-trimmed mean's variance (large-n theory: 1.144 / 20)
     # against the estimate averaged over the samples: within 10 %.
     samples = rng.normal(0.0, 1.0, size=(4000, 20, 1))
-    means = np.array([calibrate.trimmed_mean(s, calibrate.OFFSET_TRIM)[0] for s in samples])
-    estimates = np.array([calibrate.trimmed_mean_variance(s, calibrate.OFFSET_TRIM)[0] for s in samples])
+    means = np.array([calibrate_verify.trimmed_mean(s, calibrate_verify.OFFSET_TRIM)[0] for s in samples])
+    estimates = np.array([calibrate_verify.trimmed_mean_variance(s, calibrate_verify.OFFSET_TRIM)[0] for s in samples])
     assert abs(estimates.mean() / means.var(ddof=1) - 1.0) < 0.10
     assert 1.05 / 20 < means.var(ddof=1) < 1.35 / 20
-    assert np.isinf(calibrate.trimmed_mean_variance([[1.0]], 0.2)).all()
+    assert np.isinf(calibrate_verify.trimmed_mean_variance([[1.0]], 0.2)).all()
 
 
 def test_a_mean_met_with_an_interval_too_wide_is_noisy_and_says_how_many_disks_would_do(fake, tmp_path, bin_dir,
@@ -612,9 +612,9 @@ def test_a_mean_met_with_an_interval_too_wide_is_noisy_and_says_how_many_disks_w
     with open(os.path.join(out, "verification.json")) as f:
         final = json.load(f)["outputs"]["nu"]
     assert final["half_width_pct"] > 5
-    factor = calibrate.disk_factor_for(final["half_width_pct"], 0.05, 20, 20)
+    factor = calibrate_verify.disk_factor_for(final["half_width_pct"], 0.05, 20, 20)
     assert f"on 20 seeds a specimen with about {factor:.1f}x the disks" in solution["why"]
-    assert calibrate.disk_factor_for(10.0, 0.05, 20, 20) == pytest.approx(4.0)  # twice the half-width, 4x the disks
+    assert calibrate_verify.disk_factor_for(10.0, 0.05, 20, 20) == pytest.approx(4.0)  # twice the half-width, 4x the disks
     # 8.5 % on the 11 seeds a budget left is a 12.65 % scatter per seed: 5.92 % on 20 seeds, so 1.40x the disks.
-    assert calibrate.disk_factor_for(8.5, 0.05, 11, 20) == pytest.approx((8.5 * math.sqrt(11) / 2.228 * 2.093
+    assert calibrate_verify.disk_factor_for(8.5, 0.05, 11, 20) == pytest.approx((8.5 * math.sqrt(11) / 2.228 * 2.093
                                                                            / math.sqrt(20) / 5) ** 2, rel=2e-3)
