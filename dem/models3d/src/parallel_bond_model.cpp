@@ -201,48 +201,16 @@ class ParallelBondModel : public LinearBase {
       const linear_batch::SphereView i{records, kRecordSize * static_cast<std::size_t>(ci[p])};
       const linear_batch::SphereView j{records, kRecordSize * static_cast<std::size_t>(cj[p])};
       const bool has_bond = (flags[p] & dem::kBonded) != 0;
-      // fill_pair_contact
-      const double dx = j.x() - i.x(), dy = j.y() - i.y(), dz = j.z() - i.z();
-      const double reach = i.r() + j.r(), distance2 = dx * dx + dy * dy + dz * dz;
-      const double distance = std::sqrt(distance2);
-      const double inverse = 1.0 / distance;
-      const double nx = inverse * dx, ny = inverse * dy, nz = inverse * dz;
-      const double overlap = reach - distance;
-      const double arm_i = i.r() - 0.5 * overlap, arm_j = j.r() - 0.5 * overlap;
-      const double ax = arm_i * nx, ay = arm_i * ny, az = arm_i * nz;
-      const double vix = i.vx() + (i.wy() * az - i.wz() * ay);
-      const double viy = i.vy() + (i.wz() * ax - i.wx() * az);
-      const double viz = i.vz() + (i.wx() * ay - i.wy() * ax);
-      const double minus_arm_j = -arm_j;
-      const double bx = minus_arm_j * nx, by = minus_arm_j * ny, bz = minus_arm_j * nz;
-      const double vjx = j.vx() + (j.wy() * bz - j.wz() * by);
-      const double vjy = j.vy() + (j.wz() * bx - j.wx() * bz);
-      const double vjz = j.vz() + (j.wx() * by - j.wy() * bx);
-      const double rvx = vjx - vix, rvy = vjy - viy, rvz = vjz - viz;
-      const double msx = 0.5 * (i.wx() + j.wx()), msy = 0.5 * (i.wy() + j.wy()), msz = 0.5 * (i.wz() + j.wz());
-      const double dvx = j.vx() - i.vx(), dvy = j.vy() - i.vy(), dvz = j.vz() - i.vz();
-      const double about = msx * nx + msy * ny + msz * nz;
-      const double psx = inverse * (ny * dvz - nz * dvy) + about * nx;
-      const double psy = inverse * (nz * dvx - nx * dvz) + about * ny;
-      const double psz = inverse * (nx * dvy - ny * dvx) + about * nz;
-      const double hx = half_dt * psx, hy = half_dt * psy, hz = half_dt * psz;
-      const double factor = 2.0 - 2.0 * (hx * hx + hy * hy + hz * hz);
-      // A stored tangential vector turned with the contact plane and grown by
-      // stiffness_dt times the tangential part of a rate (incremented_shear).
+      const linear_batch::LaneGeometry g = linear_batch::lane_geometry(i, j);
+      const linear_batch::LaneTurn turn = linear_batch::lane_turn(g, half_dt);
+      const double nx = g.nx, ny = g.ny, nz = g.nz, overlap = g.overlap, arm_i = g.arm_i, arm_j = g.arm_j;
+      const double rvx = g.rvx, rvy = g.rvy, rvz = g.rvz;
       const auto increment = [&](double sx, double sy, double sz, double rx, double ry, double rz, double stiffness_dt,
                                  double& ox, double& oy, double& oz) {
-        const double cx = sx + (hy * sz - hz * sy), cy = sy + (hz * sx - hx * sz), cz = sz + (hx * sy - hy * sx);
-        const double tx = sx + factor * (hy * cz - hz * cy);
-        const double ty = sy + factor * (hz * cx - hx * cz);
-        const double tz = sz + factor * (hx * cy - hy * cx);
-        const double along = tx * nx + ty * ny + tz * nz;
-        const double rate_n = rx * nx + ry * ny + rz * nz;
-        ox = (tx - along * nx) + stiffness_dt * (rx - rate_n * nx);
-        oy = (ty - along * ny) + stiffness_dt * (ry - rate_n * ny);
-        oz = (tz - along * nz) + stiffness_dt * (rz - rate_n * nz);
+        linear_batch::lane_increment(g, turn, sx, sy, sz, rx, ry, rz, stiffness_dt, ox, oy, oz);
       };
       // The linear contact (linear_shear_force), kept while the spheres touch.
-      const bool touching = (has_bond & (overlap > 0)) | (!has_bond & (distance2 < reach * reach));  // & |: no branch
+      const bool touching = (has_bond & (overlap > 0)) | (!has_bond & (g.distance2 < g.reach * g.reach));  // & |: no branch
       const double squeeze = overlap - reference[p];
       const double fn_linear = kn[p] * select(0.0 < squeeze, squeeze, 0.0);
       double lx, ly, lz;

@@ -53,6 +53,76 @@ struct SphereView {
   double wz() const { return records[at + kRecWz]; }
 };
 
+// A pair's contact geometry in a vectorised loop: fill_pair_contact's
+// arithmetic (pair_contact.hpp), term for term, whether the spheres touch or
+// not (the caller selects).
+struct LaneGeometry {
+  double distance2, reach;  // |d|^2 and the radii summed
+  double nx, ny, nz;        // unit normal from i to j
+  double overlap, arm_i, arm_j;
+  double rvx, rvy, rvz;  // j's contact point's velocity relative to i's
+  double psx, psy, psz;  // the contact plane's spin
+};
+
+[[gnu::always_inline]] inline LaneGeometry lane_geometry(const SphereView& i, const SphereView& j) {
+  LaneGeometry g;
+  const double dx = j.x() - i.x(), dy = j.y() - i.y(), dz = j.z() - i.z();
+  g.reach = i.r() + j.r();
+  g.distance2 = dx * dx + dy * dy + dz * dz;
+  const double distance = std::sqrt(g.distance2);
+  const double inverse = 1.0 / distance;
+  g.nx = inverse * dx, g.ny = inverse * dy, g.nz = inverse * dz;
+  g.overlap = g.reach - distance;
+  g.arm_i = i.r() - 0.5 * g.overlap, g.arm_j = j.r() - 0.5 * g.overlap;
+  const double ax = g.arm_i * g.nx, ay = g.arm_i * g.ny, az = g.arm_i * g.nz;  // arm_i n
+  const double vix = i.vx() + (i.wy() * az - i.wz() * ay);
+  const double viy = i.vy() + (i.wz() * ax - i.wx() * az);
+  const double viz = i.vz() + (i.wx() * ay - i.wy() * ax);
+  const double minus_arm_j = -g.arm_j;
+  const double bx = minus_arm_j * g.nx, by = minus_arm_j * g.ny, bz = minus_arm_j * g.nz;  // -arm_j n
+  const double vjx = j.vx() + (j.wy() * bz - j.wz() * by);
+  const double vjy = j.vy() + (j.wz() * bx - j.wx() * bz);
+  const double vjz = j.vz() + (j.wx() * by - j.wy() * bx);
+  g.rvx = vjx - vix, g.rvy = vjy - viy, g.rvz = vjz - viz;
+  const double msx = 0.5 * (i.wx() + j.wx()), msy = 0.5 * (i.wy() + j.wy()), msz = 0.5 * (i.wz() + j.wz());
+  const double dvx = j.vx() - i.vx(), dvy = j.vy() - i.vy(), dvz = j.vz() - i.vz();
+  const double about = msx * g.nx + msy * g.ny + msz * g.nz;
+  g.psx = inverse * (g.ny * dvz - g.nz * dvy) + about * g.nx;
+  g.psy = inverse * (g.nz * dvx - g.nx * dvz) + about * g.ny;
+  g.psz = inverse * (g.nx * dvy - g.ny * dvx) + about * g.nz;
+  return g;
+}
+
+// The contact plane's turn over a step (turned_shear's h = dt/2 times its
+// spin, and Cayley's factor 2 - 2 |h|^2).
+struct LaneTurn {
+  double hx, hy, hz, factor;
+};
+
+[[gnu::always_inline]] inline LaneTurn lane_turn(const LaneGeometry& g, double half_dt) {
+  LaneTurn t;
+  t.hx = half_dt * g.psx, t.hy = half_dt * g.psy, t.hz = half_dt * g.psz;
+  t.factor = 2.0 - 2.0 * (t.hx * t.hx + t.hy * t.hy + t.hz * t.hz);
+  return t;
+}
+
+// incremented_shear (linear_contact.hpp) in a vectorised loop: the stored
+// tangential vector s turned with the plane, what is left along the normal
+// dropped, grown by stiffness_dt times the tangential part of `rate`.
+[[gnu::always_inline]] inline void lane_increment(const LaneGeometry& g, const LaneTurn& t, double sx, double sy,
+                                                  double sz, double rx, double ry, double rz, double stiffness_dt,
+                                                  double& ox, double& oy, double& oz) {
+  const double cx = sx + (t.hy * sz - t.hz * sy), cy = sy + (t.hz * sx - t.hx * sz), cz = sz + (t.hx * sy - t.hy * sx);
+  const double tx = sx + t.factor * (t.hy * cz - t.hz * cy);
+  const double ty = sy + t.factor * (t.hz * cx - t.hx * cz);
+  const double tz = sz + t.factor * (t.hx * cy - t.hy * cx);
+  const double along = tx * g.nx + ty * g.ny + tz * g.nz;
+  const double rate_n = rx * g.nx + ry * g.ny + rz * g.nz;
+  ox = (tx - along * g.nx) + stiffness_dt * (rx - rate_n * g.nx);
+  oy = (ty - along * g.ny) + stiffness_dt * (ry - rate_n * g.ny);
+  oz = (tz - along * g.nz) + stiffness_dt * (rz - rate_n * g.nz);
+}
+
 // The block's pairs [from, from + n): their shear forces and flags updated in
 // the state, their forces and moments into `b` (zero for a pair apart).
 inline void linear_law(PairBlock& c, const double* __restrict records, std::size_t from, std::size_t n, double dt_s,
@@ -72,48 +142,14 @@ inline void linear_law(PairBlock& c, const double* __restrict records, std::size
   for (std::size_t p = 0; p < n; ++p) {
     const SphereView i{records, kRecordSize * static_cast<std::size_t>(ci[p])};
     const SphereView j{records, kRecordSize * static_cast<std::size_t>(cj[p])};
-    // fill_pair_contact
-    const double dx = j.x() - i.x(), dy = j.y() - i.y(), dz = j.z() - i.z();
-    const double reach = i.r() + j.r(), distance2 = dx * dx + dy * dy + dz * dz;
-    const bool touching = distance2 < reach * reach;
-    const double distance = std::sqrt(distance2);
-    const double inverse = 1.0 / distance;
-    const double nx = inverse * dx, ny = inverse * dy, nz = inverse * dz;
-    const double overlap = reach - distance;
-    const double arm_i = i.r() - 0.5 * overlap, arm_j = j.r() - 0.5 * overlap;
-    const double ax = arm_i * nx, ay = arm_i * ny, az = arm_i * nz;  // arm_i n
-    const double vix = i.vx() + (i.wy() * az - i.wz() * ay);
-    const double viy = i.vy() + (i.wz() * ax - i.wx() * az);
-    const double viz = i.vz() + (i.wx() * ay - i.wy() * ax);
-    const double minus_arm_j = -arm_j;
-    const double bx = minus_arm_j * nx, by = minus_arm_j * ny, bz = minus_arm_j * nz;  // -arm_j n
-    const double vjx = j.vx() + (j.wy() * bz - j.wz() * by);
-    const double vjy = j.vy() + (j.wz() * bx - j.wx() * bz);
-    const double vjz = j.vz() + (j.wx() * by - j.wy() * bx);
-    const double rvx = vjx - vix, rvy = vjy - viy, rvz = vjz - viz;
-    const double msx = 0.5 * (i.wx() + j.wx()), msy = 0.5 * (i.wy() + j.wy()), msz = 0.5 * (i.wz() + j.wz());
-    const double dvx = j.vx() - i.vx(), dvy = j.vy() - i.vy(), dvz = j.vz() - i.vz();
-    const double turn_x = inverse * (ny * dvz - nz * dvy);
-    const double turn_y = inverse * (nz * dvx - nx * dvz);
-    const double turn_z = inverse * (nx * dvy - ny * dvx);
-    const double about = msx * nx + msy * ny + msz * nz;
-    const double psx = turn_x + about * nx, psy = turn_y + about * ny, psz = turn_z + about * nz;
+    const LaneGeometry g = lane_geometry(i, j);
+    const bool touching = g.distance2 < g.reach * g.reach;
     // linear_shear_force
-    const double squeeze = overlap - reference[p];
+    const double squeeze = g.overlap - reference[p];
     const double fn = kn[p] * (0.0 < squeeze ? squeeze : 0.0);
-    const double hx = half_dt * psx, hy = half_dt * psy, hz = half_dt * psz;
-    const double sx = shear_x[p], sy = shear_y[p], sz = shear_z[p];
-    const double cx = sx + (hy * sz - hz * sy), cy = sy + (hz * sx - hx * sz), cz = sz + (hx * sy - hy * sx);
-    const double factor = 2.0 - 2.0 * (hx * hx + hy * hy + hz * hz);
-    const double tx = sx + factor * (hy * cz - hz * cy);
-    const double ty = sy + factor * (hz * cx - hx * cz);
-    const double tz = sz + factor * (hx * cy - hy * cx);
-    const double along = tx * nx + ty * ny + tz * nz;
-    const double ux = tx - along * nx, uy = ty - along * ny, uz = tz - along * nz;
-    const double rv_n = rvx * nx + rvy * ny + rvz * nz;
-    const double vtx = rvx - rv_n * nx, vty = rvy - rv_n * ny, vtz = rvz - rv_n * nz;
-    const double stiffness_dt = ks[p] * dt_s;
-    double fsx = ux + stiffness_dt * vtx, fsy = uy + stiffness_dt * vty, fsz = uz + stiffness_dt * vtz;
+    double fsx, fsy, fsz;
+    lane_increment(g, lane_turn(g, half_dt), shear_x[p], shear_y[p], shear_z[p], g.rvx, g.rvy, g.rvz, ks[p] * dt_s,
+                   fsx, fsy, fsz);
     const double limit = friction[p] * fn, size2 = fsx * fsx + fsy * fsy + fsz * fsz;
     const double scale = dem::select(size2 > limit * limit, limit / std::sqrt(size2), 1.0);
     fsx = scale * fsx, fsy = scale * fsy, fsz = scale * fsz;
@@ -122,16 +158,16 @@ inline void linear_law(PairBlock& c, const double* __restrict records, std::size
     shear_z[p] = dem::select(touching, fsz, 0.0);
     flags[p] = touching ? (flags[p] | dem::kTouching) : (flags[p] & ~static_cast<dem::PairFlags>(dem::kTouching));
     // linear_touch: the force on i, and the shear force's moments about both centres.
-    const double ncx = ny * fsz - nz * fsy, ncy = nz * fsx - nx * fsz, ncz = nx * fsy - ny * fsx;
-    b.fx[p] = dem::select(touching, fsx - fn * nx, 0.0);
-    b.fy[p] = dem::select(touching, fsy - fn * ny, 0.0);
-    b.fz[p] = dem::select(touching, fsz - fn * nz, 0.0);
-    b.mix[p] = dem::select(touching, arm_i * ncx, 0.0);
-    b.miy[p] = dem::select(touching, arm_i * ncy, 0.0);
-    b.miz[p] = dem::select(touching, arm_i * ncz, 0.0);
-    b.mjx[p] = dem::select(touching, arm_j * ncx, 0.0);
-    b.mjy[p] = dem::select(touching, arm_j * ncy, 0.0);
-    b.mjz[p] = dem::select(touching, arm_j * ncz, 0.0);
+    const double ncx = g.ny * fsz - g.nz * fsy, ncy = g.nz * fsx - g.nx * fsz, ncz = g.nx * fsy - g.ny * fsx;
+    b.fx[p] = dem::select(touching, fsx - fn * g.nx, 0.0);
+    b.fy[p] = dem::select(touching, fsy - fn * g.ny, 0.0);
+    b.fz[p] = dem::select(touching, fsz - fn * g.nz, 0.0);
+    b.mix[p] = dem::select(touching, g.arm_i * ncx, 0.0);
+    b.miy[p] = dem::select(touching, g.arm_i * ncy, 0.0);
+    b.miz[p] = dem::select(touching, g.arm_i * ncz, 0.0);
+    b.mjx[p] = dem::select(touching, g.arm_j * ncx, 0.0);
+    b.mjy[p] = dem::select(touching, g.arm_j * ncy, 0.0);
+    b.mjz[p] = dem::select(touching, g.arm_j * ncz, 0.0);
   }
 }
 
