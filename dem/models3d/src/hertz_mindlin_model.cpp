@@ -19,22 +19,12 @@ class HertzMindlinModel : public HertzBase {
   using HertzBase::HertzBase;
   std::string name() const override { return "hertz_mindlin"; }
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    for_sphere_pairs(
-        c, s,
-        [&](std::size_t k, const PairContact& p) {
-          const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-          hertz_touch(c, k, out, p, step.dt_s, normal(c, k, p), s.spin(i), s.spin(j));
-        },
-        [&](std::size_t k) { release(c, k, out); });
+    overlapping_sphere_pairs(c, s, out, step.dt_s, [&](std::size_t k, const PairContact& p) { return normal(c, k, p); });
   }
   void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
                    const StepContext& step) const override {
-    for_wall_pairs(
-        c, s, g,
-        [&](std::size_t k, const PairContact& p) {
-          hertz_touch(c, k, out, p, step.dt_s, normal(c, k, p), s.spin(static_cast<std::size_t>(c.i[k])), {});
-        },
-        [&](std::size_t k) { release(c, k, out); });
+    overlapping_wall_pairs(c, s, g, out, step.dt_s,
+                           [&](std::size_t k, const PairContact& p) { return normal(c, k, p); });
   }
 
  private:

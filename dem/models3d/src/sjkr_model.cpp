@@ -28,26 +28,19 @@ class SjkrModel : public HertzBase {
   std::string name() const override { return "sjkr"; }
 
   void sphere_forces(PairBlock& c, const Spheres& s, const PairForces& out, const StepContext& step) const override {
-    for_sphere_pairs(
-        c, s,
-        [&](std::size_t k, const PairContact& p) {
-          const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-          const double ri = s.radius[i], rj = s.radius[j], d = ri + rj - p.overlap_m;
-          const double area = -M_PI / 4 * ((d - ri - rj) * (d + ri - rj) * (d - ri + rj) * (d + ri + rj)) / (d * d);
-          hertz_touch(c, k, out, p, step.dt_s, normal(c, k, p, area), s.spin(i), s.spin(j));
-        },
-        [&](std::size_t k) { release(c, k, out); });
+    overlapping_sphere_pairs(c, s, out, step.dt_s, [&](std::size_t k, const PairContact& p) {
+      const double ri = s.radius[static_cast<std::size_t>(c.i[k])], rj = s.radius[static_cast<std::size_t>(c.j[k])];
+      const double d = ri + rj - p.overlap_m;
+      const double area = -M_PI / 4 * ((d - ri - rj) * (d + ri - rj) * (d - ri + rj) * (d + ri + rj)) / (d * d);
+      return normal(c, k, p, area);
+    });
   }
   void wall_forces(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
                    const StepContext& step) const override {
-    for_wall_pairs(
-        c, s, g,
-        [&](std::size_t k, const PairContact& p) {
-          const auto i = static_cast<std::size_t>(c.i[k]);
-          const double r = s.radius[i], h = r - p.overlap_m;
-          hertz_touch(c, k, out, p, step.dt_s, normal(c, k, p, M_PI * (r * r - h * h)), s.spin(i), {});
-        },
-        [&](std::size_t k) { release(c, k, out); });
+    overlapping_wall_pairs(c, s, g, out, step.dt_s, [&](std::size_t k, const PairContact& p) {
+      const double r = s.radius[static_cast<std::size_t>(c.i[k])], h = r - p.overlap_m;
+      return normal(c, k, p, M_PI * (r * r - h * h));
+    });
   }
 
  private:

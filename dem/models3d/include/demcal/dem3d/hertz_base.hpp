@@ -103,6 +103,29 @@ class HertzBase : public ContactModel {
                    const NormalForce& n, Vec3 spin_i, Vec3 spin_j) const;
   // A pair out of contact: no force, its springs and contact radius forgotten.
   static void release(PairBlock& c, std::size_t k, const PairForces& out);
+  // A block whose pairs are in contact while their spheres overlap (no
+  // hysteresis): hertz_touch with the normal force `normal(k, contact)`
+  // gives, release for a pair apart.
+  template <class Normal>
+  void overlapping_sphere_pairs(PairBlock& c, const Spheres& s, const PairForces& out, double dt_s, Normal normal) const {
+    for_sphere_pairs(
+        c, s,
+        [&](std::size_t k, const PairContact& p) {
+          const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+          hertz_touch(c, k, out, p, dt_s, normal(k, p), s.spin(i), s.spin(j));
+        },
+        [&](std::size_t k) { release(c, k, out); });
+  }
+  template <class Normal>
+  void overlapping_wall_pairs(PairBlock& c, const Spheres& s, const WallGeometry& g, const PairForces& out,
+                              double dt_s, Normal normal) const {
+    for_wall_pairs(
+        c, s, g,
+        [&](std::size_t k, const PairContact& p) {
+          hertz_touch(c, k, out, p, dt_s, normal(k, p), s.spin(static_cast<std::size_t>(c.i[k])), {});
+        },
+        [&](std::size_t k) { release(c, k, out); });
+  }
 
   double e_eff_pa_ = 0, g_eff_pa_ = 0, friction_ = 0;
   double damping_ = 0;  // -2 sqrt(5/6) beta, >= 0
