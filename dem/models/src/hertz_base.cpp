@@ -5,31 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "demcal/core/error.hpp"
-#include "demcal/core/number_format.hpp"
-#include "demcal/dem/model_parameters.hpp"
 
 namespace demcal::dem {
-
-std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra) {
-  std::vector<std::string> keys = {"shear_modulus_pa", "poisson",  "shear_modulus_2_pa",     "poisson_2",
-                                   "restitution",      "friction", "time_step_overlap_ratio"};
-  for (const char* key : RollingResistance::kParameters) keys.push_back(key);
-  for (const char* key : extra) keys.push_back(key);
-  return keys;
-}
-namespace {
-
-double poisson_of(const nlohmann::json& p, const std::string& key, const std::string& where) {
-  if (!p.contains(key)) throw Error(where + ": missing parameter \"" + key + "\"");
-  if (!p.at(key).is_number()) throw Error(where + ": parameter \"" + key + "\" must be a number");
-  const double nu = p.at(key).get<double>();
-  if (!(nu > -1.0 && nu < 0.5))
-    throw Error(where + ": " + key + " must lie in (-1, 0.5) (got " + format_double(nu) + ")");
-  return nu;
-}
-
-}  // namespace
 
 double restitution_beta(double restitution) {
   const double log_e = std::log(restitution);
@@ -37,19 +14,10 @@ double restitution_beta(double restitution) {
 }
 
 HertzBase::HertzBase(const nlohmann::json& p, const std::string& where) {
-  const double g1 = positive(p, "shear_modulus_pa", where);
-  const double nu1 = poisson_of(p, "poisson", where);
-  const double g2 = p.contains("shear_modulus_2_pa") ? positive(p, "shear_modulus_2_pa", where) : g1;
-  const double nu2 = p.contains("poisson_2") ? poisson_of(p, "poisson_2", where) : nu1;
-  const double e1 = 2 * g1 * (1 + nu1), e2 = 2 * g2 * (1 + nu2);
-  e_eff_pa_ = 1.0 / ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2);
-  g_eff_pa_ = 1.0 / ((2 - nu1) / g1 + (2 - nu2) / g2);
-  const double e = positive(p, "restitution", where);
-  if (e > 1) throw Error(where + ": restitution must lie in (0, 1] (got " + format_double(e) + ")");
-  damping_ = -2.0 * std::sqrt(5.0 / 6.0) * restitution_beta(e);
-  friction_ = non_negative(p, "friction", where);
-  overlap_ratio_ = p.contains("time_step_overlap_ratio") ? positive(p, "time_step_overlap_ratio", where) : 0.01;
-  rolling_ = RollingResistance::read(p, where);
+  const HertzMaterial m = HertzMaterial::read(p, where);
+  e_eff_pa_ = m.e_eff_pa, g_eff_pa_ = m.g_eff_pa, friction_ = m.friction, overlap_ratio_ = m.overlap_ratio;
+  damping_ = -2.0 * std::sqrt(5.0 / 6.0) * restitution_beta(m.restitution);
+  rolling_ = m.rolling;
 }
 
 std::vector<std::string> HertzBase::state_columns() const {

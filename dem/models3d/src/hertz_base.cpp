@@ -5,20 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "demcal/core/error.hpp"
-#include "demcal/core/number_format.hpp"
-#include "demcal/dem/model_parameters.hpp"
 #include "demcal/dem3d/linear_contact.hpp"
 
 namespace demcal::dem3d {
-
-std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra) {
-  std::vector<std::string> keys = {"shear_modulus_pa", "poisson",  "shear_modulus_2_pa",     "poisson_2",
-                                   "restitution",      "friction", "time_step_overlap_ratio"};
-  for (const char* key : dem::RollingResistance::kParameters) keys.push_back(key);
-  for (const char* key : extra) keys.push_back(key);
-  return keys;
-}
 
 double sphere_rolling_inertia_kg_m2(double mass_i_kg, double radius_i_m, double mass_j_kg, double radius_j_m) {
   const double a = mass_i_kg * radius_i_m * radius_i_m, b = mass_j_kg * radius_j_m * radius_j_m;
@@ -27,34 +16,14 @@ double sphere_rolling_inertia_kg_m2(double mass_i_kg, double radius_i_m, double 
   return 1.4 * a * b / (a + b);
 }
 
-namespace {
-
-double poisson_of(const nlohmann::json& p, const char* key, const std::string& where) {
-  if (!p.contains(key)) throw Error(where + ": missing parameter \"" + key + "\"");
-  if (!p.at(key).is_number() || !std::isfinite(p.at(key).get<double>()))
-    throw Error(where + ": parameter \"" + key + "\" must be a finite number");
-  const double nu = p.at(key).get<double>();
-  if (!(nu > -1.0 && nu < 0.5)) throw Error(where + ": " + key + " must lie in (-1, 0.5) (got " + format_double(nu) + ")");
-  return nu;
-}
-
-}  // namespace
-
 HertzBase::HertzBase(const nlohmann::json& p, const std::string& where) {
-  const double g1 = dem::positive(p, "shear_modulus_pa", where);
-  const double nu1 = poisson_of(p, "poisson", where);
-  const double g2 = p.contains("shear_modulus_2_pa") ? dem::positive(p, "shear_modulus_2_pa", where) : g1;
-  const double nu2 = p.contains("poisson_2") ? poisson_of(p, "poisson_2", where) : nu1;
-  const double e1 = 2 * g1 * (1 + nu1), e2 = 2 * g2 * (1 + nu2);
-  e_eff_pa_ = 1.0 / ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2);
-  g_eff_pa_ = 1.0 / ((2 - nu1) / g1 + (2 - nu2) / g2);
-  const double e = dem::positive(p, "restitution", where);
-  if (e > 1) throw Error(where + ": restitution must lie in (0, 1] (got " + format_double(e) + ")");
-  const double log_e = std::log(e);
+  const dem::HertzMaterial m = dem::HertzMaterial::read(p, where);
+  e_eff_pa_ = m.e_eff_pa, g_eff_pa_ = m.g_eff_pa, friction_ = m.friction, overlap_ratio_ = m.overlap_ratio;
+  // The 2D base's formula grouped as the 3D model always had it (one ulp
+  // apart for some restitutions): its runs keep their bits.
+  const double log_e = std::log(m.restitution);
   damping_ = -2.0 * std::sqrt(5.0 / 6.0) * log_e / std::sqrt(log_e * log_e + M_PI * M_PI);
-  friction_ = dem::non_negative(p, "friction", where);
-  overlap_ratio_ = p.contains("time_step_overlap_ratio") ? dem::positive(p, "time_step_overlap_ratio", where) : 0.01;
-  rolling_ = dem::RollingResistance::read(p, where);
+  rolling_ = m.rolling;
 }
 
 std::vector<std::string> HertzBase::state_columns() const {

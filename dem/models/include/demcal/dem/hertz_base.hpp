@@ -32,6 +32,7 @@
 
 #include "demcal/dem/contact_geometry.hpp"
 #include "demcal/dem/contact_model.hpp"
+#include "demcal/dem/hertz_material.hpp"
 #include "demcal/dem/rolling_resistance.hpp"
 
 namespace demcal::dem {
@@ -54,9 +55,6 @@ struct NormalForce {
   double contact_radius_m = 0;
 };
 
-// The keys the Hertz family takes (the shared springs, dashpots, friction and
-// rolling resistance) followed by a model's own `extra` keys.
-std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra);
 
 class HertzBase : public ContactModel {
  public:

@@ -37,6 +37,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "demcal/dem/hertz_material.hpp"
 #include "demcal/dem/rolling_resistance.hpp"
 #include "demcal/dem3d/contact_model.hpp"
 #include "demcal/dem3d/pair_contact.hpp"
@@ -65,8 +66,7 @@ struct NormalForce {
   double contact_radius_m = 0;  // a
 };
 
-// The keys of the family followed by a model's own `extra` keys.
-std::vector<std::string> hertz_parameter_keys(std::initializer_list<const char*> extra);
+using dem::hertz_parameter_keys;
 
 // I_r of a pair of spheres (see above); a mass of 0 is a side that does not move.
 double sphere_rolling_inertia_kg_m2(double mass_i_kg, double radius_i_m, double mass_j_kg, double radius_j_m);
