@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -19,15 +20,7 @@ namespace demcal::dem3d {
 
 namespace {
 
-struct Grid {
-  double x0 = 0, y0 = 0, z0 = 0, cell = 1;
-  std::int64_t nx = 1, ny = 1, nz = 1;
-
-  std::int64_t coordinate(double v, double v0, std::int64_t cells) const {
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>((v - v0) / cell), 0, cells - 1);
-  }
-  std::int64_t index(std::int64_t cx, std::int64_t cy, std::int64_t cz) const { return (cz * ny + cy) * nx + cx; }
-};
+using Grid = CellGrid;
 
 // A grid over the spheres with cells at least `cell_m` wide, and at most
 // about 4 cells per sphere (a sparse packing would otherwise ask for more
@@ -99,6 +92,40 @@ inline bool within_skin(double dx, double dy, double dz, double radius_a, double
   return dx * dx + dy * dy + dz * dz < reach * reach;
 }
 
+// The search's test of a run of cell-ordered entries against one entry, a
+// group of kLanes entries at a time (GCC/Clang vector extensions): the same
+// operations as within_skin, lane by lane, so the same pairs.
+constexpr std::size_t kLanes = 4;
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+
+inline Lanes load_lanes(const double* from) {
+  Lanes v;
+  std::memcpy(&v, from, sizeof v);
+  return v;
+}
+
+struct RunScanner {
+  const double *cx, *cy, *cz, *cr;  // entries in cell order, padded by kLanes unreachable ones
+  double skin_m;
+
+  // Calls keep(q) for each entry q in [from, to) within the skin of entry e, in order.
+  template <typename Keep>
+  void scan(std::size_t e, std::size_t from, std::size_t to, Keep&& keep) const {
+    const Lanes xa = Lanes{} + cx[e], ya = Lanes{} + cy[e], za = Lanes{} + cz[e], ra = Lanes{} + cr[e];
+    const Lanes skin = Lanes{} + skin_m;
+    for (std::size_t q = from; q < to; q += kLanes) {
+      const Lanes dx = load_lanes(cx + q) - xa, dy = load_lanes(cy + q) - ya, dz = load_lanes(cz + q) - za;
+      const Lanes reach = (ra + load_lanes(cr + q)) + skin;
+      const auto hit = dx * dx + dy * dy + dz * dz < reach * reach;
+      bool any = false;
+      for (std::size_t k = 0; k < kLanes; ++k) any |= hit[k] != 0;
+      if (!any) continue;
+      for (std::size_t k = 0; k < kLanes && q + k < to; ++k)
+        if (hit[k]) keep(q + k);
+    }
+  }
+};
+
 double largest_radius(const Spheres& s) {
   double r = 0;
   for (double v : s.radius) r = std::max(r, v);
@@ -109,7 +136,8 @@ double largest_radius(const Spheres& s) {
 
 void World::reorder_spheres() {
   const std::size_t n = spheres.size();
-  const Grid g = make_grid(spheres, 2 * largest_radius(spheres) + skin_m_);
+  internals_->grid = make_grid(spheres, 2 * largest_radius(spheres) + skin_m_);
+  const Grid& g = internals_->grid;
   // Sorted by (code, id), a total order: any sort gives the same order. Most
   // rebuilds find the spheres still in it (they moved less than a skin since
   // the last), and then nothing moves.
@@ -118,7 +146,7 @@ void World::reorder_spheres() {
     std::uint32_t id, index;
     bool operator<(const Key& o) const { return code < o.code || (code == o.code && id < o.id); }
   };
-  std::vector<Key> keys(n);
+  std::vector<Key> keys(n), spare(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto cx = static_cast<std::uint64_t>(g.coordinate(spheres.x[i], g.x0, g.nx));
     const auto cy = static_cast<std::uint64_t>(g.coordinate(spheres.y[i], g.y0, g.ny));
@@ -126,7 +154,23 @@ void World::reorder_spheres() {
     keys[i] = {spread_bits(cx) | spread_bits(cy) << 1 | spread_bits(cz) << 2, spheres.id[i], static_cast<std::uint32_t>(i)};
   }
   if (std::is_sorted(keys.begin(), keys.end())) return;
-  std::sort(keys.begin(), keys.end());
+  // A least-significant-digit radix sort (stable), id digits first, then the
+  // code's: the order std::sort would give, in a few passes.
+  std::uint64_t highest_code = 0, highest_id = 0;
+  for (const Key& k : keys) highest_code = std::max(highest_code, k.code), highest_id = std::max<std::uint64_t>(highest_id, k.id);
+  const auto by_digits = [&](auto digit_of, std::uint64_t highest) {
+    constexpr unsigned kBits = 11;
+    constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+    for (unsigned shift = 0; shift < 64 && (highest >> shift) != 0; shift += kBits) {
+      std::vector<std::uint32_t> count(kBuckets + 1, 0);
+      for (const Key& k : keys) ++count[((digit_of(k) >> shift) & (kBuckets - 1)) + 1];
+      for (std::size_t b = 0; b < kBuckets; ++b) count[b + 1] += count[b];
+      for (const Key& k : keys) spare[count[(digit_of(k) >> shift) & (kBuckets - 1)]++] = k;
+      keys.swap(spare);
+    }
+  };
+  by_digits([](const Key& k) { return static_cast<std::uint64_t>(k.id); }, highest_id);
+  by_digits([](const Key& k) { return k.code; }, highest_code);
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].index;
   spheres.permute(order);
@@ -139,7 +183,7 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
   // in (first, second) order.
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(models_.size());
   if (n > 1) {
-    const Grid g = make_grid(s, 2 * largest_radius(s) + skin_m_);
+    const Grid& g = internals_->grid;  // reorder_spheres made it at this rebuild
     const auto cells = static_cast<std::size_t>(g.nx * g.ny * g.nz);
     // The spheres by cell (a counting sort): cell c holds entries [start[c],
     // start[c + 1]), and a row of cells along x is one run of entries. Their
@@ -157,7 +201,10 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
       std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
       for (std::size_t i = 0; i < n; ++i) by_cell[next[cell_of[i]]++] = static_cast<std::uint32_t>(i);
     }
-    std::vector<double> cx(n), cy(n), cz(n), cr(n);
+    // Padded by a lane group of entries that no sphere reaches (infinitely far,
+    // radius 0), so a scan may read a whole group past its run.
+    std::vector<double> cx(n + kLanes, INFINITY), cy(n + kLanes, INFINITY), cz(n + kLanes, INFINITY),
+        cr(n + kLanes, 0.0);
     for (std::size_t e = 0; e < n; ++e) {
       const std::uint32_t i = by_cell[e];
       cx[e] = s.x[i], cy[e] = s.y[i], cz[e] = s.z[i], cr[e] = s.radius[i];
@@ -167,23 +214,21 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
     // three rows above in z (13 of the 26 neighbour cells).
     std::vector<std::pair<std::uint32_t, std::uint32_t>> close;  // (first, second) storage indices
     close.reserve(8 * n);
+    const RunScanner scanner{cx.data(), cy.data(), cz.data(), cr.data(), skin_m_};
     for (std::size_t e = 0; e < n; ++e) {
       const std::int64_t c = cell_of[by_cell[e]];
       const std::int64_t x = c % g.nx, y = (c / g.nx) % g.ny, z = c / (g.nx * g.ny);
       const std::int64_t x0 = std::max<std::int64_t>(x - 1, 0), x1 = std::min(x + 1, g.nx - 1);
-      const double xa = cx[e], ya = cy[e], za = cz[e], ra = cr[e];
-      const auto scan = [&](std::size_t from, std::size_t to) {
-        for (std::size_t q = from; q < to; ++q) {
-          if (within_skin(cx[q] - xa, cy[q] - ya, cz[q] - za, ra, cr[q], skin_m_)) {
-            const std::uint32_t a = by_cell[e], b = by_cell[q];
-            close.emplace_back(std::min(a, b), std::max(a, b));
-          }
-        }
+      const std::uint32_t a = by_cell[e];
+      const auto keep = [&](std::size_t q) {
+        const std::uint32_t b = by_cell[q];
+        close.emplace_back(std::min(a, b), std::max(a, b));
       };
       const auto row = [&](std::int64_t ry, std::int64_t rz) {
-        scan(start[static_cast<std::size_t>(g.index(x0, ry, rz))], start[static_cast<std::size_t>(g.index(x1, ry, rz)) + 1]);
+        scanner.scan(e, start[static_cast<std::size_t>(g.index(x0, ry, rz))],
+                     start[static_cast<std::size_t>(g.index(x1, ry, rz)) + 1], keep);
       };
-      scan(e + 1, start[static_cast<std::size_t>(g.index(x1, y, z)) + 1]);
+      scanner.scan(e, e + 1, start[static_cast<std::size_t>(g.index(x1, y, z)) + 1], keep);
       if (y + 1 < g.ny) row(y + 1, z);
       if (z + 1 < g.nz)
         for (std::int64_t ry = std::max<std::int64_t>(y - 1, 0); ry <= std::min(y + 1, g.ny - 1); ++ry) row(ry, z + 1);

@@ -388,7 +388,8 @@ void World::compute_pair_forces() {
   PairForces sphere_out = in.sphere_pair_forces.view();
   const PairForces wall_out = in.wall_pair_forces.view();
   if (in.direct) {
-    in.sums.assign(kSumStride * spheres.size(), 0.0);
+    if (!in.sums_zero || in.sums.size() != kSumStride * n) in.sums.assign(kSumStride * n, 0.0);
+    in.sums_zero = false;
     double* sums = in.sums.data();
     sphere_out.sum_fx = sums + kSumFx, sphere_out.sum_fy = sums + kSumFy, sphere_out.sum_fz = sums + kSumFz;
     sphere_out.sum_mx = sums + kSumMx, sphere_out.sum_my = sums + kSumMy, sphere_out.sum_mz = sums + kSumMz;
@@ -496,7 +497,9 @@ namespace {
 
 // Without a branch: a velocity's sign is as likely either way, and a
 // mispredicted branch per component cost a fifth of the step.
-inline double sign_of(double v) { return static_cast<double>((v > 0) - (v < 0)); }
+// Selects of doubles, not an int converted: a 32-bit value in the update loop
+// would halve its vectors' reach.
+inline double sign_of(double v) { return dem::select(v > 0, 1.0, dem::select(v < 0, -1.0, 0.0)); }
 
 // One component of the velocity after a step under `force` with local damping alpha.
 inline double damped_velocity(double v, double force, double alpha, double to_velocity) {
@@ -531,6 +534,8 @@ inline void rolling_friction_spin(double& wx, double& wy, double& wz, double slo
 // last build.
 // With rolling limits the spin takes rolling_friction_spin (a separate
 // instance of the loop: without them the arithmetic, and so the bits, stay).
+constexpr std::size_t kUpdateChunk = 64;  // spheres an update_spheres call takes at most
+
 template <bool kRollingLimits>
 double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, double dt, double alpha, Vec3 g) {
   double* __restrict x = a.x;
@@ -549,13 +554,19 @@ double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, dou
   const double* __restrict x_built = a.x_built;
   const double* __restrict y_built = a.y_built;
   const double* __restrict z_built = a.z_built;
-  const std::uint8_t* __restrict fixed = a.fixed;
-  const std::int32_t* __restrict clump = a.clump;
   const double* __restrict rolling_limit = a.rolling_limit;
+  // Each sphere's motion as a 64-bit word: a byte-wide load in the loop below
+  // would make the compiler take 32 spheres a vector and the last 32 of a
+  // chunk one by one (it peels for the sums' unused slots).
+  alignas(64) std::int64_t still_of[kUpdateChunk], moves_of[kUpdateChunk];
+  for (std::size_t i = lo; i < hi; ++i) {
+    still_of[i - lo] = a.fixed[i] != 0;
+    moves_of[i - lo] = (a.fixed[i] == 0) & (a.clump[i] < 0);
+  }
   double largest = 0;
 #pragma omp simd reduction(max : largest)
   for (std::size_t i = lo; i < hi; ++i) {
-    const bool still = fixed[i] != 0, moves = !still & (clump[i] < 0);  // & not &&: no branch
+    const bool still = still_of[i - lo] != 0, moves = moves_of[i - lo] != 0;
     const double m = mass[i];
     const double to_v = inverse_mass[i] * dt, to_w = inverse_inertia[i] * dt;
     const double new_vx = damped_velocity(vx[i], sums[kSumStride * (i - lo) + kSumFx] + m * g.x, alpha, to_v);
@@ -635,7 +646,7 @@ void World::integrate() {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto parts = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t lo = n * t / parts, hi = n * (t + 1) / parts;
-    constexpr std::size_t kChunk = 64;
+    constexpr std::size_t kChunk = kUpdateChunk;
     alignas(64) double local[kChunk * kSumStride];
     for (std::size_t first = lo; first < hi; first += kChunk) {
       const std::size_t last = std::min(hi, first + kChunk);
@@ -662,8 +673,10 @@ void World::integrate() {
           if (s.clump[i] >= 0) give_to_clump(i, &arrays.sums[kSumStride * (i - first)]);
       max_move2 = std::max(max_move2, arrays.rolling_limit ? update_spheres<true>(first, last, arrays, dt, alpha, g)
                                                            : update_spheres<false>(first, last, arrays, dt, alpha, g));
+      if (direct) std::fill_n(&in.sums[kSumStride * first], kSumStride * (last - first), 0.0);
     }
   }
+  in.sums_zero = direct;
   if (!clumps_.empty()) integrate_clumps(max_move2);
   in.max_move2 = max_move2;
 }

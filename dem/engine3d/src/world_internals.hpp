@@ -1,6 +1,7 @@
 #pragma once
 // The 3D world's working arrays (not a public header: nothing a model or a
 // lab test uses).
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -35,7 +36,21 @@ struct WallGeometryArrays {
   }
 };
 
+// The cell grid of a rebuild over the spheres' bounding box (neighbour_grid.cpp).
+struct CellGrid {
+  double x0 = 0, y0 = 0, z0 = 0, cell = 1;
+  std::int64_t nx = 1, ny = 1, nz = 1;
+
+  std::int64_t coordinate(double v, double v0, std::int64_t cells) const {
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>((v - v0) / cell), 0, cells - 1);
+  }
+  std::int64_t index(std::int64_t cx, std::int64_t cy, std::int64_t cz) const { return (cz * ny + cy) * nx + cx; }
+};
+
 struct World::Internals {
+  // The grid reorder_spheres made at this rebuild: the search reuses it (a
+  // reorder moves no sphere, so the bounding box is the same).
+  CellGrid grid;
   PairForceArrays sphere_pair_forces, wall_pair_forces;
   WallGeometryArrays wall_geometry;
   // Per sphere, its sphere pairs in pair order: entries [sum_begin[i],
@@ -47,7 +62,10 @@ struct World::Internals {
   // (PairForces direct), in pair order: the same sums as the stored path.
   // Each sphere's sums side by side: fx, fy, fz, mx, my, mz at kSum* of its
   // kSumStride values (one cache line).
+  // The integration zeroes each chunk of them once it has read it, while it is
+  // in cache (sums_zero then holds), so the next step need not clear them.
   std::vector<double> sums;
+  bool sums_zero = false;
   bool direct = false;
   std::vector<double> x_built, y_built, z_built;
   // The walls as they were at the last build, and the spheres' extent then
