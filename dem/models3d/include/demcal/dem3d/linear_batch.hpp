@@ -177,7 +177,7 @@ inline void linear_law(PairBlock& c, const double* __restrict records, std::size
 // a pair apart adds nothing to the spheres' sums (each starts at +0, which a
 // zero term leaves as it is).
 inline void put_batch(const PairForces& out, std::size_t from, std::size_t n, const Batch& b,
-                      const std::uint8_t* touches) {
+                      const std::int32_t* touches) {
   double* __restrict fx = out.fx + from;
   double* __restrict fy = out.fy + from;
   double* __restrict fz = out.fz + from;
@@ -222,12 +222,13 @@ inline void prefetch_sums(const PairForces& out, std::size_t from, std::size_t n
 }
 
 // Whether each of the block's pairs [from, from + n) touches
-// (fill_pair_contact's test); returns how many do.
+// (fill_pair_contact's test); returns how many do. 32-bit answers: bytes
+// would make the compiler take 32 pairs a vector and spill.
 inline std::size_t touching(const PairBlock& c, const double* __restrict records, std::size_t from, std::size_t n,
-                            std::uint8_t* __restrict touches) {
+                            std::int32_t* __restrict touches) {
   const std::int32_t* __restrict ci = c.i + from;
   const std::int32_t* __restrict cj = c.j + from;
-  std::size_t count = 0;
+  std::int32_t count = 0;
 #pragma omp simd reduction(+ : count)
   for (std::size_t p = 0; p < n; ++p) {
     const SphereView i{records, kRecordSize * static_cast<std::size_t>(ci[p])};
@@ -237,7 +238,7 @@ inline std::size_t touching(const PairBlock& c, const double* __restrict records
     touches[p] = dx * dx + dy * dy + dz * dz < reach * reach;
     count += touches[p];
   }
-  return count;
+  return static_cast<std::size_t>(count);
 }
 
 // The linear law over a whole block, its forces put pair by pair in pair
@@ -249,7 +250,7 @@ inline void linear_sphere_forces(PairBlock& c, const Spheres& s, const PairForce
   const double* records = step.records;
   if (!records) own = sphere_records(s), records = own.data();
   Batch b;
-  alignas(64) std::uint8_t touches[kBatch];
+  alignas(64) std::int32_t touches[kBatch];
   for (std::size_t from = 0; from < c.size; from += kBatch) {
     const std::size_t n = std::min(kBatch, c.size - from);
     if (touching(c, records, from, n, touches) == 0) {
