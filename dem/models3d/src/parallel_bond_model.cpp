@@ -104,7 +104,7 @@ class ParallelBondModel : public LinearBase {
     const double* records = step.records;
     if (!records) own = sphere_records(s), records = own.data();
     linear_batch::Batch b;
-    alignas(64) std::uint8_t broke[linear_batch::kBatch], tension[linear_batch::kBatch];
+    alignas(64) std::int32_t broke[linear_batch::kBatch], tension[linear_batch::kBatch];
     for (std::size_t from = 0; from < c.size; from += linear_batch::kBatch) {
       const std::size_t n = std::min(linear_batch::kBatch, c.size - from);
       const bool any_broke = batch(c, records, from, n, step.dt_s, b, broke, tension);
@@ -168,7 +168,7 @@ class ParallelBondModel : public LinearBase {
   // `broke` and `tension`. Returns whether any bond broke.
   bool batch(PairBlock& c, const double* __restrict records, std::size_t from, std::size_t n, double dt_s,
              linear_batch::Batch& b,
-             std::uint8_t* __restrict broke_out, std::uint8_t* __restrict tension_out) const {
+             std::int32_t* __restrict broke_out, std::int32_t* __restrict tension_out) const {
     const std::int32_t* __restrict ci = c.i + from;
     const std::int32_t* __restrict cj = c.j + from;
     dem::PairFlags* __restrict flags = c.flags + from;
