@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libboost-dev libcli11-dev
   libopenmpi-dev openmpi-bin
   python3-matplotlib python3-numpy python3-h5py
-  python3-jsonschema python3-markdown python3-pytest
+  python3-jsonschema python3-markdown python3-pytest python3-emcee
 )
 
 missing=()

@@ -1,0 +1,127 @@
+"""The posterior over a calibration's coded parameters, and its scale factor, given emulators of the DEM's responses
+and the lab's targets with their scatter; sampled by MCMC.
+
+The parameters: u in [-1, 1]^d, the coded space (uniform there: a parameter the space codes on a log scale is so
+log-uniform) and, when the calibration scales its stress-like outputs exactly (a stress parameter multiplies every
+stress output), a scale factor s, log-uniform between its bounds. Target i's DEM mean is s m_i(u) for a stress-like
+output and m_i(u) otherwise, m_i the emulator's mean of the response over seeds; its uncertainty the emulator's SD
+of that mean (scaled likewise), which the spread of the DEM's single-seed runs sets. The likelihood
+(lab_targets.gaussian_log_likelihood) adds the lab mean's standard error, with the lab's correlation of outputs
+measured on one specimen.
+
+Why an emulator with MCMC rather than sequential Monte Carlo on the DEM itself: the DEM runs are the whole cost,
+and sampling the emulators costs none, so the sampler can take as many steps as its diagnostics ask; emcee's
+affine-invariant ensemble (Debian's python3-emcee) needs no step size tuned per problem and measures its own
+autocorrelation time, the check a user reads.
+"""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+_LOG_2PI = math.log(2.0 * math.pi)
+
+
+@dataclass
+class Samples:
+    """Posterior draws: `theta` rows of (u..., s) (s only with a scale), equal weights; and what a user checks."""
+
+    theta: np.ndarray
+    acceptance: float            # mean acceptance fraction of the walkers
+    autocorrelation_steps: list  # integrated autocorrelation time per coordinate, in steps
+    effective_samples: float     # draws / the longest autocorrelation time
+    steps: int
+    walkers: int
+
+
+class Posterior:
+    """log p(u, s | lab) up to a constant, for emulators with `predict(u) -> (mean, sd)` over rows of coded points.
+
+    targets: lab_targets.LabTarget per emulator, in the same order; stress_like: which of them scale with s;
+    scale_bounds: (low, high) of s, or None when nothing scales; lab_correlation: the lab's correlation matrix of
+    the targets (None: independent)."""
+
+    def __init__(self, emulators, targets, stress_like, dimensions, scale_bounds=None, lab_correlation=None):
+        if len(emulators) != len(targets) or len(stress_like) != len(targets):
+            raise ValueError("one emulator and one stress-like flag per target")
+        if scale_bounds is None and any(stress_like):
+            raise ValueError("stress-like targets need the scale factor's bounds")
+        if scale_bounds is not None and not 0 < scale_bounds[0] < scale_bounds[1]:
+            raise ValueError("the scale factor's bounds must be 0 < low < high")
+        self.emulators, self.targets = list(emulators), list(targets)
+        self.stress_like = np.array(stress_like, dtype=bool)
+        self.d = int(dimensions)
+        self.scale_bounds = scale_bounds
+        k = len(targets)
+        self.lab_mean = np.array([t.mean for t in targets], dtype=float)
+        self.lab_se = np.array([t.standard_error for t in targets], dtype=float)
+        self.lab_r = np.eye(k) if lab_correlation is None else np.asarray(lab_correlation, dtype=float)
+
+    @property
+    def ndim(self):
+        return self.d + (0 if self.scale_bounds is None else 1)
+
+    def split(self, theta):
+        """(u rows, s per row) of rows of theta."""
+        theta = np.atleast_2d(theta)
+        u = theta[:, :self.d]
+        s = np.ones(len(theta)) if self.scale_bounds is None else theta[:, self.d]
+        return u, s
+
+    def predicted(self, theta):
+        """The DEM means and their SDs the emulators give at rows of theta: two (rows, targets) arrays."""
+        u, s = self.split(theta)
+        means, sds = [], []
+        for emulator, scaled in zip(self.emulators, self.stress_like):
+            m, sd = emulator.predict(u)
+            factor = s if scaled else 1.0
+            means.append(factor * np.asarray(m, dtype=float))
+            sds.append(factor * np.asarray(sd, dtype=float))
+        return np.stack(means, axis=1), np.stack(sds, axis=1)
+
+    def log_prob(self, theta):
+        """log posterior of each row of theta (-inf outside the prior's support); a row per walker."""
+        theta = np.atleast_2d(theta)
+        u, s = self.split(theta)
+        inside = np.all(np.abs(u) <= 1.0, axis=1)
+        if self.scale_bounds is not None:
+            inside &= (s >= self.scale_bounds[0]) & (s <= self.scale_bounds[1])
+        out = np.full(len(theta), -np.inf)
+        if not np.any(inside):
+            return out
+        mean, sd = self.predicted(theta[inside])
+        covariance = self.lab_r * np.outer(self.lab_se, self.lab_se) + sd[:, :, None] * sd[:, None, :] * np.eye(len(sd[0]))
+        factor = np.linalg.cholesky(covariance)
+        residual = mean - self.lab_mean
+        whitened = np.linalg.solve(factor, residual[:, :, None])[:, :, 0]
+        log_det = 2.0 * np.log(np.diagonal(factor, axis1=1, axis2=2)).sum(axis=1)
+        value = -0.5 * ((whitened ** 2).sum(axis=1) + log_det + len(self.targets) * _LOG_2PI)
+        if self.scale_bounds is not None:
+            value -= np.log(s[inside])  # log-uniform prior on s
+        out[inside] = value
+        return out
+
+    def sample(self, seed=1, walkers=None, steps=4000, start=None):
+        """Draws from the posterior: an ensemble of `walkers` (default 4 per coordinate, at least 16) from `start`
+        (rows; default: uniform over the prior), `steps` steps, the first half discarded, thinned by half the
+        longest autocorrelation time."""
+        import emcee  # Debian's python3-emcee (scripts/install-deps.sh)
+
+        ndim = self.ndim
+        walkers = walkers or max(16, 4 * ndim)
+        rng = np.random.default_rng(seed)
+        if start is None:
+            start = rng.uniform(-1.0, 1.0, size=(walkers, ndim))
+            if self.scale_bounds is not None:
+                lo, hi = np.log(self.scale_bounds[0]), np.log(self.scale_bounds[1])
+                start[:, self.d] = np.exp(rng.uniform(lo, hi, size=walkers))
+        sampler = emcee.EnsembleSampler(walkers, ndim, self.log_prob, vectorize=True)
+        sampler.random_state = np.random.RandomState(seed).get_state()  # the same draws for the same seed
+        sampler.run_mcmc(np.asarray(start, dtype=float), steps, progress=False)
+        tau = sampler.get_autocorr_time(discard=steps // 2, quiet=True)
+        thin = max(1, int(0.5 * float(np.max(tau))))
+        chain = sampler.get_chain(discard=steps // 2, thin=thin, flat=True)
+        return Samples(theta=chain, acceptance=float(np.mean(sampler.acceptance_fraction)),
+                       autocorrelation_steps=[float(t) for t in tau],
+                       effective_samples=float(walkers * (steps - steps // 2) / np.max(tau)), steps=steps,
+                       walkers=walkers)
