@@ -38,7 +38,8 @@ std::unique_ptr<World> lattice(const std::string& model, const nlohmann::json& p
   world->assign(0, 1, wall_model);
   for (int i = 0; i < kSide; ++i)
     for (int j = 0; j < kSide; ++j)
-      for (int k = 0; k < kSide; ++k) world->spheres.add_sphere({i * kSpacing, j * kSpacing, k * kSpacing}, kRadius, kDensity, 0);
+      for (int k = 0; k < kSide; ++k)
+        world->spheres.add_sphere({i * kSpacing, j * kSpacing, k * kSpacing}, kRadius, kDensity, 0);
   // Six planes pressing the outer spheres by the same overlap: the lattice
   // starts (and stays) in equilibrium, every pair touching.
   // A wall's linear spring is twice a pair's (pi r^2 E / L with L = R, not 2R), so half the overlap balances.

@@ -146,7 +146,7 @@ void World::reorder_spheres() {
     std::uint32_t id, index;
     bool operator<(const Key& o) const { return code < o.code || (code == o.code && id < o.id); }
   };
-  std::vector<Key> keys(n), spare(n);
+  std::vector<Key> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto cx = static_cast<std::uint64_t>(g.coordinate(spheres.x[i], g.x0, g.nx));
     const auto cy = static_cast<std::uint64_t>(g.coordinate(spheres.y[i], g.y0, g.ny));
@@ -156,8 +156,12 @@ void World::reorder_spheres() {
   if (std::is_sorted(keys.begin(), keys.end())) return;
   // A least-significant-digit radix sort (stable), id digits first, then the
   // code's: the order std::sort would give, in a few passes.
+  std::vector<Key> spare(n);
   std::uint64_t highest_code = 0, highest_id = 0;
-  for (const Key& k : keys) highest_code = std::max(highest_code, k.code), highest_id = std::max<std::uint64_t>(highest_id, k.id);
+  for (const Key& k : keys) {
+    highest_code = std::max(highest_code, k.code);
+    highest_id = std::max<std::uint64_t>(highest_id, k.id);
+  }
   const auto by_digits = [&](auto digit_of, std::uint64_t highest) {
     constexpr unsigned kBits = 11;
     constexpr std::size_t kBuckets = std::size_t{1} << kBits;

@@ -210,7 +210,8 @@ class ParallelBondModel : public LinearBase {
       const double squeeze = overlap - reference[p];
       const double fn_linear = kn[p] * select(0.0 < squeeze, squeeze, 0.0);
       double lx, ly, lz;
-      linear_batch::lane_increment(g, turn, shear_x[p], shear_y[p], shear_z[p], rvx, rvy, rvz, ks[p] * dt_s, lx, ly, lz);
+      linear_batch::lane_increment(g, turn, shear_x[p], shear_y[p], shear_z[p], rvx, rvy, rvz, ks[p] * dt_s, lx, ly,
+                                   lz);
       const double limit = friction[p] * fn_linear, size2 = lx * lx + ly * ly + lz * lz;
       const double scale = select(size2 > limit * limit, limit / std::sqrt(size2), 1.0);
       const double fsx = select(touching, scale * lx, 0.0);
@@ -225,11 +226,13 @@ class ParallelBondModel : public LinearBase {
       const double rv_n = rvx * nx + rvy * ny + rvz * nz;
       const double bond_fn = bond_fn_col[p] - kn_b * area * rv_n * dt_s;
       double bfx, bfy, bfz;
-      linear_batch::lane_increment(g, turn, bond_fsx_col[p], bond_fsy_col[p], bond_fsz_col[p], rvx, rvy, rvz, ks_b * area * dt_s, bfx, bfy, bfz);
+      linear_batch::lane_increment(g, turn, bond_fsx_col[p], bond_fsy_col[p], bond_fsz_col[p], rvx, rvy, rvz,
+                                   ks_b * area * dt_s, bfx, bfy, bfz);
       const double rsx = j.wx() - i.wx(), rsy = j.wy() - i.wy(), rsz = j.wz() - i.wz();
       const double bond_mt = bond_mt_col[p] + ks_b * polar * (rsx * nx + rsy * ny + rsz * nz) * dt_s;
       double bmx, bmy, bmz;
-      linear_batch::lane_increment(g, turn, bond_mbx_col[p], bond_mby_col[p], bond_mbz_col[p], rsx, rsy, rsz, kn_b * inertia * dt_s, bmx, bmy, bmz);
+      linear_batch::lane_increment(g, turn, bond_mbx_col[p], bond_mby_col[p], bond_mbz_col[p], rsx, rsy, rsz,
+                                   kn_b * inertia * dt_s, bmx, bmy, bmz);
       // stresses(): from the values as stored.
       const double mb_norm = std::sqrt(bmx * bmx + bmy * bmy + bmz * bmz);
       const double fs_norm = std::sqrt(bfx * bfx + bfy * bfy + bfz * bfz);
