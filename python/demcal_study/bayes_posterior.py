@@ -14,12 +14,11 @@ and sampling the emulators costs none, so the sampler can take as many steps as 
 affine-invariant ensemble (Debian's python3-emcee) needs no step size tuned per problem and measures its own
 autocorrelation time, the check a user reads.
 """
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-_LOG_2PI = math.log(2.0 * math.pi)
+from .lab_targets import gaussian_log_likelihood
 
 
 @dataclass
@@ -52,10 +51,7 @@ class Posterior:
         self.stress_like = np.array(stress_like, dtype=bool)
         self.d = int(dimensions)
         self.scale_bounds = scale_bounds
-        k = len(targets)
-        self.lab_mean = np.array([t.mean for t in targets], dtype=float)
-        self.lab_se = np.array([t.standard_error for t in targets], dtype=float)
-        self.lab_r = np.eye(k) if lab_correlation is None else np.asarray(lab_correlation, dtype=float)
+        self.lab_r = None if lab_correlation is None else np.asarray(lab_correlation, dtype=float)
 
     @property
     def ndim(self):
@@ -90,12 +86,7 @@ class Posterior:
         if not np.any(inside):
             return out
         mean, sd = self.predicted(theta[inside])
-        covariance = self.lab_r * np.outer(self.lab_se, self.lab_se) + sd[:, :, None] * sd[:, None, :] * np.eye(len(sd[0]))
-        factor = np.linalg.cholesky(covariance)
-        residual = mean - self.lab_mean
-        whitened = np.linalg.solve(factor, residual[:, :, None])[:, :, 0]
-        log_det = 2.0 * np.log(np.diagonal(factor, axis1=1, axis2=2)).sum(axis=1)
-        value = -0.5 * ((whitened ** 2).sum(axis=1) + log_det + len(self.targets) * _LOG_2PI)
+        value = gaussian_log_likelihood(self.targets, mean, sd, lab_correlation=self.lab_r)
         if self.scale_bounds is not None:
             value -= np.log(s[inside])  # log-uniform prior on s
         out[inside] = value

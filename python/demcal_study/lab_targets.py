@@ -144,23 +144,28 @@ def specimen_correlation(names, specimen_of):
 
 
 def gaussian_log_likelihood(targets, dem_means, dem_standard_errors, lab_correlation=None, dem_correlation=None):
-    """log p(lab means | DEM) for one parameter set: the lab means and the DEM's seed means of the same outputs, in
-    the order of `targets`, each mean with its own standard error; the covariance of their difference is the lab's
-    (its standard errors with `lab_correlation`, else none) plus the DEM's (likewise with `dem_correlation`)."""
+    """log p(lab means | DEM): the lab means and the DEM's seed means of the same outputs, in the order of `targets`,
+    each mean with its own standard error; the covariance of their difference is the lab's (its standard errors with
+    `lab_correlation`, else none) plus the DEM's (likewise with `dem_correlation`). One parameter set (means and
+    standard errors of shape (k,): a float) or several at once (rows of shape (m, k): an array of m)."""
     k = len(targets)
-    lab_se = np.array([t.standard_error for t in targets], dtype=float)
+    means = np.asarray(dem_means, dtype=float)
     dem_se = np.asarray(dem_standard_errors, dtype=float)
-    if dem_se.shape != (k,) or np.shape(dem_means) != (k,):
+    single = means.ndim == 1
+    means, dem_se = np.atleast_2d(means), np.atleast_2d(dem_se)
+    if means.shape[1:] != (k,) or dem_se.shape != means.shape:
         raise ValueError("one DEM mean and one standard error per target")
+    lab_se = np.array([t.standard_error for t in targets], dtype=float)
     lab_r = np.eye(k) if lab_correlation is None else np.asarray(lab_correlation, dtype=float)
     dem_r = np.eye(k) if dem_correlation is None else np.asarray(dem_correlation, dtype=float)
-    covariance = lab_r * np.outer(lab_se, lab_se) + dem_r * np.outer(dem_se, dem_se)
-    residual = np.asarray(dem_means, dtype=float) - np.array([t.mean for t in targets], dtype=float)
+    covariance = lab_r * np.outer(lab_se, lab_se) + dem_r * (dem_se[:, :, None] * dem_se[:, None, :])
+    residual = means - np.array([t.mean for t in targets], dtype=float)
     try:
         factor = np.linalg.cholesky(covariance)
     except np.linalg.LinAlgError:
         raise ValueError("the targets' covariance is not positive definite: a target without uncertainty needs the "
                          "DEM's own, measured over seeds") from None
-    whitened = np.linalg.solve(factor, residual)
-    log_det = 2.0 * float(np.sum(np.log(np.diag(factor))))
-    return -0.5 * (float(whitened @ whitened) + log_det + k * math.log(2.0 * math.pi))
+    whitened = np.linalg.solve(factor, residual[:, :, None])[:, :, 0]
+    log_det = 2.0 * np.log(np.diagonal(factor, axis1=1, axis2=2)).sum(axis=1)
+    value = -0.5 * ((whitened ** 2).sum(axis=1) + log_det + k * math.log(2.0 * math.pi))
+    return float(value[0]) if single else value
