@@ -235,6 +235,20 @@ case("scene/3d_locked_in_stress_with_flat_joints",
                     edited(fj3d, lambda d: d["specimen"].update(locked_in_stress_pa=1e5)))),
      path(S, "3d_locked_in_stress_with_flat_joints.json"), "locked_in_stress_pa")
 
+heap3d = load("tests/invariants/scenes/heap_small_3d.json")
+case("scene/3d_heap_negative_surface_energy",
+     describe(write(S, "3d_heap_negative_surface_energy.json",
+                    edited(heap3d, lambda d: d["parameters"]["w_N_m"].update(value=-0.1, low=-1)))),
+     path(S, "3d_heap_negative_surface_energy.json"), "work_of_adhesion_j_m2")
+case("scene/3d_heap_restitution_above_one",
+     describe(write(S, "3d_heap_restitution_above_one.json",
+                    edited(heap3d, lambda d: d["parameters"]["e"].update(value=1.2, high=2)))),
+     path(S, "3d_heap_restitution_above_one.json"), "restitution")
+case("scene/3d_heap_fill_does_not_fit",
+     run(write(S, "3d_heap_fill_does_not_fit.json",
+               edited(heap3d, lambda d: d["funnel"].update(solids_fraction=0.35, fill_height_m=0.004)))),
+     path(S, "3d_heap_fill_does_not_fit.json"), "does not fit its vessel")
+
 # ---------------------------------------------------------------- parameter space JSON (demcal-doe, describe --space)
 def doe(f):
     return ["{bin}/demcal-doe", "ccd", "--space", f, "--out", "{tmp}/design.csv"]

@@ -8,5 +8,6 @@ namespace demcal::dem3d {
 void register_ucs_test_3d(dem::LabTestRegistry& registry);
 void register_brazilian_test_3d(dem::LabTestRegistry& registry);
 void register_triaxial_test(dem::LabTestRegistry& registry);
+void register_heap_test_3d(dem::LabTestRegistry& registry);
 
 }  // namespace demcal::dem3d

@@ -1,0 +1,457 @@
+// The funnel heap in 3D (He et al. 2019's flow meter, without its brush): a
+// conical funnel filled with a powder of spheres or two-sphere clumps opens
+// onto a round platform; what runs off the platform falls past its pedestal
+// to a catch floor inside a cylindrical domain; once the heap has settled
+// (kinetic energy below a set share of the potential), its angle of repose is
+// fitted over vertical sections through the platform's axis
+// (heap_section_fit.hpp), and the height-based angle taken from its height
+// over the platform's radius. The outputs carry the 2D heap's names.
+//
+//   "particles": {"radius_min_m", "radius_max_m", "density_kg_m3", "clump_aspect_ratio" (1: spheres),
+//                 "clump_fraction" (default 1)},
+//   "funnel":    {"outlet_diameter_m", "wall_angle_deg" (from the horizontal, default 60), "height_m",
+//                 "outlet_height_m" (above the platform), "fill_height_m" (default 0.8 x height),
+//                 "solids_fraction" (default 0.25), "platform_diameter_m", "domain_diameter_m" (default 3 x platform),
+//                 "facets" (around the funnel and the platform, default 48)},
+//   "run":       {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
+//                 "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
+//                 "safety_factor"}
+//
+// Contact roles: "particle-particle" and "particle-wall" (funnel, gate, platform, pedestal, catch floor, domain).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <sys/stat.h>
+#include <vector>
+
+#include "demcal/core/error.hpp"
+#include "demcal/core/json_fields.hpp"
+#include "demcal/core/number_format.hpp"
+#include "demcal/core/progress.hpp"
+#include "demcal/dem/cohesion_number.hpp"
+#include "demcal/dem/lab_test.hpp"
+#include "demcal/dem3d/heap_section_fit.hpp"
+#include "demcal/dem3d/lab_tests_3d.hpp"
+#include "demcal/dem3d/powder_3d.hpp"
+#include "demcal/dem3d/sphere_scene.hpp"
+#include "demcal/dem3d/vtk_writer.hpp"
+
+namespace demcal::dem3d {
+namespace {
+
+constexpr std::uint8_t kPowderGroup = 0, kWallGroup = 1;
+constexpr double kGravity_m_s2 = 9.81;
+constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2;
+
+struct HeapSpec3d {
+  PowderSpec3d powder;
+  double outlet_diameter_m = 0, wall_angle_deg = 60, funnel_height_m = 0, outlet_height_m = 0, fill_height_m = 0;
+  double platform_diameter_m = 0, domain_diameter_m = 0, facets = 48;
+  double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
+  double discharged_fraction = 0.95, local_damping = 0, max_wall_s = 600, bin_width_diameters = 1.5, sections = 8;
+  double safety_factor = 0.8;
+
+  double top_radius_m() const {
+    return 0.5 * outlet_diameter_m + funnel_height_m / std::tan(wall_angle_deg * M_PI / 180);
+  }
+  // The catch floor's depth below the platform: room for the whole fill
+  // spread over the ring between pedestal and domain (twice its packed
+  // volume), and at least four particle lengths.
+  double catch_depth_m() const {
+    const Frustum fill = fill_region();
+    const double ring = M_PI * 0.25 * (domain_diameter_m * domain_diameter_m - platform_diameter_m * platform_diameter_m);
+    return std::max(4 * powder.longest_m(), 2 * powder.solids_fraction * fill.volume_m3() / 0.55 / ring);
+  }
+  // The funnel's inside up to the fill height, within the facets (a polygon
+  // inscribed in the circle reaches in to cos(pi / facets) of its radius).
+  Frustum fill_region() const {
+    const double tan_a = std::tan(wall_angle_deg * M_PI / 180), inscribed = std::cos(M_PI / facets);
+    return {outlet_height_m, outlet_height_m + fill_height_m, inscribed * 0.5 * outlet_diameter_m,
+            inscribed * (0.5 * outlet_diameter_m + fill_height_m / tan_a)};
+  }
+
+  static HeapSpec3d from_scene(const Scene& scene, const std::map<std::string, double>& parameters);
+};
+
+HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string, double>& parameters) {
+  const std::string& origin = scene.origin();
+  HeapSpec3d s;
+  auto number = [&](const std::string& section, const nlohmann::json& object, const char* key, double& target,
+                    bool required) { dem::read_section_number(scene, parameters, section, object, key, target, required); };
+  const nlohmann::json& p = scene.section("particles");
+  require_known_fields(p, {"radius_min_m", "radius_max_m", "density_kg_m3", "clump_aspect_ratio", "clump_fraction",
+                           "note"},
+                       origin + ": particles");
+  number("particles", p, "radius_min_m", s.powder.radius_min_m, true);
+  number("particles", p, "radius_max_m", s.powder.radius_max_m, true);
+  number("particles", p, "density_kg_m3", s.powder.density_kg_m3, true);
+  number("particles", p, "clump_aspect_ratio", s.powder.clump_aspect_ratio, false);
+  number("particles", p, "clump_fraction", s.powder.clump_fraction, false);
+
+  const nlohmann::json& f = scene.section("funnel");
+  require_known_fields(f, {"outlet_diameter_m", "wall_angle_deg", "height_m", "outlet_height_m", "fill_height_m",
+                           "solids_fraction", "platform_diameter_m", "domain_diameter_m", "facets", "note"},
+                       origin + ": funnel");
+  number("funnel", f, "outlet_diameter_m", s.outlet_diameter_m, true);
+  number("funnel", f, "wall_angle_deg", s.wall_angle_deg, false);
+  number("funnel", f, "height_m", s.funnel_height_m, true);
+  number("funnel", f, "outlet_height_m", s.outlet_height_m, true);
+  s.fill_height_m = 0.8 * s.funnel_height_m;
+  number("funnel", f, "fill_height_m", s.fill_height_m, false);
+  number("funnel", f, "solids_fraction", s.powder.solids_fraction, false);
+  number("funnel", f, "platform_diameter_m", s.platform_diameter_m, true);
+  s.domain_diameter_m = 3 * s.platform_diameter_m;
+  number("funnel", f, "domain_diameter_m", s.domain_diameter_m, false);
+  number("funnel", f, "facets", s.facets, false);
+
+  const nlohmann::json& r = scene.section("run");
+  require_known_fields(r, {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
+                           "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
+                           "safety_factor", "note"},
+                       origin + ": run");
+  for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
+           {"max_time_s", &s.max_time_s}, {"fill_time_s", &s.fill_time_s}, {"check_every_s", &s.check_every_s},
+           {"settle_kinetic_ratio", &s.settle_kinetic_ratio}, {"jam_time_s", &s.jam_time_s},
+           {"discharged_fraction", &s.discharged_fraction}, {"local_damping", &s.local_damping},
+           {"max_wall_s", &s.max_wall_s}, {"bin_width_diameters", &s.bin_width_diameters}, {"sections", &s.sections},
+           {"safety_factor", &s.safety_factor}})
+    number("run", r, key, *target, false);
+
+  s.powder.validate(origin + ": particles");
+  const std::string fw = origin + ": funnel";
+  const double length = s.powder.longest_m();
+  // Below about four particle lengths an outlet arches and jams (Beverloo's empty annulus is 1.5 d on each side).
+  if (!(s.outlet_diameter_m >= 4 * length))
+    throw Error(fw + ".outlet_diameter_m " + format_double(s.outlet_diameter_m) + " m is less than 4 particle lengths (" +
+                format_double(4 * length) + " m): the outlet would arch and jam");
+  if (!(s.wall_angle_deg > 10 && s.wall_angle_deg < 90)) throw Error(fw + ".wall_angle_deg must lie in (10, 90)");
+  if (!(s.funnel_height_m > 0)) throw Error(fw + ".height_m must be positive");
+  if (!(s.fill_height_m > 0 && s.fill_height_m <= s.funnel_height_m))
+    throw Error(fw + ".fill_height_m must lie in (0, height_m]");
+  if (!(s.outlet_height_m >= 2 * length))
+    throw Error(fw + ".outlet_height_m must be at least two particle lengths (" + format_double(2 * length) + " m)");
+  if (!(s.platform_diameter_m > s.outlet_diameter_m)) throw Error(fw + ".platform_diameter_m must exceed outlet_diameter_m");
+  if (!(s.domain_diameter_m > s.platform_diameter_m + 4 * length))
+    throw Error(fw + ".domain_diameter_m " + format_double(s.domain_diameter_m) + " m must exceed platform_diameter_m " +
+                format_double(s.platform_diameter_m) + " m by four particle lengths (what runs off the platform needs room)");
+  if (2 * s.top_radius_m() > s.domain_diameter_m)
+    throw Error(fw + ": the funnel's top, " + format_double(2 * s.top_radius_m()) + " m across, is wider than the "
+                "domain (domain_diameter_m " + format_double(s.domain_diameter_m) + " m)");
+  if (!(s.facets >= 12 && s.facets <= 720 && s.facets == std::floor(s.facets)))
+    throw Error(fw + ".facets must be a whole number in [12, 720]");
+  const std::string rw = origin + ": run";
+  if (!(s.max_time_s > 0)) throw Error(rw + ".max_time_s must be positive");
+  if (!(s.fill_time_s >= 0)) throw Error(rw + ".fill_time_s must be >= 0");
+  if (!(s.check_every_s > 0 && s.check_every_s < s.max_time_s)) throw Error(rw + ".check_every_s must lie in (0, max_time_s)");
+  if (!(s.settle_kinetic_ratio > 0 && s.settle_kinetic_ratio < 1)) throw Error(rw + ".settle_kinetic_ratio must lie in (0, 1)");
+  if (!(s.jam_time_s > 0)) throw Error(rw + ".jam_time_s must be positive");
+  if (!(s.discharged_fraction > 0 && s.discharged_fraction <= 1)) throw Error(rw + ".discharged_fraction must lie in (0, 1]");
+  if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(rw + ".local_damping must lie in [0, 1)");
+  if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
+  if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
+  if (!(s.sections >= 1 && s.sections <= 90 && s.sections == std::floor(s.sections)))
+    throw Error(rw + ".sections must be a whole number in [1, 90]");
+  if (!(s.safety_factor > 0 && s.safety_factor <= 1)) throw Error(rw + ".safety_factor must lie in (0, 1]");
+  return s;
+}
+
+// A disk of `facets` triangles (a fan about its centre) at height z, radius r.
+void add_disk(std::vector<Wall>& walls, double z, double r, int facets, std::int32_t mesh) {
+  const Vec3 centre{0, 0, z};
+  for (int k = 0; k < facets; ++k) {
+    const double a = 2 * M_PI * k / facets, b = 2 * M_PI * (k + 1) / facets;
+    walls.push_back(make_triangle(centre, {r * std::cos(a), r * std::sin(a), z}, {r * std::cos(b), r * std::sin(b), z},
+                                  mesh, centre, kWallGroup));
+  }
+}
+
+// The funnel's cone between the outlet (radius r0 at z0) and the top (r1 at z1): two triangles per facet.
+void add_cone(std::vector<Wall>& walls, double z0, double r0, double z1, double r1, int facets) {
+  const Vec3 pivot{0, 0, z0};
+  for (int k = 0; k < facets; ++k) {
+    const double a = 2 * M_PI * k / facets, b = 2 * M_PI * (k + 1) / facets;
+    const Vec3 a0{r0 * std::cos(a), r0 * std::sin(a), z0}, b0{r0 * std::cos(b), r0 * std::sin(b), z0};
+    const Vec3 a1{r1 * std::cos(a), r1 * std::sin(a), z1}, b1{r1 * std::cos(b), r1 * std::sin(b), z1};
+    walls.push_back(make_triangle(a0, b0, b1, kFunnelMesh, pivot, kWallGroup));
+    walls.push_back(make_triangle(a0, b1, a1, kFunnelMesh, pivot, kWallGroup));
+  }
+}
+
+double potential_energy_j(const World& world, double floor_z) {
+  double energy = 0;
+  for (const Clump& c : world.clumps()) energy += c.mass_kg * kGravity_m_s2 * (c.centre_m.z - floor_z);
+  const Spheres& s = world.spheres;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.clump[i] < 0 && !s.fixed[i]) energy += s.mass[i] * kGravity_m_s2 * (s.z[i] - floor_z);
+  return energy;
+}
+
+// Spheres whose centre is still above the outlet, less a radius (a clump counts by each member).
+std::size_t in_funnel(const World& world, const HeapSpec3d& s) {
+  const double level = s.outlet_height_m - s.powder.radius_max_m;
+  return static_cast<std::size_t>(std::count_if(world.spheres.z.begin(), world.spheres.z.end(),
+                                                [&](double z) { return z > level; }));
+}
+
+// Empty when the state is sane, else why the run fails.
+std::string escaped(const World& world, const HeapSpec3d& s, double floor_z, double top_z) {
+  const double margin = 2 * s.powder.radius_max_m, wall_r = 0.5 * s.domain_diameter_m + margin;
+  const Spheres& sp = world.spheres;
+  for (std::size_t i = 0; i < sp.size(); ++i) {
+    const Vec3 x = sp.position(i), v = sp.velocity(i);
+    if (!std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z))
+      return "a particle's position or velocity is not finite at t = " + format_double(world.time_s()) + " s";
+    if (x.z < floor_z - margin || std::hypot(x.x, x.y) > wall_r || x.z > top_z + 10 * s.funnel_height_m)
+      return "a particle left the domain through a wall at t = " + format_double(world.time_s()) + " s (x " +
+             format_double(x.x) + ", y " + format_double(x.y) + ", z " + format_double(x.z) +
+             " m): the time step is too large for the contacts";
+  }
+  return "";
+}
+
+// The particle-particle contact's cohesion (JKR: the work of adhesion and the
+// cohesion number of two mean particles) and the time step as a fraction of
+// the Rayleigh step of the smallest sphere (Hertz models), so a result says
+// at which cohesion and resolution in time it ran.
+void report_contacts(const Scene& scene, const std::map<std::string, double>& parameters, const HeapSpec3d& s,
+                     double dt_s, dem::TestResult& result) {
+  auto it = scene.contacts().find("particle-particle");
+  if (it == scene.contacts().end()) return;
+  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
+  if (!bound.contains("shear_modulus_pa") || !bound.contains("poisson")) return;
+  const double g = bound.at("shear_modulus_pa").get<double>(), nu = bound.at("poisson").get<double>();
+  const double rho = s.powder.density_kg_m3, r_min = s.powder.radius_min_m;
+  // Rayleigh wave step (the common DEM rule for Hertz contacts): pi R sqrt(rho / G) / (0.1631 nu + 0.8766).
+  const double rayleigh_s = M_PI * r_min * std::sqrt(rho / g) / (0.1631 * nu + 0.8766);
+  result.specimen_info["dt_over_rayleigh_step"] = dt_s / rayleigh_s;
+  if (it->second.model != "jkr") return;
+  const double w = bound.at("work_of_adhesion_j_m2").get<double>();
+  const double r_star = 0.25 * (s.powder.radius_min_m + s.powder.radius_max_m);
+  result.specimen_info["work_of_adhesion_j_m2"] = w;
+  result.specimen_info["cohesion_number"] =
+      dem::cohesion_number(w, dem::effective_modulus_pa(g, nu), r_star, rho, kGravity_m_s2);
+}
+
+dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, double>& parameters,
+                            const dem::RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const HeapSpec3d s = HeapSpec3d::from_scene(scene, parameters);
+  const int facets = static_cast<int>(s.facets);
+  const double ho = s.outlet_height_m, funnel_top = ho + s.funnel_height_m, floor_z = -s.catch_depth_m();
+  const double r_platform = 0.5 * s.platform_diameter_m, r_domain = 0.5 * s.domain_diameter_m;
+
+  WorldSettings settings;
+  settings.damping = s.local_damping;
+  settings.safety_factor = s.safety_factor;
+  settings.gravity_m_s2 = {0, 0, -kGravity_m_s2};
+  if (options.threads > 0) settings.threads = options.threads;
+  if (options.min_disks_per_thread > 0) settings.min_spheres_per_thread = options.min_disks_per_thread;
+  World world(settings);
+  bind_contact_models(world, scene, parameters);
+  add_cone(world.walls, ho, 0.5 * s.outlet_diameter_m, funnel_top, s.top_radius_m(), facets);
+  const std::size_t gate_begin = world.walls.size();
+  add_disk(world.walls, ho, 0.5 * s.outlet_diameter_m, facets, kGateMesh);
+  const std::size_t gate_end = world.walls.size();
+  add_disk(world.walls, 0.0, r_platform, facets, kPlatformMesh);
+  world.walls.push_back(make_cylinder({0, 0, floor_z}, {0, 0, 1}, r_platform, -floor_z, false, kWallGroup));  // pedestal
+  world.walls.push_back(make_plane({0, 0, floor_z}, {0, 0, 1}, kWallGroup));                                  // catch floor
+  world.walls.push_back(make_cylinder({0, 0, floor_z}, {0, 0, 1}, r_domain, funnel_top - floor_z, true, kWallGroup));
+
+  const std::vector<PowderParticle3d> particles =
+      place_powder_3d(s.powder, s.fill_region(), options.seed, scene.origin() + ": funnel (the fill)");
+  add_powder_3d(world, particles, s.powder, kPowderGroup, options.particle_order_seed);
+  world.refresh();
+
+  dem::TestResult result;
+  result.particles = world.spheres.size();
+  result.specimen_info["particles"] = static_cast<double>(particles.size());
+  result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
+  result.specimen_info["catch_depth_m"] = -floor_z;
+  report_contacts(scene, parameters, s, world.dt_s(), result);
+  const auto loading_start = std::chrono::steady_clock::now();
+  std::unique_ptr<Progress> progress;
+  if (options.progress) progress = std::make_unique<Progress>("heap_3d (% of run.max_time_s)", 100);
+  int shown = 0;
+  const auto steps_per_check =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.check_every_s / world.dt_s())));
+
+  enum class Stage { fill, discharge, settle } stage = Stage::fill;
+  const std::size_t total = world.spheres.size();
+  const auto left_behind = static_cast<std::size_t>(std::floor((1 - s.discharged_fraction) * static_cast<double>(total)));
+  double opened_at = 0, last_drop_at = 0, flow_time = -1;
+  std::size_t remaining = total;
+  result.ok = true;
+  auto fail = [&](const std::string& why) {
+    result.ok = false;
+    result.reason = why;
+  };
+  for (;;) {
+    world.run(steps_per_check);
+    const double t = world.time_s();
+    const std::string bad = escaped(world, s, floor_z, funnel_top);
+    if (!bad.empty()) {
+      fail(bad);
+      break;
+    }
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > s.max_wall_s) {
+      fail("timeout: the heap took longer than run.max_wall_s " + format_double(s.max_wall_s) + " s of wall time");
+      break;
+    }
+    if (progress) {
+      const int percent = std::min(100, static_cast<int>(100 * t / s.max_time_s));
+      if (percent > shown) progress->advance(static_cast<std::uint64_t>(percent - shown));
+      shown = std::max(shown, percent);
+    }
+    if (stage == Stage::fill) {
+      if (t >= s.fill_time_s) {
+        for (std::size_t w = gate_begin; w < gate_end; ++w) world.walls[w].active = false;  // open the outlet
+        world.refresh();
+        opened_at = last_drop_at = t;
+        stage = Stage::discharge;
+      }
+    } else if (stage == Stage::discharge) {
+      const std::size_t now = in_funnel(world, s);
+      if (now < remaining) last_drop_at = t;
+      remaining = now;
+      if (remaining <= left_behind) {
+        flow_time = t - opened_at;
+        stage = Stage::settle;
+      } else if (t - last_drop_at > s.jam_time_s) {
+        fail("the funnel jammed: " + std::to_string(remaining) + " of " + std::to_string(total) +
+             " spheres still in it " + format_double(t - opened_at) + " s after it opened (none left it for run.jam_time_s " +
+             format_double(s.jam_time_s) + " s); widen funnel.outlet_diameter_m or steepen funnel.wall_angle_deg");
+        break;
+      }
+    } else {
+      const double kinetic = world.kinetic_energy(), potential = potential_energy_j(world, floor_z);
+      if (kinetic < s.settle_kinetic_ratio * potential) {
+        result.specimen_info["kinetic_over_potential"] = kinetic / potential;
+        break;
+      }
+    }
+    if (t >= s.max_time_s) {
+      fail(stage == Stage::settle
+               ? "the heap did not settle within run.max_time_s " + format_double(s.max_time_s) +
+                     " s (kinetic / potential energy " +
+                     format_double(world.kinetic_energy() / potential_energy_j(world, floor_z)) + ", asked below " +
+                     format_double(s.settle_kinetic_ratio) + ")"
+               : "the funnel had not discharged within run.max_time_s " + format_double(s.max_time_s) + " s (" +
+                     std::to_string(remaining) + " of " + std::to_string(total) + " spheres left)");
+      break;
+    }
+  }
+  if (progress) progress->finish();
+  const auto now = std::chrono::steady_clock::now();
+  result.steps = world.steps_done();
+  result.dt_s = world.dt_s();
+  result.threads = world.threads_in_use();
+  result.wall_s = std::chrono::duration<double>(now - start).count();
+  result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
+  if (!options.vtk_dir.empty()) {
+    ::mkdir(options.vtk_dir.c_str(), 0755);
+    write_vtk_spheres(world, options.vtk_dir + "/final_000000.vtk");
+    write_vtk_walls(world, options.vtk_dir + "/final_walls_000000.vtk");
+  }
+  if (!result.ok) return result;
+
+  // The heap: the spheres above the platform, below the outlet.
+  std::vector<double> x, y, z, r;
+  const Spheres& sp = world.spheres;
+  for (std::size_t i = 0; i < sp.size(); ++i)
+    if (sp.z[i] > 0 && sp.z[i] < ho - s.powder.radius_max_m &&
+        std::hypot(sp.x[i], sp.y[i]) <= r_platform + s.powder.radius_max_m) {
+      x.push_back(sp.x[i]);
+      y.push_back(sp.y[i]);
+      z.push_back(sp.z[i]);
+      r.push_back(sp.radius[i]);
+    }
+  HeapSectionOptions fit_options;
+  fit_options.sections = static_cast<std::size_t>(s.sections);
+  const double diameter = s.powder.radius_min_m + s.powder.radius_max_m;
+  fit_options.profile.bin_width_m = s.bin_width_diameters * diameter;
+  // A section two particles thick: thinner ones leave bins of the surface empty.
+  fit_options.slab_width_m = std::max(fit_options.profile.bin_width_m, 2 * diameter);
+  try {
+    const HeapSectionFit fit = fit_heap_sections(x, y, z, r, 0.0, fit_options);
+    if (fit.height_m > ho - 2 * s.powder.radius_max_m)
+      throw Error("the heap reached the funnel's outlet (height " + format_double(fit.height_m) +
+                  " m): raise funnel.outlet_height_m or widen funnel.platform_diameter_m");
+    result.macro["aor_deg"] = fit.mean_deg;
+    result.macro["aor_sections_sd_deg"] = fit.sd_deg;
+    result.macro["heap_height_m"] = fit.height_m;
+    // The height-based angle of a cone on a round plate: tan = height / radius.
+    result.macro["aor_fixed_base_deg"] = std::atan(fit.height_m / r_platform) * 180.0 / M_PI;
+    result.macro["flow_time_s"] = flow_time;
+    bool covers = true;  // every section's profile reaches both edges of the plate
+    for (const dem::ReposeFit& f : fit.sections)
+      covers = covers && !f.profile_x_m.empty() && f.profile_x_m.front() <= -r_platform + fit_options.profile.bin_width_m &&
+               f.profile_x_m.back() >= r_platform - fit_options.profile.bin_width_m;
+    result.specimen_info["heap_covers_plate"] = covers ? 1.0 : 0.0;
+    result.specimen_info["heap_spheres"] = static_cast<double>(x.size());
+    result.specimen_info["settled_at_s"] = world.time_s();
+    // The first section's profile as the result's curve: the distance along
+    // it in axial_strain's column, the surface height in lateral_strain's.
+    const dem::ReposeFit& first = fit.sections.front();
+    for (std::size_t k = 0; k < first.profile_x_m.size(); ++k) {
+      dem::CurvePoint point;
+      point.axial_strain = first.profile_x_m[k];
+      point.lateral_strain = first.profile_height_m[k];
+      result.curve.push_back(point);
+    }
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  return result;
+}
+
+class HeapTest3d : public dem::LabTest {
+ public:
+  std::string name() const override { return "heap_3d"; }
+  std::string description() const override {
+    return "funnel heap in 3D: a conical funnel of powder opens onto a round platform; the settled heap's angle of "
+           "repose over vertical sections, and its height-based angle";
+  }
+  std::vector<dem::BoundaryRole> boundary_roles() const override {
+    return {{"particle-wall", kWallGroup, "particles against the funnel, its gate, the platform and the catch floor"}};
+  }
+  bool exact_scaling() const override { return false; }  // gravity sets the stresses
+  int results_version() const override { return 1; }
+  int dimension() const override { return 3; }
+  const dem::ContactModelCatalog& contact_models() const override { return sphere_contact_models(); }
+  // The heap makes its particles in the funnel as it runs: no packed specimen, no loading.
+  std::vector<dem::SceneSection> sections() const override {
+    return {{"particles", "the powder: radii, density, two-sphere clumps", true, true},
+            {"funnel", "the funnel, the platform and the domain", false},
+            {"run", "time limits, the settling criterion, the angle's bins and sections", false}};
+  }
+  std::vector<dem::ContactRole> specimen_roles(const Scene&) const override {
+    return {{"particle-particle", {{kPowderGroup, kPowderGroup}}, "particles against each other"}};
+  }
+  void check_scene(const Scene& scene) const override { HeapSpec3d::from_scene(scene, scene.resolve({})); }
+  std::vector<std::string> headline_outputs(const Scene&) const override { return {"aor_deg", "aor_fixed_base_deg"}; }
+  std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }  // a profile, not a curve
+  std::vector<dem::OutputSpec> outputs(const Scene&) const override {
+    return {{"aor_deg", "deg", "angle of repose, the mean over both flanks of run.sections vertical sections through "
+                               "the platform's axis (least-squares lines between 10 and 90 % of each section's height)",
+             true, dem::kAcuteAngleDeg},
+            {"aor_sections_sd_deg", "deg", "the SD of the flank angles around the heap", true, dem::kNonNegative},
+            {"heap_height_m", "m", "the settled heap's height above the platform", true, dem::kNonNegative},
+            {"aor_fixed_base_deg", "deg", "the height-based angle, atan(heap_height_m / the platform's radius); the "
+                                          "specimen's heap_covers_plate says whether the flanks reach its edge",
+             true, dem::kAcuteAngleDeg},
+            {"flow_time_s", "s", "time from opening the outlet until run.discharged_fraction of the spheres left the funnel",
+             true, dem::kNonNegative}};
+  }
+  dem::TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,
+                      const dem::RunOptions& options) const override {
+    return run_heap_3d(scene, parameters, options);
+  }
+};
+
+}  // namespace
+
+void register_heap_test_3d(dem::LabTestRegistry& registry) { registry.add(std::make_unique<HeapTest3d>()); }
+
+}  // namespace demcal::dem3d
