@@ -269,7 +269,6 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   result.specimen_info["particles"] = static_cast<double>(particles.size());
   result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
   result.specimen_info["catch_depth_m"] = -floor_z;
-  report_contacts(scene, parameters, s, world.dt_s(), result);
   const auto loading_start = std::chrono::steady_clock::now();
   std::unique_ptr<Progress> progress;
   if (options.progress) progress = std::make_unique<Progress>("heap_3d (% of run.max_time_s)", 100);
@@ -346,6 +345,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   const auto now = std::chrono::steady_clock::now();
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
+  report_contacts(scene, parameters, s, world.dt_s(), result);  // the step the run ended with
   result.threads = world.threads_in_use();
   result.wall_s = std::chrono::duration<double>(now - start).count();
   result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
