@@ -133,7 +133,13 @@ def parser():
     # Numbers are read as text and checked with everything else, so that one bad value does not hide the others.
     cal.add_argument("--scene", metavar="SCENE.json", help="the scene (or test list) to calibrate (required)")
     cal.add_argument("--target", action="append", metavar="NAME=VALUE",
-                     help="a target: an output of the scene, or a ratio A/B of two, in its unit (repeatable)")
+                     help="a target: an output of the scene, or a ratio A/B of two, in its unit (repeatable); "
+                          "NAME=MEAN+-SD or NAME=MEAN+-SD/n=N gives the lab's scatter over N specimens (the point "
+                          "searches aim at the mean; bayes weighs it)")
+    cal.add_argument("--lab-specimens", metavar="SPECIMENS.csv",
+                     help="targets from the lab's specimens: a CSV test,output,value[,specimen], one row per "
+                          "measurement (each output's mean, SD and count, and the correlation of outputs measured on "
+                          "one specimen)")
     cal.add_argument("--space", metavar="SPACE.json", help="ranges to search (default: the scene's physical bounds)")
     cal.add_argument("--fixed", action="append", metavar="NAME=VALUE",
                      help="a scene parameter held at a value inside its physical bounds (repeatable)")
@@ -142,9 +148,10 @@ def parser():
     cal.add_argument("--budget", default=80, metavar="RUNS",
                      help="most DEM runs in all, failed ones counted; each test of a test list counts (80)")
     cal.add_argument("--scale-parameter", metavar="NAME", help="the stress-like parameter the others are ratios to")
-    cal.add_argument("--strategy", default="trust-region", metavar="{trust-region,kriging}",
-                     help="the search on specimen 1: local linear models in a trust region (default), or Gaussian "
-                          "processes with expected improvement")
+    cal.add_argument("--strategy", default="trust-region", metavar="{trust-region,kriging,bayes}",
+                     help="the search on specimen 1: local linear models in a trust region (default), Gaussian "
+                          "processes with expected improvement, or a posterior over the parameters from targets "
+                          "with their scatter (bayes: posterior.csv and posterior.json beside the solution)")
     cal.add_argument("--check-resolution", metavar="F",
                      help="once met, verify again with the disk radii divided by F (> 1) and report the shift")
     cal.add_argument("--check-test", action="append", metavar="SCENE.json",

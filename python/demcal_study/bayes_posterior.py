@@ -26,11 +26,13 @@ class Samples:
     """Posterior draws: `theta` rows of (u..., s) (s only with a scale), equal weights; and what a user checks."""
 
     theta: np.ndarray
+    log_prob: np.ndarray         # the log posterior of each draw (up to a constant)
     acceptance: float            # mean acceptance fraction of the walkers
     autocorrelation_steps: list  # integrated autocorrelation time per coordinate, in steps
     effective_samples: float     # draws / the longest autocorrelation time
     steps: int
     walkers: int
+    converged: bool = True       # the kept half of the chain is at least 50 autocorrelation times long
 
 
 class Posterior:
@@ -40,7 +42,8 @@ class Posterior:
     scale_bounds: (low, high) of s, or None when nothing scales; lab_correlation: the lab's correlation matrix of
     the targets (None: independent)."""
 
-    def __init__(self, emulators, targets, stress_like, dimensions, scale_bounds=None, lab_correlation=None):
+    def __init__(self, emulators, targets, stress_like, dimensions, scale_bounds=None, lab_correlation=None,
+                 scale_support=None):
         if len(emulators) != len(targets) or len(stress_like) != len(targets):
             raise ValueError("one emulator and one stress-like flag per target")
         if scale_bounds is None and any(stress_like):
@@ -51,6 +54,9 @@ class Posterior:
         self.stress_like = np.array(stress_like, dtype=bool)
         self.d = int(dimensions)
         self.scale_bounds = scale_bounds
+        # Rows of u -> (low, high) arrays of the scale factors that keep every stress-like parameter inside its
+        # bounds there (None: the fixed bounds alone); the prior is then 1/s over that region of (u, s).
+        self.scale_support = scale_support
         self.lab_r = None if lab_correlation is None else np.asarray(lab_correlation, dtype=float)
 
     @property
@@ -82,6 +88,9 @@ class Posterior:
         inside = np.all(np.abs(u) <= 1.0, axis=1)
         if self.scale_bounds is not None:
             inside &= (s >= self.scale_bounds[0]) & (s <= self.scale_bounds[1])
+        if self.scale_support is not None and np.any(inside):
+            low, high = self.scale_support(u[inside])
+            inside[inside] = (s[inside] >= low) & (s[inside] <= high)
         out = np.full(len(theta), -np.inf)
         if not np.any(inside):
             return out
@@ -92,14 +101,20 @@ class Posterior:
         out[inside] = value
         return out
 
-    def sample(self, seed=1, walkers=None, steps=4000, start=None):
-        """Draws from the posterior: an ensemble of `walkers` (default 4 per coordinate, at least 16) from `start`
-        (rows; default: uniform over the prior), `steps` steps, the first half discarded, thinned by half the
-        longest autocorrelation time."""
+    def default_walkers(self):
+        """8 walkers per coordinate, at least 32: enough draws for 90 % intervals from a 4000-step chain."""
+        return max(32, 8 * self.ndim)
+
+    def sample(self, seed=1, walkers=None, steps=4000, start=None, max_steps=16000):
+        """Draws from the posterior: an ensemble of `walkers` (default 8 per coordinate, at least 32) from `start`
+        (rows inside the support; default: uniform over the fixed bounds), `steps` steps, the first half discarded,
+        thinned by half the longest autocorrelation time. While the kept half is shorter than 50 autocorrelation
+        times (emcee's rule for a trustworthy estimate), the chain runs on by `steps` more, up to `max_steps`;
+        `converged` says whether it got there."""
         import emcee  # Debian's python3-emcee (scripts/install-deps.sh)
 
         ndim = self.ndim
-        walkers = walkers or max(16, 4 * ndim)
+        walkers = walkers or self.default_walkers()
         rng = np.random.default_rng(seed)
         if start is None:
             start = rng.uniform(-1.0, 1.0, size=(walkers, ndim))
@@ -108,11 +123,21 @@ class Posterior:
                 start[:, self.d] = np.exp(rng.uniform(lo, hi, size=walkers))
         sampler = emcee.EnsembleSampler(walkers, ndim, self.log_prob, vectorize=True)
         sampler.random_state = np.random.RandomState(seed).get_state()  # the same draws for the same seed
-        sampler.run_mcmc(np.asarray(start, dtype=float), steps, progress=False)
-        tau = sampler.get_autocorr_time(discard=steps // 2, quiet=True)
+        chunk = steps
+        state = sampler.run_mcmc(np.asarray(start, dtype=float), chunk, progress=False)
+        while True:
+            try:
+                tau, converged = sampler.get_autocorr_time(discard=steps // 2), True
+            except emcee.autocorr.AutocorrError as e:  # its estimate comes with it
+                tau, converged = e.tau, False
+            if converged or steps + chunk > max(max_steps, chunk):
+                break
+            state = sampler.run_mcmc(state, chunk, progress=False)
+            steps += chunk
         thin = max(1, int(0.5 * float(np.max(tau))))
         chain = sampler.get_chain(discard=steps // 2, thin=thin, flat=True)
-        return Samples(theta=chain, acceptance=float(np.mean(sampler.acceptance_fraction)),
+        log_prob = sampler.get_log_prob(discard=steps // 2, thin=thin, flat=True)
+        return Samples(theta=chain, log_prob=log_prob, acceptance=float(np.mean(sampler.acceptance_fraction)),
                        autocorrelation_steps=[float(t) for t in tau],
                        effective_samples=float(walkers * (steps - steps // 2) / np.max(tau)), steps=steps,
-                       walkers=walkers)
+                       walkers=walkers, converged=converged)

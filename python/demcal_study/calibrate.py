@@ -31,7 +31,7 @@ import time
 
 import numpy as np
 
-from . import calibrate_runs, commands, executables, outputs, trust_region
+from . import calibrate_runs, commands, executables, lab_targets, outputs, trust_region
 from . import searches
 from .calibrate_limits import (EXIT_BUDGET, EXIT_FAILED, EXIT_MET, EXIT_UNREACHABLE,  # noqa: F401 (the exit codes)
                                FIRST_VERIFICATION_SEEDS, INITIAL_RADIUS, MAX_ROUNDS, MAX_VERIFICATION_SEEDS)
@@ -77,6 +77,25 @@ def parse_assignments(items, what, problems=None):
                 fail(message)
             problems.add(message)
     return out
+
+
+def parse_lab_targets(items, problems):
+    """({name: mean}, {name: {"sd", "n"}} of those given with their scatter) from --target items (each may hold
+    several, separated by spaces): NAME=VALUE, NAME=MEAN+-SD or NAME=MEAN+-SD/n=N. Each bad item or repeated name is
+    one problem."""
+    targets, uncertainty = {}, {}
+    for item in items or []:
+        for part in item.split():
+            t = lab_targets.parse_target(part)
+            if isinstance(t, str):
+                problems.add(t)
+            elif t.name in targets:
+                problems.add(f"--target: {t.name} is given twice ({targets[t.name]:g} and {t.mean:g}): give it once")
+            else:
+                targets[t.name] = t.mean
+                if t.sd is not None:
+                    uncertainty[t.name] = {"sd": t.sd, "n": t.n}
+    return targets, uncertainty
 
 
 def default_name(scene, targets):
@@ -269,9 +288,11 @@ class Calibration:
         first = self.run_round("r00_reference", [(centre, 1.0)])
         wall = self.point_wall_s("r00_reference")
         design = self.initial_design(centre)
-        planned = (1 + len(design) + 2 * MAX_ROUNDS) * self.tests
+        search = searches.by_name(self.config.get("strategy", "trust-region"))
+        rounds_text, round_points = search.plan(len(centre))
+        planned = (1 + len(design) + round_points) * self.tests
         each = f" (each point runs {self.tests} tests, each counted)" if self.tests > 1 else ""
-        self.say(f"planned DEM points: 1 reference + {len(design)} design + up to {MAX_ROUNDS} rounds of 2 on specimen 1,"
+        self.say(f"planned DEM points: 1 reference + {len(design)} design + {rounds_text} on specimen 1,"
                  f" then verification on {FIRST_VERIFICATION_SEEDS}-{MAX_VERIFICATION_SEEDS} fresh seeds per round{each};"
                  f" at most {self.budget} test runs in all. One point alone took {wall:.1f} s: about "
                  f"{self.estimate_min(min(self.budget, planned + 2 * MAX_VERIFICATION_SEEDS * self.tests) / self.tests, wall):.1f}"
@@ -291,7 +312,6 @@ class Calibration:
         if best is None:
             return self.finish("failed", "no DEM point of the first design ran", EXIT_FAILED)
         centre = np.array(best["u"])
-        search = searches.by_name(self.config.get("strategy", "trust-region"))
         centre, radius, best, converged, blocked = search.run(self, centre, best)
         self.crn = {"converged": converged, "centre": centre.tolist(), "rounds": len(self.rounds), "residuals_pct":
                     (100 * self.measured_residuals(best)).tolist()}
@@ -541,8 +561,12 @@ def checked_command(args):
     problems = Problems()
     if getattr(args, "unrecognized", None):
         problems.add(f"calibrate: unrecognized arguments: {' '.join(args.unrecognized)}")
-    targets = parse_assignments(args.target, "--target", problems)
-    if not args.target:
+    targets, uncertainty = parse_lab_targets(args.target, problems)
+    lab_correlation = None
+    measured = None
+    if getattr(args, "lab_specimens", None):
+        measured = problems.check(lab_targets.read_specimens, args.lab_specimens)
+    if not args.target and not getattr(args, "lab_specimens", None):
         problems.add("--target: give at least one NAME=VALUE (e.g. --target E_GPa=6.5)")
     fixed = parse_assignments(args.fixed, "--fixed", problems)
     tolerance = number_option(args.tolerance, "--tolerance", problems)
@@ -556,6 +580,11 @@ def checked_command(args):
     strategy = args.strategy or "trust-region"
     if strategy not in STRATEGIES:
         problems.add(f"--strategy: {strategy} is not one of {', '.join(STRATEGIES)}")
+    if strategy == "bayes":
+        for name in targets:
+            if name not in uncertainty:
+                problems.add(f"--target: {name}: the Bayesian search weighs each target by the lab's scatter: write "
+                             f"{name}=MEAN+-SD (or +-SD/n=N for a mean of N specimens), or give --lab-specimens")
     check_resolution = None
     if args.check_resolution is not None:
         check_resolution = number_option(args.check_resolution, "--check-resolution", problems)
@@ -578,6 +607,17 @@ def checked_command(args):
             problems.add(f"--check-test: {path} does not exist")
 
     description = problems.check(executables.describe, args.scene) if scene_ok else None
+    if measured is not None:  # the lab's specimens join the targets, named as the scene's outputs
+        if description:
+            measured = lab_targets.named_as_outputs(measured, description["outputs"])
+        by_name, names, r = measured
+        for name, t in by_name.items():
+            if name in targets:
+                problems.add(f"--lab-specimens {args.lab_specimens}: {name} is also a --target: give it once")
+                continue
+            targets[name], uncertainty[name] = t.mean, {"sd": t.sd, "n": t.n}
+        if len(names) > 1 and not np.array_equal(r, np.eye(len(names))):
+            lab_correlation = {"names": names, "matrix": r.tolist()}
     tests = outputs.tests_described(description) if description else 1
     coordinates = 0
     if description:
@@ -616,9 +656,13 @@ def checked_command(args):
         config["check_tests"] = check_tests
     if strategy != "trust-region":  # absent for the default, so calibrations stored before the option resume
         config["strategy"] = strategy
+    if uncertainty:  # likewise absent without any
+        config["target_uncertainty"] = uncertainty
+    if lab_correlation:
+        config["lab_correlation"] = lab_correlation
     out, replace = None, False
     if targets and args.scene:
-        name = args.name or default_name(args.scene, targets) + ("_kriging" if strategy == "kriging" else "")
+        name = args.name or default_name(args.scene, targets) + ("" if strategy == "trust-region" else f"_{strategy}")
         out = os.path.join(args.out_root, name)
         stored = os.path.join(out, "calibration.json")
         existing = os.path.abspath(out)

@@ -7,6 +7,7 @@ verdicts and paths are written as report_text.py says."""
 import os
 
 from . import executables
+from .calibrate_report_posterior import posterior_lines
 from .errors import StudyError, load_json
 from .files import write_target
 from .mohr import mohr_section
@@ -160,7 +161,8 @@ def report(out):
         lines += [f"Study {code(study['name'])}: {md(study.get('description', ''))}", ""]
     lines += problem_lines(problem, out)
     names = problem["residuals"]
-    lines += ["", "## Rounds on specimen 1 (common random numbers)", "",
+    point_rounds = [r for r in solution["rounds"] if "bayes" not in r]  # the Bayesian search's: its own section
+    lines += [] if not point_rounds else ["", "## Rounds on specimen 1 (common random numbers)", "",
               ("Errors of the dimensionless targets after the exact scale factor, in %." if scaled else
                "Relative errors of the targets, in %.") +
               (f" Rounds b2, b3, ...: the scale factor {md(problem['scale_target'])} wanted left the bounds, so the "
@@ -170,7 +172,7 @@ def report(out):
 
     def errs(values):
         return "-" if values is None else ", ".join(f"{md(n)} {percent(x)}" for n, x in zip(names, values))
-    for r in solution["rounds"]:
+    for r in point_rounds:
         lines.append(f"| {r['round']} | {errs(r['centre_residuals_pct'])} | {errs(r['candidate_residuals_pct'])} | "
                      f"{errs(r['predicted_residuals_pct'])} | {'yes' if r['accepted'] else 'no'} | {num(r['radius'])} | "
                      f"{r['runs']} |")
@@ -204,6 +206,7 @@ def report(out):
         for o, value in sorted(solution["predicted"].items()):
             lo, hi = solution["prediction_interval_95"][o]
             lines.append(f"| {md(o)} | {num(solution['targets'][o])} | {num(value)} | {num(lo)} to {num(hi)} |")
+    lines += posterior_lines(out, solution)
     last = solution["verifications"][-1]["folder"] if solution["verifications"] else None
     if last and os.path.exists(os.path.join(out, last, "verification.json")):
         verification = load_json(os.path.join(out, last, "verification.json"), "verification")

@@ -125,6 +125,19 @@ def read_specimens(path):
     return targets, names, specimen_correlation(names, specimen_of)
 
 
+def named_as_outputs(measured, outputs):
+    """read_specimens' answer with each TEST.OUTPUT name that is not an output of the scene but whose OUTPUT is
+    renamed OUTPUT: a scene list prefixes an output only where several of its tests give it, and a lab writes the test
+    of every row."""
+    by_name, names, r = measured
+
+    def plain(name):
+        test, dot, output = name.partition(".")
+        return output if dot and name not in outputs and output in outputs else name
+    renamed = {plain(n): LabTarget(plain(n), t.mean, t.sd, t.n) for n, t in by_name.items()}
+    return renamed, [plain(n) for n in names], r
+
+
 def specimen_correlation(names, specimen_of):
     """The correlation of each two outputs over the specimens that measured both (Pearson; 0 where fewer than 3
     specimens have both, too few to tell), 1 on the diagonal."""

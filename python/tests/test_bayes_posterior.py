@@ -77,3 +77,33 @@ def test_inconsistent_arguments_are_refused():
         Posterior([Linear(1.0, [1.0])], [], [False], dimensions=1)
     with pytest.raises(ValueError, match="scale factor's bounds"):
         Posterior([Linear(1.0, [1.0])], [LabTarget("s", 1.0, 0.1)], [True], dimensions=1)
+
+
+def test_the_search_emulator_predicts_as_its_gaussian_process():
+    # ScaleFreeEmulator keeps the inverse of the process's Cholesky factor for speed: the same mean and SD as
+    # kriging.GP.predict to rounding, and exp of them (SD by the first-order rule) for a logged stress.
+    from demcal_study import kriging
+    from demcal_study.searches.bayes_search import ScaleFreeEmulator
+    rng = np.random.default_rng(3)
+    x = rng.uniform(-1, 1, size=(25, 3))
+    y = np.sin(2 * x[:, 0]) + x[:, 1] ** 2 + 0.01 * rng.standard_normal(25)
+    gp = kriging.fit(x, y, seed=2)
+    u = rng.uniform(-1, 1, size=(40, 3))
+    mean, sd = gp.predict(u)
+    m, s = ScaleFreeEmulator(gp, logged=False).predict(u)
+    np.testing.assert_allclose(m, mean, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(s, sd, rtol=1e-6, atol=1e-9)
+    m, s = ScaleFreeEmulator(gp, logged=True).predict(u)
+    np.testing.assert_allclose(m, np.exp(mean), rtol=1e-10)
+    np.testing.assert_allclose(s, np.exp(mean) * sd, rtol=1e-6, atol=1e-9)
+
+
+def test_a_chain_shorter_than_fifty_autocorrelation_times_runs_on_up_to_its_cap():
+    # 100 kept steps cannot be 50 autocorrelation times of an ensemble (tau is several steps): the chain grows by
+    # its first length, 200, up to the cap, and says it did not converge; a long enough one stops at once.
+    p = Posterior([Linear(3.0, [1.0])], [LabTarget("y", 3.2, 0.1)], [False], dimensions=1)
+    short = p.sample(seed=4, steps=200, max_steps=600)
+    assert short.steps == 600 and not short.converged
+    assert 50 * max(short.autocorrelation_steps) > 300
+    long = p.sample(seed=4, steps=4000, max_steps=16000)
+    assert long.steps == 4000 and long.converged

@@ -1,6 +1,7 @@
 """The adaptive calibration against a closed-form stand-in for the DEM that obeys the exact scaling (stress outputs
 proportional to the stress-like parameters) and has specimen-to-specimen scatter: it must meet reachable targets
 within its budget, verify on fresh seeds, correct specimen 1's bias, and call an unreachable target unreachable."""
+import csv
 import json
 import math
 import os
@@ -12,6 +13,7 @@ import pytest
 from demcal_study import calibrate, calibrate_runs, calibrate_verify, commands, executables, outputs, trust_region
 from demcal_study.calibration_problem import Problem
 from demcal_study.calibrate_report import report
+from demcal_study.searches import bayes_search
 from demcal_study.errors import StudyError
 
 DESCRIPTION = {
@@ -275,7 +277,7 @@ def test_local_fit_recovers_a_linear_response_and_tells_noise_from_effects():
 
 @pytest.mark.parametrize("args,message", [
     (["--scene", "no_such_scene.json", "--target", "E_GPa=6.5"], "--scene: no_such_scene.json does not exist"),
-    (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa"], "--target: \"E_GPa\" is not NAME=NUMBER"),
+    (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa"], "--target: \"E_GPa\" is not NAME=VALUE, NAME=MEAN+-SD or NAME=MEAN+-SD/n=N"),
     (["--scene", "data/scenes/ucs_rock_cb.json"], "--target: give at least one NAME=VALUE"),
     (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa=6.5", "--budget", "5"], "--budget: 5 DEM runs"),
     (["--scene", "data/scenes/ucs_rock_cb.json", "--target", "E_GPa=6.5", "--tolerance", "2"], "--tolerance: 2.0"),
@@ -618,3 +620,45 @@ def test_a_mean_met_with_an_interval_too_wide_is_noisy_and_says_how_many_disks_w
     # 8.5 % on the 11 seeds a budget left is a 12.65 % scatter per seed: 5.92 % on 20 seeds, so 1.40x the disks.
     assert calibrate_verify.disk_factor_for(8.5, 0.05, 11, 20) == pytest.approx((8.5 * math.sqrt(11) / 2.228 * 2.093
                                                                            / math.sqrt(20) / 5) ** 2, rel=2e-3)
+
+
+def test_the_bayesian_search_gives_a_posterior_and_a_verified_point(fake, tmp_path, bin_dir, monkeypatch):
+    # Unextended chains keep this test at about 20 s (friction's flat posterior would run each to the cap);
+    # the extension itself is tested in test_bayes_posterior.py.
+    monkeypatch.setattr(bayes_search, "MAX_STEPS", 4000)
+    # The lab's means at a reachable point, with a 3 % SD over 5 specimens (SE 1.3 %): the exported point must still
+    # meet every target within 5 % on fresh seeds, and the posterior must say what the data pin down.
+    targets = {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2}
+    out = str(tmp_path / "cal")
+    os.makedirs(out, exist_ok=True)
+    config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05, "budget": 60,
+              "scale_parameter": None, "strategy": "bayes",
+              "target_uncertainty": {o: {"sd": 0.03 * v, "n": 5} for o, v in targets.items()}}
+    with open(os.path.join(out, "calibration.json"), "w") as f:
+        json.dump(config, f)
+    tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
+    code = calibrate.Calibration(config, out, tools, quiet=True).run()
+    solution = json.load(open(os.path.join(out, "solution.json")))
+    assert code == calibrate.EXIT_MET, solution["why"]
+    assert solution["dem_runs"] <= 60
+    mean = {o: np.mean([fake_dem(solution["x"], s)[o] for s in range(100, 400)]) for o in targets}
+    for o, t in targets.items():
+        assert abs(mean[o] / t - 1) < 0.05, (o, mean[o], t)
+    posterior = json.load(open(os.path.join(out, "posterior.json")))
+    # Three targets, four parameters (Ec, sc, kn_ks, mu): E fixes Ec's scale, nu kn_ks, sigma_u only sc and mu
+    # together: mu cannot be told from sc.
+    assert "kn_ks" in posterior["identified"]
+    assert "mu" in posterior["not_identified"]
+    d = posterior["diagnostics"]
+    assert d["effective_samples"] > 200 and 0.1 < d["acceptance"] < 0.9
+    rows = list(csv.DictReader(open(os.path.join(out, "posterior.csv"))))
+    assert len(rows) == d["kept"] and {"Ec_Pa", "sc_Pa", "kn_ks", "mu", "weight"} <= set(rows[0])
+    kn = np.array([float(r["kn_ks"]) for r in rows])
+    lo, hi = posterior["parameters"]["kn_ks"]["credible_90"]
+    assert np.mean((kn >= lo) & (kn <= hi)) == pytest.approx(0.9, abs=0.01)
+    report(out)
+    md = open(os.path.join(out, "report.md")).read()
+    section = md[md.index("## Posterior (Bayesian search)"):]
+    assert "| kn_ks |" in section and "| E_GPa | 6.5 | 0.195 | 5 |" in section
+    rounds = [r for r in solution["rounds"] if "bayes" in r]
+    assert rounds and section.count("\n| ") >= len(rounds) + 4 + 3

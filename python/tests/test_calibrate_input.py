@@ -87,14 +87,14 @@ def test_every_problem_of_a_command_is_one_line_and_nothing_is_written(tmp_path)
     expected = [
         "calibrate: unrecognized arguments: --no-such-option",
         "--target: nu is given twice (0.2 and 0.25): give it once",
+        "--target: sigma_u_MPa: \"inf\" is not a number, MEAN+-SD or MEAN+-SD/n=N",
         "--fixed: \"kn_ks=two\" is not NAME=NUMBER",
         "--tolerance: 1.0 must lie in (0, 1)",
         "--budget: 0 must be a positive number of DEM runs",
-        "--strategy: simplex is not one of trust-region, kriging",
+        "--strategy: simplex is not one of trust-region, kriging, bayes",
         "--check-resolution: 0.5 must be above 1 (the radii are divided by it)",
         f"--check-test: {tmp_path / 'no_such_check.json'} does not exist",
         "--target: E_GPa=-3 lies outside its physical range, at least 0 GPa",
-        "--target: sigma_u_MPa: inf is not a finite number",
         "--target: E_GPA is not an output of the scene, nor a ratio A/B of two (did you mean E_GPa?) "
         "(outputs: E_GPa, nu, sigma_u_MPa)",
         "--fixed: Ec_GPa is not a parameter of the scene (did you mean Ec_Pa?)",

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from demcal_study.errors import StudyError
-from demcal_study.lab_targets import LabTarget, gaussian_log_likelihood, parse_target, read_specimens
+from demcal_study.lab_targets import LabTarget, gaussian_log_likelihood, named_as_outputs, parse_target, read_specimens
 
 
 def test_written_forms():
@@ -85,6 +85,17 @@ def test_bad_specimen_files_name_the_file_and_line(tmp_path, text, words):
         read_specimens(path)
     assert str(caught.value).startswith(path)
     assert words in str(caught.value)
+
+
+def test_a_test_column_names_an_output_only_where_the_scene_prefixes_it(tmp_path):
+    # ucs.E_GPa stays prefixed where the scene list gives E_GPa in two tests; brazilian.sigma_t_MPa is sigma_t_MPa.
+    path = tmp_path / "lab.csv"
+    path.write_text("test,output,value,specimen\nucs,E_GPa,60,a\nucs,E_GPa,70,b\nbrazilian,sigma_t_MPa,9,a\n"
+                    "brazilian,sigma_t_MPa,11,b\n")
+    by_name, names, r = named_as_outputs(read_specimens(str(path)), {"ucs.E_GPa", "biaxial.E_GPa", "sigma_t_MPa"})
+    assert names == ["ucs.E_GPa", "sigma_t_MPa"] and set(by_name) == set(names)
+    assert by_name["sigma_t_MPa"].mean == 10 and by_name["sigma_t_MPa"].n == 2
+    assert by_name["sigma_t_MPa"].sd == pytest.approx(math.sqrt(2), rel=1e-12)
 
 
 def test_one_target_likelihood_is_the_normal_density_of_the_summed_variances():

@@ -7,10 +7,11 @@ from the coded point `centre` and the best point measured so far, storing its ro
 ... The runner (calibrate.Calibration) owns the budget and the stored runs; the verifier re-enters the trust-region
 search when the scale factor leaves its bounds. `make calibrate STRATEGY=NAME` picks one; a study file's
 `"search"` field likewise."""
+from .bayes_search import BayesSearch
 from .kriging_search import KrigingSearch
 from .trust_region_search import TrustRegionSearch
 
-SEARCHES = {s.name: s for s in (TrustRegionSearch, KrigingSearch)}
+SEARCHES = {s.name: s for s in (TrustRegionSearch, KrigingSearch, BayesSearch)}
 NAMES = tuple(SEARCHES)
 
 

@@ -9,6 +9,11 @@ from ..calibrate_limits import INITIAL_RADIUS, MAX_ROUNDS
 class KrigingSearch:
     name = "kriging"
 
+    @staticmethod
+    def plan(d):
+        """(the rounds in words, the most points they run) for the progress line."""
+        return f"up to {MAX_ROUNDS} rounds of 2", 2 * MAX_ROUNDS
+
     def run(self, cal, centre, best, label="r"):
         """The alternative: Gaussian processes of the responses over every point on specimen 1, and each round the
         two points of largest expected improvement of the misfit (the second by the kriging believer: the first

@@ -12,6 +12,11 @@ from ..calibrate_limits import INITIAL_RADIUS, MAX_ROUNDS, SMALLEST_RADIUS
 class TrustRegionSearch:
     name = "trust-region"
 
+    @staticmethod
+    def plan(d):
+        """(the rounds in words, the most points they run) for the progress line."""
+        return f"up to {MAX_ROUNDS} rounds of 2", 2 * MAX_ROUNDS
+
     def run(self, cal, centre, best, label="r"):
         """Rounds of one Gauss-Newton candidate and one poising point on specimen 1 (section 3 of the docs), stored
         as rounds/LABEL02, LABEL03, ... Returns (centre, radius, best point, converged, blocked at the bounds)."""
