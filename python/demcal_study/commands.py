@@ -125,12 +125,20 @@ def verify(tools, solution, scene, space, verification, work, out, md=None, csv=
 
 
 def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=None, fixed=None, scale_parameter=None,
-              check_resolution=None, check_tests=(), search=None):
+              check_resolution=None, check_tests=(), search=None, target_scatter=None, lab_specimens=None):
     """python -m demcal_study calibrate: the trust-region calibration (docs/explanation/calibration_method.md) of a
-    "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget)."""
+    "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget).
+    target_scatter: {output: {"sd", "n"}}, written as --target NAME=MEAN+-SD/n=N."""
     args = stage(tools, "calibrate", "--scene", scene)
     for key, value in targets.items():
-        args += ["--target", f"{key}={value!r}"]
+        spread = (target_scatter or {}).get(key)
+        if spread:
+            n = spread.get("n", 1)
+            args += ["--target", f"{key}={value!r}+-{spread['sd']!r}" + (f"/n={n}" if n != 1 else "")]
+        else:
+            args += ["--target", f"{key}={value!r}"]
+    if lab_specimens:
+        args += ["--lab-specimens", lab_specimens]
     for key, value in (fixed or {}).items():
         args += ["--fixed", f"{key}={value!r}"]
     args += ["--tolerance", repr(tolerance), "--budget", str(budget)]

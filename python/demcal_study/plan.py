@@ -122,14 +122,16 @@ def trust_region_rules(study, scene, out):
     """One stage: `make calibrate`'s command into the study's own folder, which then holds the calibration's
     report.md. Its exits 3 (unreachable) and 4 (budget spent) are results the report states, not failures of the
     study; any other non-zero exit stops make (rerunning resumes)."""
-    files = [study["scene"]] + ([study["space"]] if "space" in study else []) + study.get("check_tests", [])
-    args = commands.calibrate(IN_MAKE, study["scene"], study["targets"],
+    files = ([study["scene"]] + ([study["space"]] if "space" in study else []) + study.get("check_tests", [])
+             + ([study["lab_specimens"]] if "lab_specimens" in study else []))
+    args = commands.calibrate(IN_MAKE, study["scene"], study.get("targets", {}),
                               study.get("verification", {}).get("tolerance", 0.05), study["budget"],
                               os.path.dirname(os.path.normpath(out)) or ".", os.path.basename(os.path.normpath(out)),
                               space=study.get("space"), fixed=study.get("fixed"),
                               scale_parameter=study.get("scale_parameter"),
                               check_resolution=study.get("check_resolution"),
-                              check_tests=study.get("check_tests", []), search=study.get("search"))
+                              check_tests=study.get("check_tests", []), search=study.get("search"),
+                              target_scatter=study.get("target_scatter"), lab_specimens=study.get("lab_specimens"))
     code = " ".join(os.path.join(os.path.relpath(PACKAGE), name) for name in TRUST_REGION_CODE)
     return [f"$(D)/report.md: $(D)/config/study.json {scene_files(files[0])} {' '.join(files[1:])} {code}",
             "\t" + for_make(args) + "; code=$$?; [ $$code -eq 0 ] || [ $$code -eq 3 ] || [ $$code -eq 4 ]",

@@ -4,8 +4,8 @@ scene's outputs, the factor limits of each design kind (demcal-doe) and the algo
 first problem stops it with one line naming the file and the field."""
 import os
 
-from . import executables, schema, strategy
-from .errors import fail, load_json
+from . import executables, lab_targets, schema, strategy
+from .errors import StudyError, fail, load_json
 from .outputs import is_output, tests_per_point
 
 
@@ -20,7 +20,8 @@ def validate(study, path):
         return validate_trust_region(study, where)
     if "space" not in study:
         fail(f"{where}: missing \"space\" (the parameter space file)")
-    for key in ("budget", "scale_parameter", "check_resolution", "check_tests", "search"):
+    for key in ("budget", "scale_parameter", "check_resolution", "check_tests", "search", "target_scatter",
+                "lab_specimens"):
         if key in study:
             fail(f"{where}: \"{key}\" applies to strategy trust_region only")
     if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):
@@ -75,7 +76,12 @@ def validate_trust_region(study, where):
     except executables.ToolError as e:
         fail(f"{where}: {'space' if space_path and space_path in str(e) else 'scene'}: {e}")
     outputs = set(scene["outputs"])
-    for name in study["targets"]:
+    measured = check_lab_scatter(study, where, outputs)
+    for name in sorted(measured):
+        if not is_output(outputs, name, f"{where}: lab_specimens"):
+            fail(f"{where}: lab_specimens: {name}: not a DEM output, nor a ratio A/B of two (outputs of "
+                 f"{study['scene']}: {', '.join(sorted(outputs))})")
+    for name in study.get("targets", {}):
         if not is_output(outputs, name, f"{where}: targets"):
             fail(f"{where}: targets.{name}: not a DEM output, nor a ratio A/B of two (outputs of {study['scene']}: "
                  f"{', '.join(sorted(outputs))})")
@@ -110,12 +116,38 @@ def validate_trust_region(study, where):
     return scene, space_path
 
 
+def check_lab_scatter(study, where, outputs):
+    """target_scatter names targets; lab_specimens is a readable CSV of outputs not also in targets; the bayes search
+    has a scatter for every target."""
+    scatter, targets = study.get("target_scatter", {}), study.get("targets", {})
+    for name in scatter:
+        if name not in targets:
+            fail(f"{where}: target_scatter.{name}: not one of the targets ({', '.join(sorted(targets)) or 'none'})")
+    measured = set()
+    if "lab_specimens" in study:
+        try:
+            by_name, _, _ = lab_targets.named_as_outputs(lab_targets.read_specimens(study["lab_specimens"]), outputs)
+        except StudyError as e:  # the CSV's own line names its file and row: add the study's field
+            fail(f"{where}: lab_specimens: {e}")
+        for name in by_name:
+            if name in targets:
+                fail(f"{where}: lab_specimens: {name} is also in targets: give it once")
+        measured = set(by_name)
+    if study.get("search") == "bayes":
+        for name in sorted(targets):
+            if name not in scatter:
+                fail(f"{where}: target_scatter.{name}: missing: the bayes search weighs each target by the lab's "
+                     "scatter (give {\"sd\": ..., \"n\": ...}, or the output's specimens in lab_specimens)")
+    return measured
+
+
 def check_strategy_fields(study, where):
     """The fields each shape of study needs and those it refuses (strategy.py)."""
     if strategy.trust_region(study):
-        for key in ("targets", "budget"):
-            if key not in study:
-                fail(f"{where}: missing \"{key}\" (strategy trust_region)")
+        if "targets" not in study and "lab_specimens" not in study:
+            fail(f"{where}: missing \"targets\" (strategy trust_region; or \"lab_specimens\", the lab's measurements)")
+        if "budget" not in study:
+            fail(f"{where}: missing \"budget\" (strategy trust_region)")
         for key in strategy.NOT_TRUST_REGION:
             if key in study:
                 fail(f"{where}: \"{key}\" does not apply to strategy trust_region (it chooses its own designs; "

@@ -244,5 +244,50 @@ def test_a_trust_region_study_picks_its_search(tmp_path, bin_dir):
     assert "--strategy" not in (tmp_path / "studies" / "d" / "plan.mk").read_text()
     assert '"search" applies to strategy trust_region only' in plan_error(
         tmp_path, edited(demo, lambda d: d.update(search="kriging")), bin_dir)
-    assert "search must be trust-region or kriging" in plan_error(
-        tmp_path, edited(four_targets, lambda d: d.update(search="bayes")), bin_dir)
+    assert "search must be trust-region, kriging or bayes" in plan_error(
+        tmp_path, edited(four_targets, lambda d: d.update(search="simplex")), bin_dir)
+
+
+def test_a_bayes_study_passes_each_target_with_its_scatter(tmp_path, bin_dir):
+    # target_scatter reaches make calibrate as NAME=MEAN+-SD/n=N (n 1 left off); lab_specimens as its option, and
+    # its CSV is a prerequisite of the report (a new measurement reruns the calibration).
+    specimens = tmp_path / "lab.csv"
+    specimens.write_text("test,output,value,specimen\nbrazilian,sigma_t_MPa,4.4,1\nbrazilian,sigma_t_MPa,4.7,2\n")
+
+    def bayes(d):
+        d.update(search="bayes", lab_specimens=str(specimens),
+                 target_scatter={"sigma_u_MPa": {"sd": 4.0, "n": 5}, "E_GPa": {"sd": 1.2}, "nu": {"sd": 0.02, "n": 3}})
+        d["targets"].pop("sigma_t_MPa")
+    path = tmp_path / "bayes.json"
+    path.write_text(json.dumps(edited(four_targets, bayes)))
+    out = tmp_path / "studies" / "b"
+    done = run_study_layer(["plan", str(path), str(out)], bin_dir)
+    assert done.returncode == 0, done.stderr
+    plan = (out / "plan.mk").read_text()
+    recipe = [line for line in plan.splitlines() if "demcal_study calibrate" in line]
+    assert len(recipe) == 1 and "--strategy bayes" in recipe[0]
+    assert "--target sigma_u_MPa=46.96+-4.0/n=5" in recipe[0] and "--target E_GPa=16.82+-1.2 " in recipe[0]
+    assert f"--lab-specimens {specimens}" in recipe[0]
+    rule = [line for line in plan.splitlines() if line.startswith("$(D)/report.md:")]
+    assert str(specimens) in rule[0]
+
+
+BAYES_CASES = [
+    (lambda d: d.update(search="bayes"), "target_scatter.E_GPa: missing: the bayes search weighs each target"),
+    (lambda d: d.update(target_scatter={"UCS": {"sd": 1.0}}), "target_scatter.UCS: not one of the targets"),
+    (lambda d: d.update(target_scatter={"nu": {"sd": 0}}), "target_scatter"),
+    (lambda d: d.update(target_scatter={"nu": {"sd": 0.1, "n": 0}}), "target_scatter"),
+    (lambda d: d.update(lab_specimens="no_such_file.csv"), "lab_specimens: no_such_file.csv: cannot read"),
+]
+
+
+@pytest.mark.parametrize("change, message", BAYES_CASES)
+def test_a_bad_lab_scatter_is_named(tmp_path, bin_dir, change, message):
+    assert message in plan_error(tmp_path, edited(four_targets, change), bin_dir)
+
+
+def test_lab_specimens_may_not_repeat_a_target(tmp_path, bin_dir):
+    specimens = tmp_path / "lab.csv"
+    specimens.write_text("test,output,value\n,nu,0.17\n,nu,0.19\n")
+    message = plan_error(tmp_path, edited(four_targets, lambda d: d.update(lab_specimens=str(specimens))), bin_dir)
+    assert "lab_specimens: nu is also in targets: give it once" in message
