@@ -96,8 +96,16 @@ class BayesSearch:
             rows = cal.usable()
             x = np.array([r[0] for r in rows])
             z = np.array([r[1] for r in rows])
+            # A stress spans decades over a log-coded box: its logarithm is what a Gaussian process follows (with
+            # a scale factor the problem already models log(stress / scale)).
+            if scaled:
+                logged = list(stress)
+            else:
+                logged = [p.output_stress_like[o] and bool(np.all(z[:, j] > 0)) for j, o in enumerate(names)]
+                for j in np.flatnonzero(logged):
+                    z[:, j] = np.log(z[:, j])
             gps = [kriging.fit(x, z[:, j], seed=k) for j in range(len(names))]
-            emulators = [ScaleFreeEmulator(gp, s) for gp, s in zip(gps, stress)]
+            emulators = [ScaleFreeEmulator(gp, flag) for gp, flag in zip(gps, logged)]
             posterior = Posterior(emulators, targets, stress, d, scale_bounds=bounds,
                                   lab_correlation=lab_r,
                                   scale_support=support)
