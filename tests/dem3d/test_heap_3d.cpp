@@ -204,3 +204,27 @@ TEST(HeapTest3d, BadScenesNameTheFileAndField) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(HeapTest3d, ARayleighFractionFixesTheStep) {
+  // A fixed step of 0.08 of the smallest sphere's Rayleigh step pi R sqrt(rho / G) / (0.1631 nu + 0.8766); the
+  // run is cut short (not discharged), but reports the step it took.
+  nlohmann::json s = small_heap();
+  s["run"]["rayleigh_fraction"] = 0.08;
+  s["run"]["max_time_s"] = 0.02;
+  const std::string path = test::scratch_path("heap_3d_rayleigh.json");
+  std::ofstream(path) << s.dump();
+  const dem::Scene scene = dem::Scene::load(path);
+  dem::RunOptions options;
+  const dem::TestResult r = dem::run_test(scene, scene.resolve({}), options);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.reason.find("had not discharged within run.max_time_s"), std::string::npos) << r.reason;
+  const double rayleigh = M_PI * 0.001 * std::sqrt(1000 / 1e4) / (0.1631 * 0.3 + 0.8766);
+  EXPECT_NEAR(r.dt_s, 0.08 * rayleigh, 1e-15);
+  EXPECT_NEAR(r.specimen_info.at("dt_over_rayleigh_step"), 0.08, 1e-12);
+  s["run"]["rayleigh_fraction"] = 0.6;
+  EXPECT_NE(scene_error(s).find("run.rayleigh_fraction must lie in [0, 0.5]"), std::string::npos) << scene_error(s);
+}
+
+}  // namespace

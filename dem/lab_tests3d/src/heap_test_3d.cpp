@@ -15,7 +15,7 @@
 //                 "facets" (around the funnel and the platform, default 48)},
 //   "run":       {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
 //                 "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
-//                 "safety_factor"}
+//                 "safety_factor", "rayleigh_fraction" (a fixed step as this fraction of the Rayleigh step)}
 //
 // Contact roles: "particle-particle" and "particle-wall" (funnel, gate, platform, pedestal, catch floor, domain).
 #include <algorithm>
@@ -52,6 +52,7 @@ struct HeapSpec3d {
   double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
   double discharged_fraction = 0.95, local_damping = 0, max_wall_s = 600, bin_width_diameters = 1.5, sections = 8;
   double safety_factor = 0.8;
+  double rayleigh_fraction = 0;  // > 0: a fixed step, this fraction of the Rayleigh step, instead of the engine's
 
   double top_radius_m() const {
     return 0.5 * outlet_diameter_m + funnel_height_m / std::tan(wall_angle_deg * M_PI / 180);
@@ -109,14 +110,14 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   const nlohmann::json& r = scene.section("run");
   require_known_fields(r, {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
                            "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
-                           "safety_factor", "note"},
+                           "safety_factor", "rayleigh_fraction", "note"},
                        origin + ": run");
   for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
            {"max_time_s", &s.max_time_s}, {"fill_time_s", &s.fill_time_s}, {"check_every_s", &s.check_every_s},
            {"settle_kinetic_ratio", &s.settle_kinetic_ratio}, {"jam_time_s", &s.jam_time_s},
            {"discharged_fraction", &s.discharged_fraction}, {"local_damping", &s.local_damping},
            {"max_wall_s", &s.max_wall_s}, {"bin_width_diameters", &s.bin_width_diameters}, {"sections", &s.sections},
-           {"safety_factor", &s.safety_factor}})
+           {"safety_factor", &s.safety_factor}, {"rayleigh_fraction", &s.rayleigh_fraction}})
     number("run", r, key, *target, false);
 
   s.powder.validate(origin + ": particles");
@@ -154,6 +155,8 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   if (!(s.sections >= 1 && s.sections <= 90 && s.sections == std::floor(s.sections)))
     throw Error(rw + ".sections must be a whole number in [1, 90]");
   if (!(s.safety_factor > 0 && s.safety_factor <= 1)) throw Error(rw + ".safety_factor must lie in (0, 1]");
+  if (!(s.rayleigh_fraction >= 0 && s.rayleigh_fraction <= 0.5))
+    throw Error(rw + ".rayleigh_fraction must lie in [0, 0.5] (0: the engine's step from the contacts' stiffness)");
   return s;
 }
 
@@ -211,6 +214,18 @@ std::string escaped(const World& world, const HeapSpec3d& s, double floor_z, dou
   return "";
 }
 
+// The Rayleigh step of the smallest sphere in the particle-particle contact's
+// Hertz material, pi R sqrt(rho / G) / (0.1631 nu + 0.8766) (the common DEM
+// rule for Hertz contacts); 0 when that contact is not a Hertz one.
+double rayleigh_step_s(const Scene& scene, const std::map<std::string, double>& parameters, const HeapSpec3d& s) {
+  auto it = scene.contacts().find("particle-particle");
+  if (it == scene.contacts().end()) return 0;
+  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
+  if (!bound.contains("shear_modulus_pa") || !bound.contains("poisson")) return 0;
+  const double g = bound.at("shear_modulus_pa").get<double>(), nu = bound.at("poisson").get<double>();
+  return M_PI * s.powder.radius_min_m * std::sqrt(s.powder.density_kg_m3 / g) / (0.1631 * nu + 0.8766);
+}
+
 // The particle-particle contact's cohesion (JKR: the work of adhesion and the
 // cohesion number of two mean particles) and the time step as a fraction of
 // the Rayleigh step of the smallest sphere (Hertz models), so a result says
@@ -219,14 +234,13 @@ void report_contacts(const Scene& scene, const std::map<std::string, double>& pa
                      double dt_s, dem::TestResult& result) {
   auto it = scene.contacts().find("particle-particle");
   if (it == scene.contacts().end()) return;
-  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
-  if (!bound.contains("shear_modulus_pa") || !bound.contains("poisson")) return;
-  const double g = bound.at("shear_modulus_pa").get<double>(), nu = bound.at("poisson").get<double>();
-  const double rho = s.powder.density_kg_m3, r_min = s.powder.radius_min_m;
-  // Rayleigh wave step (the common DEM rule for Hertz contacts): pi R sqrt(rho / G) / (0.1631 nu + 0.8766).
-  const double rayleigh_s = M_PI * r_min * std::sqrt(rho / g) / (0.1631 * nu + 0.8766);
+  const double rayleigh_s = rayleigh_step_s(scene, parameters, s);
+  if (!(rayleigh_s > 0)) return;
   result.specimen_info["dt_over_rayleigh_step"] = dt_s / rayleigh_s;
   if (it->second.model != "jkr") return;
+  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
+  const double g = bound.at("shear_modulus_pa").get<double>(), nu = bound.at("poisson").get<double>();
+  const double rho = s.powder.density_kg_m3;
   const double w = bound.at("work_of_adhesion_j_m2").get<double>();
   const double r_star = 0.25 * (s.powder.radius_min_m + s.powder.radius_max_m);
   result.specimen_info["work_of_adhesion_j_m2"] = w;
@@ -245,6 +259,14 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   WorldSettings settings;
   settings.damping = s.local_damping;
   settings.safety_factor = s.safety_factor;
+  if (s.rayleigh_fraction > 0) {
+    const double rayleigh_s = rayleigh_step_s(scene, parameters, s);
+    if (!(rayleigh_s > 0))
+      throw Error(scene.origin() + ": run.rayleigh_fraction needs a Hertz material (shear_modulus_pa, poisson) in "
+                  "contacts.particle-particle");
+    // A run whose fixed step is too large for its contacts fails as unstable (escaped() below says so).
+    settings.fixed_dt_s = s.rayleigh_fraction * rayleigh_s;
+  }
   settings.gravity_m_s2 = {0, 0, -kGravity_m_s2};
   if (options.threads > 0) settings.threads = options.threads;
   if (options.min_disks_per_thread > 0) settings.min_spheres_per_thread = options.min_disks_per_thread;
