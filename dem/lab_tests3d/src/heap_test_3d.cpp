@@ -30,19 +30,19 @@
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/progress.hpp"
-#include "demcal/dem/cohesion_number.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem3d/heap_section_fit.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/powder_3d.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 #include "demcal/dem3d/vtk_writer.hpp"
+#include "powder_run.hpp"
 
 namespace demcal::dem3d {
 namespace {
 
 constexpr std::uint8_t kPowderGroup = 0, kWallGroup = 1;
-constexpr double kGravity_m_s2 = 9.81;
+constexpr double kGravity_m_s2 = kPowderGravity_m_s2;
 constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2;
 
 struct HeapSpec3d {
@@ -50,9 +50,8 @@ struct HeapSpec3d {
   double outlet_diameter_m = 0, wall_angle_deg = 60, funnel_height_m = 0, outlet_height_m = 0, fill_height_m = 0;
   double platform_diameter_m = 0, domain_diameter_m = 0, facets = 48;
   double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
-  double discharged_fraction = 0.95, local_damping = 0, max_wall_s = 600, bin_width_diameters = 1.5, sections = 8;
-  double safety_factor = 0.8;
-  double rayleigh_fraction = 0;  // > 0: a fixed step, this fraction of the Rayleigh step, instead of the engine's
+  double discharged_fraction = 0.95, max_wall_s = 600, bin_width_diameters = 1.5, sections = 8;
+  PowderStepping stepping;
 
   double top_radius_m() const {
     return 0.5 * outlet_diameter_m + funnel_height_m / std::tan(wall_angle_deg * M_PI / 180);
@@ -81,15 +80,7 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   HeapSpec3d s;
   auto number = [&](const std::string& section, const nlohmann::json& object, const char* key, double& target,
                     bool required) { dem::read_section_number(scene, parameters, section, object, key, target, required); };
-  const nlohmann::json& p = scene.section("particles");
-  require_known_fields(p, {"radius_min_m", "radius_max_m", "density_kg_m3", "clump_aspect_ratio", "clump_fraction",
-                           "note"},
-                       origin + ": particles");
-  number("particles", p, "radius_min_m", s.powder.radius_min_m, true);
-  number("particles", p, "radius_max_m", s.powder.radius_max_m, true);
-  number("particles", p, "density_kg_m3", s.powder.density_kg_m3, true);
-  number("particles", p, "clump_aspect_ratio", s.powder.clump_aspect_ratio, false);
-  number("particles", p, "clump_fraction", s.powder.clump_fraction, false);
+  s.powder = read_powder_section(scene, parameters);
 
   const nlohmann::json& f = scene.section("funnel");
   require_known_fields(f, {"outlet_diameter_m", "wall_angle_deg", "height_m", "outlet_height_m", "fill_height_m",
@@ -115,10 +106,10 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
            {"max_time_s", &s.max_time_s}, {"fill_time_s", &s.fill_time_s}, {"check_every_s", &s.check_every_s},
            {"settle_kinetic_ratio", &s.settle_kinetic_ratio}, {"jam_time_s", &s.jam_time_s},
-           {"discharged_fraction", &s.discharged_fraction}, {"local_damping", &s.local_damping},
-           {"max_wall_s", &s.max_wall_s}, {"bin_width_diameters", &s.bin_width_diameters}, {"sections", &s.sections},
-           {"safety_factor", &s.safety_factor}, {"rayleigh_fraction", &s.rayleigh_fraction}})
+           {"discharged_fraction", &s.discharged_fraction}, {"max_wall_s", &s.max_wall_s},
+           {"bin_width_diameters", &s.bin_width_diameters}, {"sections", &s.sections}})
     number("run", r, key, *target, false);
+  s.stepping.read(scene, parameters, r);
 
   s.powder.validate(origin + ": particles");
   const std::string fw = origin + ": funnel";
@@ -149,14 +140,10 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   if (!(s.settle_kinetic_ratio > 0 && s.settle_kinetic_ratio < 1)) throw Error(rw + ".settle_kinetic_ratio must lie in (0, 1)");
   if (!(s.jam_time_s > 0)) throw Error(rw + ".jam_time_s must be positive");
   if (!(s.discharged_fraction > 0 && s.discharged_fraction <= 1)) throw Error(rw + ".discharged_fraction must lie in (0, 1]");
-  if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(rw + ".local_damping must lie in [0, 1)");
   if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
   if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
   if (!(s.sections >= 1 && s.sections <= 90 && s.sections == std::floor(s.sections)))
     throw Error(rw + ".sections must be a whole number in [1, 90]");
-  if (!(s.safety_factor > 0 && s.safety_factor <= 1)) throw Error(rw + ".safety_factor must lie in (0, 1]");
-  if (!(s.rayleigh_fraction >= 0 && s.rayleigh_fraction <= 0.5))
-    throw Error(rw + ".rayleigh_fraction must lie in [0, 0.5] (0: the engine's step from the contacts' stiffness)");
   return s;
 }
 
@@ -214,40 +201,6 @@ std::string escaped(const World& world, const HeapSpec3d& s, double floor_z, dou
   return "";
 }
 
-// The Rayleigh step of the smallest sphere in the particle-particle contact's
-// Hertz material, pi R sqrt(rho / G) / (0.1631 nu + 0.8766) (the common DEM
-// rule for Hertz contacts); 0 when that contact is not a Hertz one.
-double rayleigh_step_s(const Scene& scene, const std::map<std::string, double>& parameters, const HeapSpec3d& s) {
-  auto it = scene.contacts().find("particle-particle");
-  if (it == scene.contacts().end()) return 0;
-  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
-  if (!bound.contains("shear_modulus_pa") || !bound.contains("poisson")) return 0;
-  const double g = bound.at("shear_modulus_pa").get<double>(), nu = bound.at("poisson").get<double>();
-  return M_PI * s.powder.radius_min_m * std::sqrt(s.powder.density_kg_m3 / g) / (0.1631 * nu + 0.8766);
-}
-
-// The particle-particle contact's cohesion (JKR: the work of adhesion and the
-// cohesion number of two mean particles) and the time step as a fraction of
-// the Rayleigh step of the smallest sphere (Hertz models), so a result says
-// at which cohesion and resolution in time it ran.
-void report_contacts(const Scene& scene, const std::map<std::string, double>& parameters, const HeapSpec3d& s,
-                     double dt_s, dem::TestResult& result) {
-  auto it = scene.contacts().find("particle-particle");
-  if (it == scene.contacts().end()) return;
-  const double rayleigh_s = rayleigh_step_s(scene, parameters, s);
-  if (!(rayleigh_s > 0)) return;
-  result.specimen_info["dt_over_rayleigh_step"] = dt_s / rayleigh_s;
-  if (it->second.model != "jkr") return;
-  const nlohmann::json bound = scene.bind(it->second, parameters, scene.origin() + ": contacts.particle-particle");
-  const double g = bound.at("shear_modulus_pa").get<double>(), nu = bound.at("poisson").get<double>();
-  const double rho = s.powder.density_kg_m3;
-  const double w = bound.at("work_of_adhesion_j_m2").get<double>();
-  const double r_star = 0.25 * (s.powder.radius_min_m + s.powder.radius_max_m);
-  result.specimen_info["work_of_adhesion_j_m2"] = w;
-  result.specimen_info["cohesion_number"] =
-      dem::cohesion_number(w, dem::effective_modulus_pa(g, nu), r_star, rho, kGravity_m_s2);
-}
-
 dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, double>& parameters,
                             const dem::RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -256,21 +209,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   const double ho = s.outlet_height_m, funnel_top = ho + s.funnel_height_m, floor_z = -s.catch_depth_m();
   const double r_platform = 0.5 * s.platform_diameter_m, r_domain = 0.5 * s.domain_diameter_m;
 
-  WorldSettings settings;
-  settings.damping = s.local_damping;
-  settings.safety_factor = s.safety_factor;
-  if (s.rayleigh_fraction > 0) {
-    const double rayleigh_s = rayleigh_step_s(scene, parameters, s);
-    if (!(rayleigh_s > 0))
-      throw Error(scene.origin() + ": run.rayleigh_fraction needs a Hertz material (shear_modulus_pa, poisson) in "
-                  "contacts.particle-particle");
-    // A run whose fixed step is too large for its contacts fails as unstable (escaped() below says so).
-    settings.fixed_dt_s = s.rayleigh_fraction * rayleigh_s;
-  }
-  settings.gravity_m_s2 = {0, 0, -kGravity_m_s2};
-  if (options.threads > 0) settings.threads = options.threads;
-  if (options.min_disks_per_thread > 0) settings.min_spheres_per_thread = options.min_disks_per_thread;
-  World world(settings);
+  World world(powder_settings(scene, parameters, s.powder, s.stepping, options));
   bind_contact_models(world, scene, parameters);
   add_cone(world.walls, ho, 0.5 * s.outlet_diameter_m, funnel_top, s.top_radius_m(), facets);
   const std::size_t gate_begin = world.walls.size();
@@ -367,7 +306,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   const auto now = std::chrono::steady_clock::now();
   result.steps = world.steps_done();
   result.dt_s = world.dt_s();
-  report_contacts(scene, parameters, s, world.dt_s(), result);  // the step the run ended with
+  report_powder_contacts(scene, parameters, s.powder, world.dt_s(), result);  // the step the run ended with
   result.threads = world.threads_in_use();
   result.wall_s = std::chrono::duration<double>(now - start).count();
   result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
