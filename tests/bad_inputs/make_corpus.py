@@ -249,6 +249,11 @@ case("scene/3d_heap_fill_does_not_fit",
                edited(heap3d, lambda d: d["funnel"].update(solids_fraction=0.35, fill_height_m=0.004)))),
      path(S, "3d_heap_fill_does_not_fit.json"), "does not fit its vessel")
 
+drum3d = load("tests/invariants/scenes/drum_small_3d.json")
+case("scene/3d_drum_centrifuges",
+     describe(write(S, "3d_drum_centrifuges.json", edited(drum3d, lambda d: d["drum"].update(speed_rpm=300)))),
+     path(S, "3d_drum_centrifuges.json"), "centrifuges the powder")
+
 # ---------------------------------------------------------------- parameter space JSON (demcal-doe, describe --space)
 def doe(f):
     return ["{bin}/demcal-doe", "ccd", "--space", f, "--out", "{tmp}/design.csv"]
