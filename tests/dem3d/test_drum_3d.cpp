@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/scene_error.hpp"
 #include "../common/scratch.hpp"
 #include "demcal/core/error.hpp"
 #include "demcal/dem/scene.hpp"
@@ -50,16 +51,7 @@ nlohmann::json small_drum() {
   return nlohmann::json::parse(in);
 }
 
-std::string scene_error(const nlohmann::json& scene) {
-  const std::string path = test::scratch_path("drum_3d_bad.json");
-  std::ofstream(path) << scene.dump();
-  try {
-    dem::Scene::load(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string scene_error(const nlohmann::json& scene) { return test::scene_error(scene, "drum_3d_bad.json"); }
 
 TEST(DrumTest3d, BadScenesNameTheFileAndField) {
   nlohmann::json s = small_drum();

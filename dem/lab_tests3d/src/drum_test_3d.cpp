@@ -19,7 +19,6 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <sys/stat.h>
 #include <vector>
 
 #include "demcal/core/error.hpp"
@@ -32,13 +31,12 @@
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/powder_3d.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
-#include "demcal/dem3d/vtk_writer.hpp"
 #include "powder_run.hpp"
 
 namespace demcal::dem3d {
 namespace {
 
-constexpr std::uint8_t kPowderGroup = 0, kWallGroup = 1;
+constexpr std::uint8_t kWallGroup = kPowderWallGroup;
 
 struct DrumSpec {
   PowderSpec3d powder;
@@ -241,18 +239,7 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
     if (world.time_s() >= end_s - 1e-12) break;
   }
   if (progress) progress->finish();
-  const auto now = std::chrono::steady_clock::now();
-  result.steps = world.steps_done();
-  result.dt_s = world.dt_s();
-  report_powder_contacts(scene, parameters, s.powder, world.dt_s(), result);
-  result.threads = world.threads_in_use();
-  result.wall_s = std::chrono::duration<double>(now - start).count();
-  result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
-  if (!options.vtk_dir.empty()) {
-    ::mkdir(options.vtk_dir.c_str(), 0755);
-    write_vtk_spheres(world, options.vtk_dir + "/final_000000.vtk");
-    write_vtk_walls(world, options.vtk_dir + "/final_walls_000000.vtk");
-  }
+  finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
   if (!result.ok) return result;
   // Steady when the two halves of the samples agree within the tolerance.
   const std::size_t n = angles.size(), half_n = n / 2;
@@ -288,7 +275,7 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
   return result;
 }
 
-class DrumTest3d : public dem::LabTest {
+class DrumTest3d : public PowderTest3d {
  public:
   std::string name() const override { return "drum_3d"; }
   std::string description() const override {
@@ -297,21 +284,13 @@ class DrumTest3d : public dem::LabTest {
   std::vector<dem::BoundaryRole> boundary_roles() const override {
     return {{"particle-wall", kWallGroup, "particles against the drum's shell and its two ends"}};
   }
-  bool exact_scaling() const override { return false; }  // gravity sets the stresses
-  int results_version() const override { return 1; }
-  int dimension() const override { return 3; }
-  const dem::ContactModelCatalog& contact_models() const override { return sphere_contact_models(); }
   std::vector<dem::SceneSection> sections() const override {
     return {{"particles", "the powder: radii, density, two-sphere clumps", true, true},
             {"drum", "the drum's size, fill and speed", false},
             {"run", "settling, the measuring window and its samples, the time step", false}};
   }
-  std::vector<dem::ContactRole> specimen_roles(const Scene&) const override {
-    return {{"particle-particle", {{kPowderGroup, kPowderGroup}}, "particles against each other"}};
-  }
   void check_scene(const Scene& scene) const override { DrumSpec::from_scene(scene, scene.resolve({})); }
   std::vector<std::string> headline_outputs(const Scene&) const override { return {"aor_deg"}; }
-  std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }  // samples, not a curve
   std::vector<dem::OutputSpec> outputs(const Scene&) const override {
     return {{"aor_deg", "deg", "dynamic angle of repose: the mean over the measuring window of the free surface's "
                                "angle in the drum's cross-section", true, dem::kAcuteAngleDeg},

@@ -23,7 +23,6 @@
 #include <cmath>
 #include <memory>
 #include <string>
-#include <sys/stat.h>
 #include <vector>
 
 #include "demcal/core/error.hpp"
@@ -35,13 +34,12 @@
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/powder_3d.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
-#include "demcal/dem3d/vtk_writer.hpp"
 #include "powder_run.hpp"
 
 namespace demcal::dem3d {
 namespace {
 
-constexpr std::uint8_t kPowderGroup = 0, kWallGroup = 1;
+constexpr std::uint8_t kWallGroup = kPowderWallGroup;
 constexpr double kGravity_m_s2 = kPowderGravity_m_s2;
 constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2;
 
@@ -303,18 +301,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
     }
   }
   if (progress) progress->finish();
-  const auto now = std::chrono::steady_clock::now();
-  result.steps = world.steps_done();
-  result.dt_s = world.dt_s();
-  report_powder_contacts(scene, parameters, s.powder, world.dt_s(), result);  // the step the run ended with
-  result.threads = world.threads_in_use();
-  result.wall_s = std::chrono::duration<double>(now - start).count();
-  result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
-  if (!options.vtk_dir.empty()) {
-    ::mkdir(options.vtk_dir.c_str(), 0755);
-    write_vtk_spheres(world, options.vtk_dir + "/final_000000.vtk");
-    write_vtk_walls(world, options.vtk_dir + "/final_walls_000000.vtk");
-  }
+  finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
   if (!result.ok) return result;
 
   // The heap: the spheres above the platform, below the outlet.
@@ -367,7 +354,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   return result;
 }
 
-class HeapTest3d : public dem::LabTest {
+class HeapTest3d : public PowderTest3d {
  public:
   std::string name() const override { return "heap_3d"; }
   std::string description() const override {
@@ -377,22 +364,14 @@ class HeapTest3d : public dem::LabTest {
   std::vector<dem::BoundaryRole> boundary_roles() const override {
     return {{"particle-wall", kWallGroup, "particles against the funnel, its gate, the platform and the catch floor"}};
   }
-  bool exact_scaling() const override { return false; }  // gravity sets the stresses
-  int results_version() const override { return 1; }
-  int dimension() const override { return 3; }
-  const dem::ContactModelCatalog& contact_models() const override { return sphere_contact_models(); }
   // The heap makes its particles in the funnel as it runs: no packed specimen, no loading.
   std::vector<dem::SceneSection> sections() const override {
     return {{"particles", "the powder: radii, density, two-sphere clumps", true, true},
             {"funnel", "the funnel, the platform and the domain", false},
             {"run", "time limits, the settling criterion, the angle's bins and sections", false}};
   }
-  std::vector<dem::ContactRole> specimen_roles(const Scene&) const override {
-    return {{"particle-particle", {{kPowderGroup, kPowderGroup}}, "particles against each other"}};
-  }
   void check_scene(const Scene& scene) const override { HeapSpec3d::from_scene(scene, scene.resolve({})); }
   std::vector<std::string> headline_outputs(const Scene&) const override { return {"aor_deg", "aor_fixed_base_deg"}; }
-  std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }  // a profile, not a curve
   std::vector<dem::OutputSpec> outputs(const Scene&) const override {
     return {{"aor_deg", "deg", "angle of repose, the mean over both flanks of run.sections vertical sections through "
                                "the platform's axis (least-squares lines between 10 and 90 % of each section's height)",

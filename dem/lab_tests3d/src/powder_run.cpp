@@ -1,10 +1,14 @@
 #include "powder_run.hpp"
 
+#include <sys/stat.h>
+
 #include <cmath>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/dem/cohesion_number.hpp"
+#include "demcal/dem3d/sphere_scene.hpp"
+#include "demcal/dem3d/vtk_writer.hpp"
 
 namespace demcal::dem3d {
 
@@ -82,6 +86,30 @@ void report_powder_contacts(const dem::Scene& scene, const std::map<std::string,
   result.specimen_info["work_of_adhesion_j_m2"] = w;
   result.specimen_info["cohesion_number"] =
       dem::cohesion_number(w, dem::effective_modulus_pa(g, nu), r_star, powder.density_kg_m3, kPowderGravity_m_s2);
+}
+
+void finish_powder_run(const World& world, const dem::Scene& scene, const std::map<std::string, double>& parameters,
+                       const PowderSpec3d& powder, const dem::RunOptions& options,
+                       std::chrono::steady_clock::time_point start,
+                       std::chrono::steady_clock::time_point loading_start, dem::TestResult& result) {
+  const auto now = std::chrono::steady_clock::now();
+  result.steps = world.steps_done();
+  result.dt_s = world.dt_s();
+  report_powder_contacts(scene, parameters, powder, world.dt_s(), result);
+  result.threads = world.threads_in_use();
+  result.wall_s = std::chrono::duration<double>(now - start).count();
+  result.test_wall_s = std::chrono::duration<double>(now - loading_start).count();
+  if (!options.vtk_dir.empty()) {
+    ::mkdir(options.vtk_dir.c_str(), 0755);
+    write_vtk_spheres(world, options.vtk_dir + "/final_000000.vtk");
+    write_vtk_walls(world, options.vtk_dir + "/final_walls_000000.vtk");
+  }
+}
+
+const dem::ContactModelCatalog& PowderTest3d::contact_models() const { return sphere_contact_models(); }
+
+std::vector<dem::ContactRole> PowderTest3d::specimen_roles(const dem::Scene&) const {
+  return {{"particle-particle", {{kPowderGroup, kPowderGroup}}, "particles against each other"}};
 }
 
 }  // namespace demcal::dem3d

@@ -4,8 +4,11 @@
 // a run (damping, a safety factor or a fixed Rayleigh fraction, threads), and
 // what every result reports of its contacts (the step's share of the
 // Rayleigh step, the JKR cohesion number).
+#include <chrono>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
@@ -41,5 +44,26 @@ WorldSettings powder_settings(const dem::Scene& scene, const std::map<std::strin
 // cohesion number of two mean particles.
 void report_powder_contacts(const dem::Scene& scene, const std::map<std::string, double>& parameters,
                             const PowderSpec3d& powder, double dt_s, dem::TestResult& result);
+
+// The end of a run: steps, the step it ended with (and report_powder_contacts), threads, wall times, and the
+// final VTK snapshot of spheres and walls when options.vtk_dir is set.
+void finish_powder_run(const World& world, const dem::Scene& scene, const std::map<std::string, double>& parameters,
+                       const PowderSpec3d& powder, const dem::RunOptions& options,
+                       std::chrono::steady_clock::time_point start,
+                       std::chrono::steady_clock::time_point loading_start, dem::TestResult& result);
+
+inline constexpr std::uint8_t kPowderGroup = 0, kPowderWallGroup = 1;
+
+// A 3D powder test: makes its own particles (group 0) against walls (group 1), on the sphere engine's models;
+// gravity sets its stresses (no exact scaling); its curve is a record of its own, not a stress-strain curve.
+class PowderTest3d : public dem::LabTest {
+ public:
+  bool exact_scaling() const override { return false; }
+  int results_version() const override { return 1; }
+  int dimension() const override { return 3; }
+  const dem::ContactModelCatalog& contact_models() const override;
+  std::vector<dem::ContactRole> specimen_roles(const dem::Scene&) const override;
+  std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }
+};
 
 }  // namespace demcal::dem3d
