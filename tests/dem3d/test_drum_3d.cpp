@@ -13,6 +13,7 @@
 #include "../common/scene_error.hpp"
 #include "../common/scratch.hpp"
 #include "demcal/core/error.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem3d/drum_surface.hpp"
 
@@ -72,6 +73,27 @@ TEST(DrumTest3d, BadScenesNameTheFileAndField) {
   s = small_drum();
   s["run"]["rayleigh_fraction"] = -0.1;
   EXPECT_NE(scene_error(s).find("run.rayleigh_fraction must lie in [0, 0.5]"), std::string::npos) << scene_error(s);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(DrumTest3d, ARunThatIsNotSteadySaysSoAndKeepsItsSamples) {
+  // The small drum's angle wanders by degrees between the halves of its window: a tolerance of a thousandth of a
+  // degree fails it, with the halves' means, and the samples stay in the curve for the user to see why.
+  nlohmann::json s = small_drum();
+  s["run"]["steady_tolerance_deg"] = 0.001;
+  const std::string path = test::scratch_path("drum_3d_unsteady.json");
+  std::ofstream(path) << s.dump();
+  const dem::Scene scene = dem::Scene::load(path);
+  const dem::TestResult r = dem::run_test(scene, scene.resolve({}), dem::RunOptions{});
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.reason.find("no steady state: the surface's angle moved from"), std::string::npos) << r.reason;
+  ASSERT_EQ(r.curve.size(), 9u);  // 0.4 s sampled every 0.05 s, both ends
+  EXPECT_NEAR(r.curve.front().axial_strain, 0.2 + 0.4, 1e-12);
+  EXPECT_GT(r.specimen_info.at("samples"), 8.0);
+  EXPECT_TRUE(r.macro.empty());
 }
 
 }  // namespace

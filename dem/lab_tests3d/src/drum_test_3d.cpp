@@ -240,6 +240,14 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
   }
   if (progress) progress->finish();
   finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
+  // The samples as the result's curve (time in axial_strain's column), also when the run fails: they show
+  // how far from steady it was.
+  for (std::size_t k = 0; k < angles.size(); ++k) {
+    dem::CurvePoint point;
+    point.axial_strain = s.settle_time_s + s.measure_from_s + static_cast<double>(k) * s.sample_every_s;
+    point.lateral_strain = angles[k];
+    result.curve.push_back(point);
+  }
   if (!result.ok) return result;
   // Steady when the two halves of the samples agree within the tolerance.
   const std::size_t n = angles.size(), half_n = n / 2;
@@ -266,12 +274,6 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
   }
   result.macro["aor_deg"] = mean;
   result.macro["aor_sd_deg"] = std::sqrt(sum2 / static_cast<double>(n - 1));
-  for (std::size_t k = 0; k < n; ++k) {  // the samples as the result's curve: time in axial_strain's column
-    dem::CurvePoint point;
-    point.axial_strain = s.settle_time_s + s.measure_from_s + static_cast<double>(k) * s.sample_every_s;
-    point.lateral_strain = angles[k];
-    result.curve.push_back(point);
-  }
   return result;
 }
 
