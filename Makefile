@@ -3,7 +3,7 @@
 
 BUILD      ?= build
 SAN_BUILD  ?= build-sanitize
-JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+JOBS       ?= $(shell scripts/cpu_count.sh)
 CMAKE_ARGS ?=
 
 .PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark yade-study boundary-calibration

@@ -44,7 +44,7 @@ PY
 echo
 echo "demcal demo: DEM batch over the 13-run CCD of the bond strengths (resumable; rerun skips finished points)"
 "$bin/demcal-dem" batch --scene data/scenes/ucs_rock_pb.json --design "$out/ccd_sigma_u.csv" --out "$out/ccd_sigma_u_responses.h5" \
-  --csv "$out/ccd_sigma_u_responses.csv" --jobs "$(nproc)" --cache "$build/cache"
+  --csv "$out/ccd_sigma_u_responses.csv" --jobs "$(scripts/cpu_count.sh)" --cache "$build/cache"
 /usr/bin/python3 - "$out/ccd_sigma_u_responses.csv" <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -61,4 +61,4 @@ scripts/demo_inversion.sh "$build"
 
 echo
 echo "demcal demo: the whole chain on our DEM, data/studies/demo.json (design -> DEM -> surfaces -> inversion -> verification -> report)"
-scripts/run_study.sh data/studies/demo.json "$build" "$(nproc)" quiet
+scripts/run_study.sh data/studies/demo.json "$build" "$(scripts/cpu_count.sh)" quiet
