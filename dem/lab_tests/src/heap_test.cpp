@@ -5,18 +5,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
-#include "demcal/core/progress.hpp"
 #include "demcal/dem/angle_of_repose.hpp"
 #include "demcal/dem/cohesion_number.hpp"
 #include "demcal/dem/builtin_tests.hpp"
 #include "demcal/dem/disk_scene.hpp"
+#include "demcal/dem/funnel_discharge.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/run_settings.hpp"
@@ -128,18 +127,11 @@ HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, do
   number("funnel", f, "domain_width_m", s.domain_width_m, false);
 
   const nlohmann::json& r = scene.section("run");
-  require_known_fields(r, {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
-                           "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters",
-                           "safety_factor", "note"},
-                       origin + ": run");
-  number("run", r, "max_time_s", s.max_time_s, false);
-  number("run", r, "fill_time_s", s.fill_time_s, false);
-  number("run", r, "check_every_s", s.check_every_s, false);
-  number("run", r, "settle_kinetic_ratio", s.settle_kinetic_ratio, false);
-  number("run", r, "jam_time_s", s.jam_time_s, false);
-  number("run", r, "discharged_fraction", s.discharged_fraction, false);
+  std::vector<std::string> run_keys = FunnelRun::keys();
+  run_keys.insert(run_keys.end(), {"local_damping", "bin_width_diameters", "safety_factor", "note"});
+  require_known_fields(r, run_keys, origin + ": run");
+  s.run.read(scene, parameters, r);
   number("run", r, "local_damping", s.local_damping, false);
-  number("run", r, "max_wall_s", s.max_wall_s, false);
   number("run", r, "bin_width_diameters", s.bin_width_diameters, false);
   number("run", r, "safety_factor", s.safety_factor, false);
 
@@ -165,14 +157,8 @@ HeapSpec HeapSpec::from_scene(const Scene& scene, const std::map<std::string, do
     throw Error(fw + ": the funnel's top, " + format_double(s.top_width_m()) + " m wide (outlet_width_m + 2 height_m / "
                 "tan wall_angle_deg), is wider than the domain (domain_width_m " + format_double(s.domain_width_m) + " m)");
   const std::string rw = origin + ": run";
-  if (!(s.max_time_s > 0)) throw Error(rw + ".max_time_s must be positive");
-  if (!(s.fill_time_s >= 0)) throw Error(rw + ".fill_time_s must be >= 0");
-  if (!(s.check_every_s > 0 && s.check_every_s < s.max_time_s)) throw Error(rw + ".check_every_s must lie in (0, max_time_s)");
-  if (!(s.settle_kinetic_ratio > 0 && s.settle_kinetic_ratio < 1)) throw Error(rw + ".settle_kinetic_ratio must lie in (0, 1)");
-  if (!(s.jam_time_s > 0)) throw Error(rw + ".jam_time_s must be positive");
-  if (!(s.discharged_fraction > 0 && s.discharged_fraction <= 1)) throw Error(rw + ".discharged_fraction must lie in (0, 1]");
+  s.run.validate(rw);
   if (!(s.local_damping >= 0 && s.local_damping < 1)) throw Error(rw + ".local_damping must lie in [0, 1)");
-  if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
   if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
   if (!(s.safety_factor > 0 && s.safety_factor <= 1)) throw Error(rw + ".safety_factor must lie in (0, 1]");
   return s;
@@ -233,76 +219,24 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
   result.specimen_info["catch_depth_m"] = depth;
   report_cohesion(scene, parameters, s, result);
   const auto loading_start = std::chrono::steady_clock::now();
-  std::unique_ptr<Progress> progress;
-  if (options.progress) progress = std::make_unique<Progress>("heap (% of run.max_time_s)", 100);
-  int shown = 0;
-  const std::uint64_t steps_per_check = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.check_every_s / world.dt_s())));
-
-  enum class Stage { fill, discharge, settle } stage = Stage::fill;
-  const std::size_t total = particles.size();
-  const auto left_behind = static_cast<std::size_t>(std::floor((1 - s.discharged_fraction) * static_cast<double>(total)));
-  double opened_at = 0, last_drop_at = 0, flow_time = -1;
-  std::size_t remaining = total;
-  auto fail = [&](const std::string& why) {
-    result.ok = false;
-    result.reason = why;
-  };
-  result.ok = true;
-  for (;;) {
-    world.run(steps_per_check);
-    const double t = world.time_s();
-    const std::string bad = escaped(world, s, floor_y, funnel_top);
-    if (!bad.empty()) {
-      fail(bad);
-      break;
-    }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > s.max_wall_s) {
-      fail("timeout: the heap took longer than run.max_wall_s " + format_double(s.max_wall_s) + " s of wall time");
-      break;
-    }
-    if (progress) {
-      const int percent = std::min(100, static_cast<int>(100 * t / s.max_time_s));
-      if (percent > shown) progress->advance(static_cast<std::uint64_t>(percent - shown));
-      shown = std::max(shown, percent);
-    }
-    if (stage == Stage::fill) {
-      if (t >= s.fill_time_s) {
-        world.walls[kGate].active = false;  // open the outlet
+  const std::uint64_t steps_per_check =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.run.check_every_s / world.dt_s())));
+  FunnelDischarge stages(s.run, particles.size(), {"heap", "heap", "particles", "funnel.outlet_width_m"}, start,
+                         options.progress);
+  const auto in_funnel_now = [&] { return in_funnel(world, s); };
+  const auto energies = [&] { return std::pair{world.kinetic_energy(), potential_energy_j(world, floor_y)}; };
+  stages.run(
+      result,
+      [&] {
+        world.run(steps_per_check);
+        return world.time_s();
+      },
+      [&] { return escaped(world, s, floor_y, funnel_top); },
+      [&] {
+        world.walls[kGate].active = false;
         world.refresh();
-        opened_at = last_drop_at = t;
-        stage = Stage::discharge;
-      }
-    } else if (stage == Stage::discharge) {
-      const std::size_t now = in_funnel(world, s);
-      if (now < remaining) last_drop_at = t;
-      remaining = now;
-      if (remaining <= left_behind) {
-        flow_time = t - opened_at;
-        stage = Stage::settle;
-      } else if (t - last_drop_at > s.jam_time_s) {
-        fail("the funnel jammed: " + std::to_string(remaining) + " of " + std::to_string(total) +
-             " particles still in it " + format_double(t - opened_at) + " s after it opened (none left it for run.jam_time_s " +
-             format_double(s.jam_time_s) + " s); widen funnel.outlet_width_m or steepen funnel.wall_angle_deg");
-        break;
-      }
-    } else {
-      const double kinetic = world.kinetic_energy(), potential = potential_energy_j(world, floor_y);
-      if (kinetic < s.settle_kinetic_ratio * potential) {
-        result.specimen_info["kinetic_over_potential"] = kinetic / potential;
-        break;
-      }
-    }
-    if (t >= s.max_time_s) {
-      fail(stage == Stage::settle
-               ? "the heap did not settle within run.max_time_s " + format_double(s.max_time_s) + " s (kinetic / potential energy " +
-                     format_double(world.kinetic_energy() / potential_energy_j(world, floor_y)) + ", asked below " +
-                     format_double(s.settle_kinetic_ratio) + ")"
-               : "the funnel had not discharged within run.max_time_s " + format_double(s.max_time_s) + " s (" +
-                     std::to_string(remaining) + " of " + std::to_string(total) + " particles left)");
-      break;
-    }
-  }
-  if (progress) progress->finish();
+      },
+      in_funnel_now, energies);
   record_run_timing(world, options, start, loading_start, result);  // nothing is bonded: no crack counts
   if (!result.ok) return result;
 
@@ -335,7 +269,7 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
     const bool covers = !fit.profile_x_m.empty() && fit.profile_x_m.front() <= -half_base + fit_options.bin_width_m &&
                         fit.profile_x_m.back() >= half_base - fit_options.bin_width_m;
     result.specimen_info["heap_covers_plate"] = covers ? 1.0 : 0.0;
-    result.macro["flow_time_s"] = flow_time;
+    result.macro["flow_time_s"] = stages.flow_time_s();
     result.specimen_info["heap_disks"] = static_cast<double>(x.size());
     result.specimen_info["aor_left_r2"] = fit.left_r2;
     result.specimen_info["aor_right_r2"] = fit.right_r2;
@@ -354,7 +288,8 @@ TestResult run_heap(const Scene& scene, const std::map<std::string, double>& par
       result.curve.push_back(point);
     }
   } catch (const Error& e) {
-    fail(e.what());
+    result.ok = false;
+    result.reason = e.what();
   }
   return result;
 }

@@ -17,16 +17,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
-#include "demcal/core/progress.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/line_fit.hpp"
+#include "demcal/dem/run_watch.hpp"
 #include "demcal/dem3d/drum_surface.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
 #include "demcal/dem3d/powder_3d.hpp"
@@ -191,9 +190,7 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
   result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
   result.specimen_info["froude"] = s.froude();
   const double end_s = s.settle_time_s + s.measure_from_s + s.measure_time_s;
-  std::unique_ptr<Progress> progress;
-  if (options.progress) progress = std::make_unique<Progress>("drum_3d (% of the run's time)", 100);
-  int shown = 0;
+  dem::RunWatch watch("drum", s.max_wall_s, start, end_s, "drum_3d (% of the run's time)", options.progress);
   const auto loading_start = std::chrono::steady_clock::now();
   const double bin_m = s.bin_width_diameters * (s.powder.radius_min_m + s.powder.radius_max_m);
   std::vector<double> angles;
@@ -218,14 +215,9 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
       fail(bad);
       break;
     }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > s.max_wall_s) {
-      fail("timeout: the drum took longer than run.max_wall_s " + format_double(s.max_wall_s) + " s of wall time");
+    if (!watch.carry_on(world.time_s())) {
+      fail(watch.timeout_reason());
       break;
-    }
-    if (progress) {
-      const int percent = std::min(100, static_cast<int>(100 * world.time_s() / end_s));
-      if (percent > shown) progress->advance(static_cast<std::uint64_t>(percent - shown));
-      shown = std::max(shown, percent);
     }
     if (turning && world.time_s() >= next_sample - 1e-12) {
       try {
@@ -238,7 +230,7 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
     }
     if (world.time_s() >= end_s - 1e-12) break;
   }
-  if (progress) progress->finish();
+  watch.finish();
   finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
   // The samples as the result's curve (time in axial_strain's column), also when the run fails: they show
   // how far from steady it was.
@@ -287,7 +279,7 @@ class DrumTest3d : public PowderTest3d {
     return {{"particle-wall", kWallGroup, "particles against the drum's shell and its two ends"}};
   }
   std::vector<dem::SceneSection> sections() const override {
-    return {{"particles", "the powder: radii, density, two-sphere clumps", true, true},
+    return {particles_section(),
             {"drum", "the drum's size, fill and speed", false},
             {"run", "settling, the measuring window and its samples, the time step", false}};
   }

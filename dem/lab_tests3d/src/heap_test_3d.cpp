@@ -21,14 +21,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
-#include "demcal/core/progress.hpp"
+#include "demcal/dem/funnel_discharge.hpp"
 #include "demcal/dem/lab_test.hpp"
 #include "demcal/dem3d/heap_section_fit.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
@@ -40,15 +39,14 @@ namespace demcal::dem3d {
 namespace {
 
 constexpr std::uint8_t kWallGroup = kPowderWallGroup;
-constexpr double kGravity_m_s2 = kPowderGravity_m_s2;
 constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2;
 
 struct HeapSpec3d {
   PowderSpec3d powder;
   double outlet_diameter_m = 0, wall_angle_deg = 60, funnel_height_m = 0, outlet_height_m = 0, fill_height_m = 0;
   double platform_diameter_m = 0, domain_diameter_m = 0, facets = 48;
-  double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
-  double discharged_fraction = 0.95, max_wall_s = 600, bin_width_diameters = 1.5, sections = 8;
+  dem::FunnelRun run;  // the stages' keys of "run" (funnel_discharge.hpp)
+  double bin_width_diameters = 1.5, sections = 8;
   PowderStepping stepping;
 
   double top_radius_m() const {
@@ -97,16 +95,13 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   number("funnel", f, "facets", s.facets, false);
 
   const nlohmann::json& r = scene.section("run");
-  require_known_fields(r, {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
-                           "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
-                           "safety_factor", "rayleigh_fraction", "note"},
-                       origin + ": run");
-  for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
-           {"max_time_s", &s.max_time_s}, {"fill_time_s", &s.fill_time_s}, {"check_every_s", &s.check_every_s},
-           {"settle_kinetic_ratio", &s.settle_kinetic_ratio}, {"jam_time_s", &s.jam_time_s},
-           {"discharged_fraction", &s.discharged_fraction}, {"max_wall_s", &s.max_wall_s},
-           {"bin_width_diameters", &s.bin_width_diameters}, {"sections", &s.sections}})
-    number("run", r, key, *target, false);
+  std::vector<std::string> run_keys = dem::FunnelRun::keys();
+  run_keys.insert(run_keys.end(),
+                  {"local_damping", "bin_width_diameters", "sections", "safety_factor", "rayleigh_fraction", "note"});
+  require_known_fields(r, run_keys, origin + ": run");
+  s.run.read(scene, parameters, r);
+  number("run", r, "bin_width_diameters", s.bin_width_diameters, false);
+  number("run", r, "sections", s.sections, false);
   s.stepping.read(scene, parameters, r);
 
   s.powder.validate(origin + ": particles");
@@ -132,13 +127,7 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   if (!(s.facets >= 12 && s.facets <= 720 && s.facets == std::floor(s.facets)))
     throw Error(fw + ".facets must be a whole number in [12, 720]");
   const std::string rw = origin + ": run";
-  if (!(s.max_time_s > 0)) throw Error(rw + ".max_time_s must be positive");
-  if (!(s.fill_time_s >= 0)) throw Error(rw + ".fill_time_s must be >= 0");
-  if (!(s.check_every_s > 0 && s.check_every_s < s.max_time_s)) throw Error(rw + ".check_every_s must lie in (0, max_time_s)");
-  if (!(s.settle_kinetic_ratio > 0 && s.settle_kinetic_ratio < 1)) throw Error(rw + ".settle_kinetic_ratio must lie in (0, 1)");
-  if (!(s.jam_time_s > 0)) throw Error(rw + ".jam_time_s must be positive");
-  if (!(s.discharged_fraction > 0 && s.discharged_fraction <= 1)) throw Error(rw + ".discharged_fraction must lie in (0, 1]");
-  if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
+  s.run.validate(rw);
   if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
   if (!(s.sections >= 1 && s.sections <= 90 && s.sections == std::floor(s.sections)))
     throw Error(rw + ".sections must be a whole number in [1, 90]");
@@ -165,15 +154,6 @@ void add_cone(std::vector<Wall>& walls, double z0, double r0, double z1, double 
     walls.push_back(make_triangle(a0, b0, b1, kFunnelMesh, pivot, kWallGroup));
     walls.push_back(make_triangle(a0, b1, a1, kFunnelMesh, pivot, kWallGroup));
   }
-}
-
-double potential_energy_j(const World& world, double floor_z) {
-  double energy = 0;
-  for (const Clump& c : world.clumps()) energy += c.mass_kg * kGravity_m_s2 * (c.centre_m.z - floor_z);
-  const Spheres& s = world.spheres;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.clump[i] < 0 && !s.fixed[i]) energy += s.mass[i] * kGravity_m_s2 * (s.z[i] - floor_z);
-  return energy;
 }
 
 // Spheres whose centre is still above the outlet, less a radius (a clump counts by each member).
@@ -229,78 +209,24 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
   result.specimen_info["catch_depth_m"] = -floor_z;
   const auto loading_start = std::chrono::steady_clock::now();
-  std::unique_ptr<Progress> progress;
-  if (options.progress) progress = std::make_unique<Progress>("heap_3d (% of run.max_time_s)", 100);
-  int shown = 0;
   const auto steps_per_check =
-      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.check_every_s / world.dt_s())));
-
-  enum class Stage { fill, discharge, settle } stage = Stage::fill;
-  const std::size_t total = world.spheres.size();
-  const auto left_behind = static_cast<std::size_t>(std::floor((1 - s.discharged_fraction) * static_cast<double>(total)));
-  double opened_at = 0, last_drop_at = 0, flow_time = -1;
-  std::size_t remaining = total;
-  result.ok = true;
-  auto fail = [&](const std::string& why) {
-    result.ok = false;
-    result.reason = why;
-  };
-  for (;;) {
-    world.run(steps_per_check);
-    const double t = world.time_s();
-    const std::string bad = escaped(world, s, floor_z, funnel_top);
-    if (!bad.empty()) {
-      fail(bad);
-      break;
-    }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > s.max_wall_s) {
-      fail("timeout: the heap took longer than run.max_wall_s " + format_double(s.max_wall_s) + " s of wall time");
-      break;
-    }
-    if (progress) {
-      const int percent = std::min(100, static_cast<int>(100 * t / s.max_time_s));
-      if (percent > shown) progress->advance(static_cast<std::uint64_t>(percent - shown));
-      shown = std::max(shown, percent);
-    }
-    if (stage == Stage::fill) {
-      if (t >= s.fill_time_s) {
-        for (std::size_t w = gate_begin; w < gate_end; ++w) world.walls[w].active = false;  // open the outlet
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.run.check_every_s / world.dt_s())));
+  dem::FunnelDischarge stages(s.run, world.spheres.size(), {"heap", "heap_3d", "spheres", "funnel.outlet_diameter_m"}, start,
+                              options.progress);
+  const auto in_funnel_now = [&] { return in_funnel(world, s); };
+  const auto energies = [&] { return std::pair{world.kinetic_energy(), potential_energy_j(world, floor_z)}; };
+  stages.run(
+      result,
+      [&] {
+        world.run(steps_per_check);
+        return world.time_s();
+      },
+      [&] { return escaped(world, s, floor_z, funnel_top); },
+      [&] {
+        for (std::size_t w = gate_begin; w < gate_end; ++w) world.walls[w].active = false;
         world.refresh();
-        opened_at = last_drop_at = t;
-        stage = Stage::discharge;
-      }
-    } else if (stage == Stage::discharge) {
-      const std::size_t now = in_funnel(world, s);
-      if (now < remaining) last_drop_at = t;
-      remaining = now;
-      if (remaining <= left_behind) {
-        flow_time = t - opened_at;
-        stage = Stage::settle;
-      } else if (t - last_drop_at > s.jam_time_s) {
-        fail("the funnel jammed: " + std::to_string(remaining) + " of " + std::to_string(total) +
-             " spheres still in it " + format_double(t - opened_at) + " s after it opened (none left it for run.jam_time_s " +
-             format_double(s.jam_time_s) + " s); widen funnel.outlet_diameter_m or steepen funnel.wall_angle_deg");
-        break;
-      }
-    } else {
-      const double kinetic = world.kinetic_energy(), potential = potential_energy_j(world, floor_z);
-      if (kinetic < s.settle_kinetic_ratio * potential) {
-        result.specimen_info["kinetic_over_potential"] = kinetic / potential;
-        break;
-      }
-    }
-    if (t >= s.max_time_s) {
-      fail(stage == Stage::settle
-               ? "the heap did not settle within run.max_time_s " + format_double(s.max_time_s) +
-                     " s (kinetic / potential energy " +
-                     format_double(world.kinetic_energy() / potential_energy_j(world, floor_z)) + ", asked below " +
-                     format_double(s.settle_kinetic_ratio) + ")"
-               : "the funnel had not discharged within run.max_time_s " + format_double(s.max_time_s) + " s (" +
-                     std::to_string(remaining) + " of " + std::to_string(total) + " spheres left)");
-      break;
-    }
-  }
-  if (progress) progress->finish();
+      },
+      in_funnel_now, energies);
   finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
   if (!result.ok) return result;
 
@@ -331,7 +257,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
     result.macro["heap_height_m"] = fit.height_m;
     // The height-based angle of a cone on a round plate: tan = height / radius.
     result.macro["aor_fixed_base_deg"] = std::atan(fit.height_m / r_platform) * 180.0 / M_PI;
-    result.macro["flow_time_s"] = flow_time;
+    result.macro["flow_time_s"] = stages.flow_time_s();
     bool covers = true;  // every section's profile reaches both edges of the plate
     for (const dem::ReposeFit& f : fit.sections)
       covers = covers && !f.profile_x_m.empty() && f.profile_x_m.front() <= -r_platform + fit_options.profile.bin_width_m &&
@@ -349,7 +275,8 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
       result.curve.push_back(point);
     }
   } catch (const Error& e) {
-    fail(e.what());
+    result.ok = false;
+    result.reason = e.what();
   }
   return result;
 }
@@ -366,7 +293,7 @@ class HeapTest3d : public PowderTest3d {
   }
   // The heap makes its particles in the funnel as it runs: no packed specimen, no loading.
   std::vector<dem::SceneSection> sections() const override {
-    return {{"particles", "the powder: radii, density, two-sphere clumps", true, true},
+    return {particles_section(),
             {"funnel", "the funnel, the platform and the domain", false},
             {"run", "time limits, the settling criterion, the angle's bins and sections", false}};
   }

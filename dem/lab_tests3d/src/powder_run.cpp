@@ -29,6 +29,15 @@ PowderSpec3d read_powder_section(const dem::Scene& scene, const std::map<std::st
   return powder;
 }
 
+double potential_energy_j(const World& world, double floor_z) {
+  double energy = 0;
+  for (const Clump& c : world.clumps()) energy += c.mass_kg * kPowderGravity_m_s2 * (c.centre_m.z - floor_z);
+  const Spheres& s = world.spheres;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.clump[i] < 0 && !s.fixed[i]) energy += s.mass[i] * kPowderGravity_m_s2 * (s.z[i] - floor_z);
+  return energy;
+}
+
 void PowderStepping::read(const dem::Scene& scene, const std::map<std::string, double>& parameters,
                           const nlohmann::json& run) {
   dem::read_section_number(scene, parameters, "run", run, "local_damping", local_damping, false);

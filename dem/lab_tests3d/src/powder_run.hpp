@@ -52,6 +52,9 @@ void finish_powder_run(const World& world, const dem::Scene& scene, const std::m
                        std::chrono::steady_clock::time_point start,
                        std::chrono::steady_clock::time_point loading_start, dem::TestResult& result);
 
+// The moving bodies' potential energy above height floor_z, J (a clump counts once, at its centre of mass).
+double potential_energy_j(const World& world, double floor_z);
+
 inline constexpr std::uint8_t kPowderGroup = 0, kPowderWallGroup = 1;
 
 // A 3D powder test: makes its own particles (group 0) against walls (group 1), on the sphere engine's models;
@@ -64,6 +67,12 @@ class PowderTest3d : public dem::LabTest {
   const dem::ContactModelCatalog& contact_models() const override;
   std::vector<dem::ContactRole> specimen_roles(const dem::Scene&) const override;
   std::pair<std::string, std::string> curve_axes() const override { return {"", ""}; }
+
+ protected:
+  // The "particles" section every powder test reads (read_powder_section).
+  static dem::SceneSection particles_section() {
+    return {"particles", "the powder: radii, density, two-sphere clumps", true, true};
+  }
 };
 
 }  // namespace demcal::dem3d

@@ -19,6 +19,7 @@
 #include <map>
 #include <string>
 
+#include "demcal/dem/funnel_discharge.hpp"
 #include "demcal/dem/powder_particles.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/test_result.hpp"
@@ -31,10 +32,9 @@ struct HeapSpec {
   // funnel
   double outlet_width_m = 0, wall_angle_deg = 60, funnel_height_m = 0, outlet_height_m = 0, fill_height_m = 0;
   double base_width_m = 0, domain_width_m = 0;
-  // run
-  double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
-  double discharged_fraction = 0.95, local_damping = 0, max_wall_s = 600, bin_width_diameters = 1.5;
-  double safety_factor = 0.8;
+  // run: the stages' keys (funnel_discharge.hpp) and the step's and the fit's
+  FunnelRun run;
+  double local_damping = 0, bin_width_diameters = 1.5, safety_factor = 0.8;
 
   double top_width_m() const;  // the funnel's width at its top
   // Reads the scene's sections with `parameters`; throws an Error naming the scene file and the field.

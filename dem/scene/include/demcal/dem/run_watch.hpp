@@ -1,0 +1,33 @@
+#pragma once
+// What every powder test keeps an eye on while it steps: the wall-clock
+// limit (run.max_wall_s, counted from the run's start) and the progress line
+// over its simulated time.
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "demcal/core/progress.hpp"
+
+namespace demcal::dem {
+
+class RunWatch {
+ public:
+  // `test` names the test in the timeout ("the heap took longer ..."); `progress_label` heads the progress line,
+  // shown when `show_progress`; `end_time_s` is the simulated time the line counts to.
+  RunWatch(std::string test, double max_wall_s, std::chrono::steady_clock::time_point start, double end_time_s,
+           const std::string& progress_label, bool show_progress);
+
+  // At simulated time t: false once past max_wall_s (timeout_reason() says so), else true after moving the line on.
+  bool carry_on(double t);
+  std::string timeout_reason() const;
+  void finish();
+
+ private:
+  std::string test_;
+  double max_wall_s_, end_time_s_;
+  std::chrono::steady_clock::time_point start_;
+  std::unique_ptr<Progress> progress_;
+  int shown_percent_ = 0;
+};
+
+}  // namespace demcal::dem

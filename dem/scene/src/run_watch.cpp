@@ -1,0 +1,36 @@
+// The wall-clock limit and progress line of a powder test (run_watch.hpp).
+#include "demcal/dem/run_watch.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "demcal/core/number_format.hpp"
+
+namespace demcal::dem {
+
+RunWatch::RunWatch(std::string test, double max_wall_s, std::chrono::steady_clock::time_point start, double end_time_s,
+                   const std::string& progress_label, bool show_progress)
+    : test_(std::move(test)), max_wall_s_(max_wall_s), end_time_s_(end_time_s), start_(start) {
+  if (show_progress) progress_ = std::make_unique<Progress>(progress_label, 100);
+}
+
+bool RunWatch::carry_on(double t) {
+  if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > max_wall_s_) return false;
+  if (progress_) {
+    const int percent = std::min(100, static_cast<int>(100 * t / end_time_s_));
+    if (percent > shown_percent_) progress_->advance(static_cast<std::uint64_t>(percent - shown_percent_));
+    shown_percent_ = std::max(shown_percent_, percent);
+  }
+  return true;
+}
+
+std::string RunWatch::timeout_reason() const {
+  return "timeout: the " + test_ + " took longer than run.max_wall_s " + format_double(max_wall_s_) +
+         " s of wall time";
+}
+
+void RunWatch::finish() {
+  if (progress_) progress_->finish();
+}
+
+}  // namespace demcal::dem
