@@ -254,6 +254,15 @@ case("scene/3d_drum_centrifuges",
      describe(write(S, "3d_drum_centrifuges.json", edited(drum3d, lambda d: d["drum"].update(speed_rpm=300)))),
      path(S, "3d_drum_centrifuges.json"), "centrifuges the powder")
 
+baffle3d = load("tests/invariants/scenes/baffle_small_3d.json")
+case("scene/3d_baffle_does_not_rise",
+     describe(write(S, "3d_baffle_does_not_rise.json", edited(baffle3d, lambda d: d["baffle"].update(lift_speed_m_s=0)))),
+     path(S, "3d_baffle_does_not_rise.json"), "baffle.lift_speed_m_s must be positive")
+case("scene/3d_baffle_fill_does_not_fit",
+     run(write(S, "3d_baffle_fill_does_not_fit.json",
+               edited(baffle3d, lambda d: d["box"].update(solids_fraction=0.35, fill_height_m=0.007)))),
+     path(S, "3d_baffle_fill_does_not_fit.json"), "does not fit its vessel")
+
 # ---------------------------------------------------------------- parameter space JSON (demcal-doe, describe --space)
 def doe(f):
     return ["{bin}/demcal-doe", "ccd", "--space", f, "--out", "{tmp}/design.csv"]

@@ -94,3 +94,42 @@ TEST(AngleOfRepose, AFlatLayerOrBadOptionsAreErrors) {
   EXPECT_THROW(fit_angle_of_repose(layer.x, layer.y, layer.r, 0.0, options), demcal::Error);
   EXPECT_THROW(fit_angle_of_repose({}, {}, {}, 0.0, ReposeOptions{2 * r}), demcal::Error);
 }
+
+// A baffle lift's pile: a plateau against the back wall at x = 0, then one
+// slope down to the floor. fit_slope fits the slope alone (the plateau sits
+// above 90 % of the height), and says when there are too few points.
+TEST(AngleOfRepose, ASlopeLeaningOnAWallGivesItsAngle) {
+  const double r = 0.5e-3, height = 0.04, plateau = 0.01;
+  for (double angle : {30.0, 39.1, 55.0}) {
+    const double t = std::tan(angle * M_PI / 180);
+    std::vector<double> x, y, radius;
+    for (double xc = r; xc <= plateau + height / t; xc += 2 * r) {
+      const double h = xc <= plateau ? height : height - t * (xc - plateau);
+      for (double yc = r; yc + r <= h + 1e-12; yc += 2 * r) {
+        x.push_back(xc);
+        y.push_back(yc);
+        radius.push_back(r);
+      }
+    }
+    ReposeOptions options;
+    options.bin_width_m = 2 * r;
+    const SurfaceProfile profile = surface_profile(x, y, radius, 0.0, options.bin_width_m);
+    EXPECT_NEAR(profile.height_m[profile.highest], height, 2 * r);
+    EXPECT_NEAR(profile.x_m[profile.highest], r, r) << "the first of the highest bins: at the wall";
+    const SlopeFit fit = fit_slope(profile, options, "test slope");
+    EXPECT_NEAR(fit.deg, angle, 0.5) << angle;
+    EXPECT_LT(fit.slope, 0);
+    EXPECT_GT(fit.r2, 0.99);
+    EXPECT_GE(fit.points, 10u);
+  }
+  // Two columns: no slope to fit.
+  const SurfaceProfile short_pile = surface_profile({r, 3 * r}, {r, r}, {r, r}, 0.0, 2 * r);
+  ReposeOptions options;
+  options.bin_width_m = 2 * r;
+  try {
+    fit_slope(short_pile, options, "slice 1");
+    FAIL() << "a flat two-bin pile gave a slope";
+  } catch (const demcal::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("slice 1: "), std::string::npos) << e.what();
+  }
+}

@@ -120,7 +120,7 @@ TEST(PowderFill3d, AFillThatDoesNotFitItsVesselIsAnError) {
   spec.solids_fraction = 0.35;
   spec.max_attempts_per_particle = 500;
   try {
-    place_powder_3d(spec, {0.0, 0.008, 0.004, 0.006}, 1, "scene.json: funnel (the fill)");
+    place_powder_3d(spec, Frustum{0.0, 0.008, 0.004, 0.006}, 1, "scene.json: funnel (the fill)");
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("scene.json: funnel (the fill): placed"), std::string::npos) << e.what();

@@ -84,19 +84,22 @@ std::vector<Vec3> member_centres(const PowderParticle3d& p, double aspect_ratio)
   return {p.centre_m - half, p.centre_m + half};
 }
 
-std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const Frustum& region, std::uint64_t seed,
-                                              const std::string& where) {
+namespace {
+
+// Particles at random in `region` (either shape), drawn in the box |x| <= half_x, |y| <= half_y over its heights.
+template <typename Region>
+std::vector<PowderParticle3d> place_in(const PowderSpec3d& spec, const Region& region, double half_x, double half_y,
+                                       std::uint64_t seed, const std::string& where) {
   spec.validate(where);
-  const double rim = std::max(region.radius_bottom_m, region.radius_top_m);
-  if (!(region.z_top_m > region.z_bottom_m && rim > 0)) throw Error(where + ": the fill region is empty");
+  if (!(region.z_top_m > region.z_bottom_m && half_x > 0 && half_y > 0)) throw Error(where + ": the fill region is empty");
   // A cell grid for the overlap test: cells as wide as the largest sphere's
   // diameter, so only the 3 x 3 x 3 around a candidate sphere can touch it.
   const double cell = 2 * spec.radius_max_m;
-  const auto n = static_cast<std::int64_t>(2 * rim / cell) + 1;
+  const auto n = static_cast<std::int64_t>(2 * std::max(half_x, half_y) / cell) + 1;
   const auto layers = static_cast<std::int64_t>((region.z_top_m - region.z_bottom_m) / cell) + 1;
   auto cell_of = [&](Vec3 c, std::int64_t& i, std::int64_t& j, std::int64_t& k) {
-    i = static_cast<std::int64_t>((c.x + rim) / cell);
-    j = static_cast<std::int64_t>((c.y + rim) / cell);
+    i = static_cast<std::int64_t>((c.x + half_x) / cell);
+    j = static_cast<std::int64_t>((c.y + half_y) / cell);
     k = static_cast<std::int64_t>((c.z - region.z_bottom_m) / cell);
   };
   std::unordered_map<std::int64_t, std::vector<std::size_t>> grid;
@@ -115,7 +118,7 @@ std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const Fr
     p.radius_m = rng.uniform(spec.radius_min_m, spec.radius_max_m);
     p.clump = clumps && rng.uniform() < spec.clump_fraction;
     p.orientation = random_orientation(rng);
-    p.centre_m = {rng.uniform(-rim, rim), rng.uniform(-rim, rim), rng.uniform(region.z_bottom_m, region.z_top_m)};
+    p.centre_m = {rng.uniform(-half_x, half_x), rng.uniform(-half_y, half_y), rng.uniform(region.z_bottom_m, region.z_top_m)};
     bool ok = true;
     const std::vector<Vec3> members = member_centres(p, spec.clump_aspect_ratio);
     for (const Vec3& c : members) {
@@ -160,6 +163,19 @@ std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const Fr
     out.push_back(p);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const Frustum& region, std::uint64_t seed,
+                                              const std::string& where) {
+  const double rim = std::max(region.radius_bottom_m, region.radius_top_m);
+  return place_in(spec, region, rim, rim, seed, where);
+}
+
+std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const UprightBox& region, std::uint64_t seed,
+                                              const std::string& where) {
+  return place_in(spec, region, region.half_x_m, region.half_y_m, seed, where);
 }
 
 std::size_t add_powder_3d(World& world, const std::vector<PowderParticle3d>& particles, const PowderSpec3d& spec,

@@ -10,5 +10,6 @@ void register_brazilian_test_3d(dem::LabTestRegistry& registry);
 void register_triaxial_test(dem::LabTestRegistry& registry);
 void register_heap_test_3d(dem::LabTestRegistry& registry);
 void register_drum_test_3d(dem::LabTestRegistry& registry);
+void register_baffle_lift_test_3d(dem::LabTestRegistry& registry);
 
 }  // namespace demcal::dem3d

@@ -1,12 +1,14 @@
 #pragma once
 // Loose particles for a 3D powder test (a heap poured from a funnel): spheres
 // and two-sphere clumps placed at random, without overlap, inside a vertical
-// frustum (a funnel's inside), until they fill a set fraction of its volume.
+// frustum (a funnel's inside) or an upright box, until they fill a set
+// fraction of its volume.
 //
 // A clump of aspect ratio AR is two equal spheres of radius r whose centres lie
 // 2 r (AR - 1) apart, so its length over its width is AR (He et al.'s 1.3). It
 // moves as one rigid body with the mass and inertia of the union of its
 // spheres, the shared lens counted once (exact, two_sphere_union).
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -41,6 +43,15 @@ struct Frustum {
   bool holds(Vec3 c, double r) const;
 };
 
+// An upright box centred on the vertical axis: |x| <= half_x_m, |y| <= half_y_m, z_bottom_m <= z <= z_top_m.
+struct UprightBox {
+  double half_x_m = 0, half_y_m = 0, z_bottom_m = 0, z_top_m = 0;
+  double volume_m3() const { return 4 * half_x_m * half_y_m * (z_top_m - z_bottom_m); }
+  bool holds(Vec3 c, double r) const {
+    return c.z - r >= z_bottom_m && c.z + r <= z_top_m && std::abs(c.x) + r <= half_x_m && std::abs(c.y) + r <= half_y_m;
+  }
+};
+
 struct PowderParticle3d {
   Vec3 centre_m;            // centre of mass
   double radius_m = 0;      // its spheres' radius
@@ -60,6 +71,8 @@ TwoSphereUnion two_sphere_union(double radius_m, double centre_distance_m, doubl
 // volume; every sphere lies wholly inside. An Error (naming `where`) when the
 // fraction cannot be reached.
 std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const Frustum& region, std::uint64_t seed,
+                                              const std::string& where);
+std::vector<PowderParticle3d> place_powder_3d(const PowderSpec3d& spec, const UprightBox& region, std::uint64_t seed,
                                               const std::string& where);
 
 // The centres of a particle's spheres (one, or a clump's two).
