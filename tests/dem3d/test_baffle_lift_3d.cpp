@@ -90,4 +90,16 @@ TEST(BaffleLift3d, PartRunsOutAndARougherPowderKeepsMoreInTheBox) {
   EXPECT_GT(b.macro.at("heap_height_m"), a.macro.at("heap_height_m") * 1.3);
 }
 
+// Cohesion a hundred times the invariant driver's holds the bed as a face where the baffle was: the run says so
+// rather than fitting a slope to a flat surface.
+TEST(BaffleLift3d, ACohesiveFaceThatStandsSaysSo) {
+  nlohmann::json s = small_box();
+  s["parameters"]["w_N_m"]["value"] = 0.05;
+  const dem::TestResult r = run(s, "baffle_standing.json");
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.reason.find("the powder did not run out: "), std::string::npos) << r.reason;
+  EXPECT_GT(r.specimen_info.at("retained_fraction"), 0.99);
+  EXPECT_TRUE(r.macro.empty());
+}
+
 }  // namespace

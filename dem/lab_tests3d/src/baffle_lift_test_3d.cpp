@@ -170,7 +170,13 @@ std::vector<dem::SlopeFit> fit_slices(const World& world, const BaffleSpec& s, d
     z[k].push_back(sp.z[i]);
     r[k].push_back(sp.radius[i]);
   }
-  result.specimen_info["retained_fraction"] = static_cast<double>(in_box) / static_cast<double>(sp.size());
+  const double retained = static_cast<double>(in_box) / static_cast<double>(sp.size());
+  result.specimen_info["retained_fraction"] = retained;
+  // A powder cohesive enough stands where the baffle was: no slope, and no angle to report but a vertical face.
+  if (retained > 0.99)
+    throw Error("the powder did not run out: " + format_double(std::round(1000 * retained) / 10) +
+                " % of it stayed in the box after the baffle rose, a face standing where the baffle was (no slope to "
+                "fit; the cohesion holds it)");
   dem::ReposeOptions options;
   options.bin_width_m = s.bin_width_diameters * (s.powder.radius_min_m + s.powder.radius_max_m);
   std::vector<dem::SlopeFit> fits;
