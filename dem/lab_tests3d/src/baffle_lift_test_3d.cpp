@@ -43,12 +43,12 @@ struct BaffleSpec {
   PowderSpec3d powder;
   double length_m = 0, width_m = 0, height_m = 0, fill_height_m = 0, run_out_m = 0;
   double lift_speed_m_s = 0.1, lift_height_m = 0;
-  double fill_time_s = 0.5, settle_from_s = 0.25, max_time_s = 4, check_every_s = 0.01, settle_kinetic_ratio = 1e-6;
-  double max_wall_s = 600;
+  dem::SettleRun run = defaults();  // the run's time limits and settling criterion (run_watch.hpp)
+  double settle_from_s = 0.25;
   double bin_width_diameters = 1.5, slices = 3;
   PowderStepping stepping;
 
-  double lift_ends_at_s() const { return fill_time_s + lift_height_m / lift_speed_m_s; }
+  double lift_ends_at_s() const { return run.fill_time_s + lift_height_m / lift_speed_m_s; }
   // Settling is judged from here on: the powder at rest before it has started to run out is not settled.
   double settle_check_from_s() const { return lift_ends_at_s() + settle_from_s; }
   double domain_radius_m() const { return std::hypot(0.5 * length_m + run_out_m, 0.5 * width_m); }
@@ -58,6 +58,15 @@ struct BaffleSpec {
   double measured_half_width_m() const { return 0.5 * width_m - powder.longest_m(); }
 
   static BaffleSpec from_scene(const Scene& scene, const std::map<std::string, double>& parameters);
+
+ private:
+  static dem::SettleRun defaults() {
+    dem::SettleRun run;
+    run.fill_time_s = 0.5;
+    run.max_time_s = 4;
+    run.check_every_s = 0.01;
+    return run;
+  }
 };
 
 BaffleSpec BaffleSpec::from_scene(const Scene& scene, const std::map<std::string, double>& parameters) {
@@ -86,15 +95,14 @@ BaffleSpec BaffleSpec::from_scene(const Scene& scene, const std::map<std::string
   number("baffle", l, "lift_height_m", s.lift_height_m, false);
 
   const nlohmann::json& r = scene.section("run");
-  require_known_fields(r, {"fill_time_s", "settle_from_s", "max_time_s", "check_every_s", "settle_kinetic_ratio", "max_wall_s",
-                           "bin_width_diameters", "slices", "local_damping", "safety_factor", "rayleigh_fraction",
-                           "note"},
-                       origin + ": run");
-  for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
-           {"fill_time_s", &s.fill_time_s}, {"settle_from_s", &s.settle_from_s}, {"max_time_s", &s.max_time_s}, {"check_every_s", &s.check_every_s},
-           {"settle_kinetic_ratio", &s.settle_kinetic_ratio}, {"max_wall_s", &s.max_wall_s},
-           {"bin_width_diameters", &s.bin_width_diameters}, {"slices", &s.slices}})
-    number("run", r, key, *target, false);
+  std::vector<std::string> run_keys = dem::SettleRun::keys();
+  run_keys.insert(run_keys.end(), {"settle_from_s", "bin_width_diameters", "slices", "local_damping", "safety_factor",
+                                   "rayleigh_fraction", "note"});
+  require_known_fields(r, run_keys, origin + ": run");
+  s.run.read(scene, parameters, r);
+  number("run", r, "settle_from_s", s.settle_from_s, false);
+  number("run", r, "bin_width_diameters", s.bin_width_diameters, false);
+  number("run", r, "slices", s.slices, false);
   s.stepping.read(scene, parameters, r);
 
   s.powder.validate(origin + ": particles");
@@ -116,15 +124,12 @@ BaffleSpec BaffleSpec::from_scene(const Scene& scene, const std::map<std::string
   if (!(s.lift_height_m >= s.fill_height_m))
     throw Error(lw + ".lift_height_m must be at least box.fill_height_m (the powder must be able to run out)");
   const std::string rw = origin + ": run";
-  if (!(s.fill_time_s >= 0)) throw Error(rw + ".fill_time_s must be >= 0");
+  s.run.validate(rw);
   if (!(s.settle_from_s >= 0)) throw Error(rw + ".settle_from_s must be >= 0");
-  if (!(s.max_time_s > s.settle_check_from_s()))
-    throw Error(rw + ".max_time_s " + format_double(s.max_time_s) + " s ends before settling is checked (from " +
+  if (!(s.run.max_time_s > s.settle_check_from_s()))
+    throw Error(rw + ".max_time_s " + format_double(s.run.max_time_s) + " s ends before settling is checked (from " +
                 format_double(s.settle_check_from_s()) +
                 " s: fill_time_s + baffle.lift_height_m / lift_speed_m_s + settle_from_s)");
-  if (!(s.check_every_s > 0 && s.check_every_s < s.max_time_s)) throw Error(rw + ".check_every_s must lie in (0, max_time_s)");
-  if (!(s.settle_kinetic_ratio > 0 && s.settle_kinetic_ratio < 1)) throw Error(rw + ".settle_kinetic_ratio must lie in (0, 1)");
-  if (!(s.max_wall_s > 0)) throw Error(rw + ".max_wall_s must be positive");
   if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
   if (!(s.slices >= 1 && s.slices <= 20 && s.slices == std::floor(s.slices)))
     throw Error(rw + ".slices must be a whole number in [1, 20]");
@@ -213,11 +218,11 @@ dem::TestResult run_baffle_lift_3d(const Scene& scene, const std::map<std::strin
   result.particles = world.spheres.size();
   result.specimen_info["particles"] = static_cast<double>(particles.size());
   result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
-  dem::RunWatch watch("baffle lift", s.max_wall_s, start, s.max_time_s, "baffle_lift_3d (% of run.max_time_s)",
+  dem::RunWatch watch("baffle lift", s.run.max_wall_s, start, s.run.max_time_s, "baffle_lift_3d (% of run.max_time_s)",
                       options.progress);
   const auto loading_start = std::chrono::steady_clock::now();
   const auto steps_per_check =
-      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.check_every_s / world.dt_s())));
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.run.check_every_s / world.dt_s())));
   enum class Stage { fill, lift, settle } stage = Stage::fill;
   auto set_baffle_speed = [&](double v) {
     for (std::size_t w = baffle_begin; w < baffle_end; ++w) world.walls[w].velocity_m_s = {0, 0, v};
@@ -239,7 +244,7 @@ dem::TestResult run_baffle_lift_3d(const Scene& scene, const std::map<std::strin
       fail(watch.timeout_reason());
       break;
     }
-    if (stage == Stage::fill && t >= s.fill_time_s) {
+    if (stage == Stage::fill && t >= s.run.fill_time_s) {
       double top = 0;
       for (std::size_t i = 0; i < world.spheres.size(); ++i)
         top = std::max(top, world.spheres.z[i] + world.spheres.radius[i]);
@@ -251,15 +256,15 @@ dem::TestResult run_baffle_lift_3d(const Scene& scene, const std::map<std::strin
       stage = Stage::settle;
     } else if (stage == Stage::settle && t >= s.settle_check_from_s()) {
       const double kinetic = world.kinetic_energy(), potential = potential_energy_j(world, 0.0);
-      if (kinetic < s.settle_kinetic_ratio * potential) {
+      if (kinetic < s.run.settle_kinetic_ratio * potential) {
         result.specimen_info["kinetic_over_potential"] = kinetic / potential;
         break;
       }
     }
-    if (t >= s.max_time_s) {
-      fail("the powder did not settle within run.max_time_s " + format_double(s.max_time_s) +
+    if (t >= s.run.max_time_s) {
+      fail("the powder did not settle within run.max_time_s " + format_double(s.run.max_time_s) +
            " s (kinetic / potential energy " + format_double(world.kinetic_energy() / potential_energy_j(world, 0.0)) +
-           ", asked below " + format_double(s.settle_kinetic_ratio) + ")");
+           ", asked below " + format_double(s.run.settle_kinetic_ratio) + ")");
       break;
     }
   }

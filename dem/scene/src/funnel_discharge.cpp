@@ -10,28 +10,24 @@
 namespace demcal::dem {
 
 const std::vector<std::string>& FunnelRun::keys() {
-  static const std::vector<std::string> names = {"max_time_s",  "fill_time_s",         "check_every_s", "settle_kinetic_ratio",
-                                                 "jam_time_s",  "discharged_fraction", "max_wall_s"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = SettleRun::keys();
+    all.insert(all.end(), {"jam_time_s", "discharged_fraction"});
+    return all;
+  }();
   return names;
 }
 
 void FunnelRun::read(const Scene& scene, const std::map<std::string, double>& parameters, const nlohmann::json& run) {
-  for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
-           {"max_time_s", &max_time_s}, {"fill_time_s", &fill_time_s}, {"check_every_s", &check_every_s},
-           {"settle_kinetic_ratio", &settle_kinetic_ratio}, {"jam_time_s", &jam_time_s},
-           {"discharged_fraction", &discharged_fraction}, {"max_wall_s", &max_wall_s}})
-    read_section_number(scene, parameters, "run", run, key, *target, false);
+  SettleRun::read(scene, parameters, run);
+  read_section_number(scene, parameters, "run", run, "jam_time_s", jam_time_s, false);
+  read_section_number(scene, parameters, "run", run, "discharged_fraction", discharged_fraction, false);
 }
 
 void FunnelRun::validate(const std::string& where) const {
-  if (!(max_time_s > 0)) throw Error(where + ".max_time_s must be positive");
-  if (!(fill_time_s >= 0)) throw Error(where + ".fill_time_s must be >= 0");
-  if (!(check_every_s > 0 && check_every_s < max_time_s)) throw Error(where + ".check_every_s must lie in (0, max_time_s)");
-  if (!(settle_kinetic_ratio > 0 && settle_kinetic_ratio < 1))
-    throw Error(where + ".settle_kinetic_ratio must lie in (0, 1)");
+  SettleRun::validate(where);
   if (!(jam_time_s > 0)) throw Error(where + ".jam_time_s must be positive");
   if (!(discharged_fraction > 0 && discharged_fraction <= 1)) throw Error(where + ".discharged_fraction must lie in (0, 1]");
-  if (!(max_wall_s > 0)) throw Error(where + ".max_wall_s must be positive");
 }
 
 FunnelDischarge::FunnelDischarge(const FunnelRun& run, std::size_t total, FunnelWords words,

@@ -4,9 +4,32 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
 
 namespace demcal::dem {
+
+const std::vector<std::string>& SettleRun::keys() {
+  static const std::vector<std::string> names = {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio",
+                                                 "max_wall_s"};
+  return names;
+}
+
+void SettleRun::read(const Scene& scene, const std::map<std::string, double>& parameters, const nlohmann::json& run) {
+  for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
+           {"max_time_s", &max_time_s}, {"fill_time_s", &fill_time_s}, {"check_every_s", &check_every_s},
+           {"settle_kinetic_ratio", &settle_kinetic_ratio}, {"max_wall_s", &max_wall_s}})
+    read_section_number(scene, parameters, "run", run, key, *target, false);
+}
+
+void SettleRun::validate(const std::string& where) const {
+  if (!(max_time_s > 0)) throw Error(where + ".max_time_s must be positive");
+  if (!(fill_time_s >= 0)) throw Error(where + ".fill_time_s must be >= 0");
+  if (!(check_every_s > 0 && check_every_s < max_time_s)) throw Error(where + ".check_every_s must lie in (0, max_time_s)");
+  if (!(settle_kinetic_ratio > 0 && settle_kinetic_ratio < 1))
+    throw Error(where + ".settle_kinetic_ratio must lie in (0, 1)");
+  if (!(max_wall_s > 0)) throw Error(where + ".max_wall_s must be positive");
+}
 
 RunWatch::RunWatch(std::string test, double max_wall_s, std::chrono::steady_clock::time_point start, double end_time_s,
                    const std::string& progress_label, bool show_progress)

@@ -21,15 +21,12 @@
 
 namespace demcal::dem {
 
-// The "run" keys of the stages and the run's guards (each optional, defaults here).
-struct FunnelRun {
-  double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, jam_time_s = 0.5;
-  double discharged_fraction = 0.95, max_wall_s = 600;
+// The "run" keys of the stages: a settling run's (run_watch.hpp) and the discharge's.
+struct FunnelRun : SettleRun {
+  double jam_time_s = 0.5, discharged_fraction = 0.95;
 
   static const std::vector<std::string>& keys();
-  // Reads the keys present in `run` (values or expressions of the parameters).
   void read(const Scene& scene, const std::map<std::string, double>& parameters, const nlohmann::json& run);
-  // An Error naming `where` ("file: run") and the key that is out of range.
   void validate(const std::string& where) const;
 };
 

@@ -1,14 +1,31 @@
 #pragma once
 // What every powder test keeps an eye on while it steps: the wall-clock
 // limit (run.max_wall_s, counted from the run's start) and the progress line
-// over its simulated time.
+// over its simulated time; and the "run" keys of a test that fills, acts and
+// settles (the funnel heap, the baffle lift).
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "demcal/core/progress.hpp"
+#include "demcal/dem/scene.hpp"
 
 namespace demcal::dem {
+
+// Each optional; a test sets its own defaults before reading.
+struct SettleRun {
+  double max_time_s = 5, fill_time_s = 0.05, check_every_s = 0.002, settle_kinetic_ratio = 1e-6, max_wall_s = 600;
+
+  static const std::vector<std::string>& keys();
+  // Reads the keys present in `run` (values or expressions of the parameters).
+  void read(const Scene& scene, const std::map<std::string, double>& parameters, const nlohmann::json& run);
+  // An Error naming `where` ("file: run") and the key that is out of range.
+  void validate(const std::string& where) const;
+};
 
 class RunWatch {
  public:
