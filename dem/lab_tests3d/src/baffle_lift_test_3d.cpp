@@ -96,8 +96,8 @@ BaffleSpec BaffleSpec::from_scene(const Scene& scene, const std::map<std::string
 
   const nlohmann::json& r = scene.section("run");
   std::vector<std::string> run_keys = dem::SettleRun::keys();
-  run_keys.insert(run_keys.end(), {"settle_from_s", "bin_width_diameters", "slices", "local_damping", "safety_factor",
-                                   "rayleigh_fraction", "note"});
+  run_keys.insert(run_keys.end(), PowderStepping::keys().begin(), PowderStepping::keys().end());
+  run_keys.insert(run_keys.end(), {"settle_from_s", "bin_width_diameters", "slices", "note"});
   require_known_fields(r, run_keys, origin + ": run");
   s.run.read(scene, parameters, r);
   number("run", r, "settle_from_s", s.settle_from_s, false);

@@ -67,10 +67,11 @@ DrumSpec DrumSpec::from_scene(const Scene& scene, const std::map<std::string, do
   number("drum", d, "bed_solids_fraction", s.bed_solids_fraction, false);
   number("drum", d, "speed_rpm", s.speed_rpm, true);
   const nlohmann::json& r = scene.section("run");
-  require_known_fields(r, {"settle_time_s", "measure_from_s", "measure_time_s", "sample_every_s", "surface_fraction",
-                           "steady_tolerance_deg", "bin_width_diameters", "max_wall_s", "local_damping",
-                           "safety_factor", "rayleigh_fraction", "note"},
-                       origin + ": run");
+  std::vector<std::string> run_keys = {"settle_time_s", "measure_from_s", "measure_time_s", "sample_every_s",
+                                       "surface_fraction", "steady_tolerance_deg", "bin_width_diameters",
+                                       "max_wall_s", "note"};
+  run_keys.insert(run_keys.end(), PowderStepping::keys().begin(), PowderStepping::keys().end());
+  require_known_fields(r, run_keys, origin + ": run");
   for (const auto& [key, target] : std::vector<std::pair<const char*, double*>>{
            {"settle_time_s", &s.settle_time_s}, {"measure_from_s", &s.measure_from_s},
            {"measure_time_s", &s.measure_time_s}, {"sample_every_s", &s.sample_every_s},

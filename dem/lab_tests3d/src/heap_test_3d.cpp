@@ -96,8 +96,8 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
 
   const nlohmann::json& r = scene.section("run");
   std::vector<std::string> run_keys = dem::FunnelRun::keys();
-  run_keys.insert(run_keys.end(),
-                  {"local_damping", "bin_width_diameters", "sections", "safety_factor", "rayleigh_fraction", "note"});
+  run_keys.insert(run_keys.end(), PowderStepping::keys().begin(), PowderStepping::keys().end());
+  run_keys.insert(run_keys.end(), {"bin_width_diameters", "sections", "note"});
   require_known_fields(r, run_keys, origin + ": run");
   s.run.read(scene, parameters, r);
   number("run", r, "bin_width_diameters", s.bin_width_diameters, false);

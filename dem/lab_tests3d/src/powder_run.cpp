@@ -38,6 +38,11 @@ double potential_energy_j(const World& world, double floor_z) {
   return energy;
 }
 
+const std::vector<std::string>& PowderStepping::keys() {
+  static const std::vector<std::string> names = {"local_damping", "safety_factor", "rayleigh_fraction"};
+  return names;
+}
+
 void PowderStepping::read(const dem::Scene& scene, const std::map<std::string, double>& parameters,
                           const nlohmann::json& run) {
   dem::read_section_number(scene, parameters, "run", run, "local_damping", local_damping, false);

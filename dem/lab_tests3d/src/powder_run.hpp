@@ -26,6 +26,7 @@ PowderSpec3d read_powder_section(const dem::Scene& scene, const std::map<std::st
 // The time-stepping keys of a powder test's "run" section.
 struct PowderStepping {
   double local_damping = 0, safety_factor = 0.8, rayleigh_fraction = 0;
+  static const std::vector<std::string>& keys();  // the three keys' names
   // Reads the three keys of `run` (optional) and checks them; an Error naming the file and field.
   void read(const dem::Scene& scene, const std::map<std::string, double>& parameters, const nlohmann::json& run);
 };
