@@ -30,47 +30,6 @@ namespace {
 // Inward unit normal of each side (bottom, top, left, right).
 constexpr std::array<std::array<double, 2>, 4> kInward = {{{0, 1}, {0, -1}, {1, 0}, {-1, 0}}};
 
-// Per disk, the length of side its dashpots stand for (0 off the side): 2R, or
-// the tributary length along the side (DashpotWidth), from the disk centres'
-// coordinate along it; the side runs from 0 to side_length_m.
-std::vector<double> dashpot_widths(const Bodies& b, const std::vector<char>& on_side, std::size_t side,
-                                   double side_length_m, DashpotWidth width) {
-  std::vector<double> out(b.size(), 0.0);
-  std::vector<std::size_t> disks;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    if (on_side[i]) disks.push_back(i);
-  if (width == DashpotWidth::diameter) {
-    for (std::size_t i : disks) out[i] = 2 * b.radius[i];
-    return out;
-  }
-  auto along = [&](std::size_t i) { return side < 2 ? b.x[i] : b.y[i]; };
-  std::sort(disks.begin(), disks.end(), [&](std::size_t p, std::size_t q) { return along(p) < along(q); });
-  for (std::size_t k = 0; k < disks.size(); ++k) {
-    const double from = k == 0 ? 0.0 : 0.5 * (along(disks[k - 1]) + along(disks[k]));
-    const double to = k + 1 == disks.size() ? side_length_m : 0.5 * (along(disks[k]) + along(disks[k + 1]));
-    out[disks[k]] = to - from;
-  }
-  return out;
-}
-
-// A monitoring point: the disks within its radius, whose mean velocity it records.
-struct Monitor {
-  std::string label;
-  double x_m = 0, y_m = 0, distance_m = 0;  // distance from the input face along the pulse's path
-  std::vector<std::size_t> disks;
-  std::vector<double> vx, vy;
-};
-
-void mean_velocity(const Bodies& b, const Monitor& m, double& vx, double& vy) {
-  vx = vy = 0;
-  for (std::size_t i : m.disks) {
-    vx += b.vx[i];
-    vy += b.vy[i];
-  }
-  vx /= static_cast<double>(m.disks.size());
-  vy /= static_cast<double>(m.disks.size());
-}
-
 std::array<double, 2> fraction_pair(const nlohmann::json& v, const std::string& where) {
   if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
     throw Error(where + ": must be [x / width, y / height]");
@@ -82,21 +41,6 @@ std::array<double, 2> fraction_pair(const nlohmann::json& v, const std::string& 
 }
 
 }  // namespace
-
-double WaveStripSpec::p_speed_formula_m_s(double rho) const {
-  return p_formula == PSpeedFormula::plane_stress ? p_speed_plane_stress_m_s(rho) : p_speed_ma2022_m_s(rho);
-}
-double WaveStripSpec::p_speed_ma2022_m_s(double rho) const {
-  return std::sqrt(e_d_pa * (1 - nu_d) / (rho * (1 + nu_d) * (1 - 2 * nu_d)));
-}
-double WaveStripSpec::p_speed_plane_stress_m_s(double rho) const { return std::sqrt(e_d_pa / (rho * (1 - nu_d * nu_d))); }
-double WaveStripSpec::s_speed_formula_m_s(double rho) const { return std::sqrt(e_d_pa / (2 * rho * (1 + nu_d))); }
-double WaveStripSpec::p_speed_m_s(double rho) const {
-  return given_p_speed_m_s > 0 ? given_p_speed_m_s : p_speed_formula_m_s(rho);
-}
-double WaveStripSpec::s_speed_m_s(double rho) const {
-  return given_s_speed_m_s > 0 ? given_s_speed_m_s : s_speed_formula_m_s(rho);
-}
 
 WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::string, double>& parameters) {
   const std::string& origin = scene.origin();
@@ -110,35 +54,8 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
   for (std::size_t side = 0; side < 4; ++side) {
     const std::string where = std::string("boundaries.") + kSideNames[side];
     if (!b.contains(kSideNames[side])) continue;
-    const nlohmann::json& o = b.at(kSideNames[side]);
-    require_known_fields(o, {"type", "xi", "eta", "dashpot_width", "note"}, origin + ": " + where);
-    if (!o.contains("type") || !o.at("type").is_string())
-      throw Error(origin + ": " + where + ".type: missing (\"fixed\", \"free\", \"viscous\", \"input\" or \"velocity\")");
-    const std::string type = o.at("type").get<std::string>();
-    SideSpec& side_spec = s.sides[side];
-    if (type == "fixed") side_spec.type = BoundaryType::fixed;
-    else if (type == "free") side_spec.type = BoundaryType::free;
-    else if (type == "viscous") side_spec.type = BoundaryType::viscous;
-    else if (type == "input") side_spec.type = BoundaryType::input;
-    else if (type == "velocity") side_spec.type = BoundaryType::velocity;
-    else throw Error(origin + ": " + where + ".type: \"" + type + "\" (allowed: fixed, free, viscous, input, velocity)");
-    const bool dashpots = side_spec.type == BoundaryType::viscous || side_spec.type == BoundaryType::input;
-    if (dashpots) {
-      number(where, o, "xi", side_spec.xi, true);
-      number(where, o, "eta", side_spec.eta, true);
-      if (side_spec.xi < 0) throw Error(origin + ": " + where + ".xi must be >= 0 (got " + format_double(side_spec.xi) + ")");
-      if (side_spec.eta < 0) throw Error(origin + ": " + where + ".eta must be >= 0 (got " + format_double(side_spec.eta) + ")");
-      if (o.contains("dashpot_width")) {
-        const nlohmann::json& w = o.at("dashpot_width");
-        if (w == "diameter") side_spec.width = DashpotWidth::diameter;
-        else if (w == "tributary") side_spec.width = DashpotWidth::tributary;
-        else throw Error(origin + ": " + where + ".dashpot_width: " + w.dump() + " (allowed: \"diameter\", \"tributary\")");
-      }
-    } else if (o.contains("xi") || o.contains("eta") || o.contains("dashpot_width")) {
-      throw Error(origin + ": " + where + ": xi, eta and dashpot_width belong to a viscous or input side, not a " + type +
-                  " one");
-    }
-    if (side_spec.type == BoundaryType::input || side_spec.type == BoundaryType::velocity) {
+    s.sides[side] = read_boundary_side(scene, parameters, b.at(kSideNames[side]), where);
+    if (s.sides[side].carries_input()) {
       s.input_side = side;
       ++inputs;
     }
@@ -147,38 +64,8 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
     throw Error(origin + ": boundaries: exactly one side must be of type \"input\" or \"velocity\" (the pulse's way in), found " +
                 std::to_string(inputs));
 
-  const nlohmann::json& m = scene.section("medium");
-  require_known_fields(m, {"E_d_Pa", "nu_d", "wave_speed_p_m_s", "wave_speed_s_m_s", "p_speed_formula", "note"},
-                       origin + ": medium");
-  if (m.contains("p_speed_formula")) {
-    const nlohmann::json& f = m.at("p_speed_formula");
-    if (f == "ma2022")
-      s.p_formula = PSpeedFormula::ma2022;
-    else if (f == "plane_stress")
-      s.p_formula = PSpeedFormula::plane_stress;
-    else
-      throw Error(origin + ": medium.p_speed_formula must be \"ma2022\" or \"plane_stress\" (got " + f.dump() + ")");
-  }
-  number("medium", m, "wave_speed_p_m_s", s.given_p_speed_m_s, false);
-  number("medium", m, "wave_speed_s_m_s", s.given_s_speed_m_s, false);
-  const bool given = s.given_p_speed_m_s > 0 && s.given_s_speed_m_s > 0;
-  number("medium", m, "E_d_Pa", s.e_d_pa, !given);
-  number("medium", m, "nu_d", s.nu_d, !given);
-  if (m.contains("E_d_Pa") && !(s.e_d_pa > 0)) throw Error(origin + ": medium.E_d_Pa must be positive");
-  if (m.contains("nu_d") && !(s.nu_d > -1 && s.nu_d < 0.5)) throw Error(origin + ": medium.nu_d must lie in (-1, 0.5)");
-  if (m.contains("wave_speed_p_m_s") && !(s.given_p_speed_m_s > 0))
-    throw Error(origin + ": medium.wave_speed_p_m_s must be positive");
-  if (m.contains("wave_speed_s_m_s") && !(s.given_s_speed_m_s > 0))
-    throw Error(origin + ": medium.wave_speed_s_m_s must be positive");
-
-  const nlohmann::json& p = scene.section("pulse");
-  require_known_fields(p, {"p_amplitude_m_s", "s_amplitude_m_s", "period_s", "note"}, origin + ": pulse");
-  number("pulse", p, "p_amplitude_m_s", s.p_amplitude_m_s, false);
-  number("pulse", p, "s_amplitude_m_s", s.s_amplitude_m_s, false);
-  number("pulse", p, "period_s", s.period_s, false);
-  if (!(s.p_amplitude_m_s >= 0 && s.s_amplitude_m_s >= 0 && s.p_amplitude_m_s + s.s_amplitude_m_s > 0))
-    throw Error(origin + ": pulse: p_amplitude_m_s and s_amplitude_m_s must be >= 0, and one of them positive");
-  if (!(s.period_s > 0)) throw Error(origin + ": pulse.period_s must be positive");
+  s.medium = MediumSpec::read(scene, parameters, scene.section("medium"), "medium");
+  s.pulse = PulseSpec::read(scene, parameters, scene.section("pulse"), "pulse");
 
   const nlohmann::json& mo = scene.section("monitors");
   require_known_fields(mo, {"points", "reflection_point", "radius_m", "note"}, origin + ": monitors");
@@ -205,9 +92,9 @@ WaveStripSpec WaveStripSpec::from_scene(const Scene& scene, const std::map<std::
   number("run", r, "local_damping", s.local_damping, false);
   number("run", r, "max_wall_s", s.max_wall_s, false);
   const std::string rw = origin + ": run";
-  if (!(s.duration_s > s.period_s)) throw Error(rw + ".duration_s must exceed pulse.period_s");
+  if (!(s.duration_s > s.pulse.period_s)) throw Error(rw + ".duration_s must exceed pulse.period_s");
   if (!(s.gravity_m_s2 >= 0)) throw Error(rw + ".gravity_m_s2 must be >= 0 (it acts downwards)");
-  if (!(s.record_every_s > 0 && s.record_every_s < s.period_s))
+  if (!(s.record_every_s > 0 && s.record_every_s < s.pulse.period_s))
     throw Error(rw + ".record_every_s must lie in (0, pulse.period_s)");
   if (!(s.recovery_fraction > 0 && s.recovery_fraction < 1)) throw Error(rw + ".recovery_fraction must lie in (0, 1)");
   if (!(s.quiet_time_s >= 0)) throw Error(rw + ".quiet_time_s must be >= 0");
@@ -237,25 +124,25 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   double mass = 0;
   for (std::size_t i : disks_by_id(b)) mass += b.mass[i];
   const double rho = mass / (W * H * t);  // the equivalent continuum's (bulk) density
-  const double c_p = s.p_speed_m_s(rho), c_s = s.s_speed_m_s(rho);
+  const double c_p = s.medium.p_speed_m_s(rho), c_s = s.medium.s_speed_m_s(rho);
   result.specimen_info["bulk_density_kg_m3"] = rho;
   result.specimen_info["dashpot_wave_speed_p_m_s"] = c_p;
   result.specimen_info["dashpot_wave_speed_s_m_s"] = c_s;
-  if (s.e_d_pa > 0) {
-    result.specimen_info["formula_wave_speed_p_m_s"] = s.p_speed_formula_m_s(rho);
-    result.specimen_info["formula_wave_speed_s_m_s"] = s.s_speed_formula_m_s(rho);
+  if (s.medium.e_d_pa > 0) {
+    result.specimen_info["formula_wave_speed_p_m_s"] = s.medium.p_speed_formula_m_s(rho);
+    result.specimen_info["formula_wave_speed_s_m_s"] = s.medium.s_speed_formula_m_s(rho);
     // Both P formulas, whichever the dashpots use: Ma et al.'s (plane strain, which their coefficients are
     // relative to) and the 2D disk assembly's own (plane stress), 4 % slower at nu 0.22.
-    result.specimen_info["ma2022_wave_speed_p_m_s"] = s.p_speed_ma2022_m_s(rho);
-    result.specimen_info["plane_stress_wave_speed_p_m_s"] = s.p_speed_plane_stress_m_s(rho);
+    result.specimen_info["ma2022_wave_speed_p_m_s"] = s.medium.p_speed_ma2022_m_s(rho);
+    result.specimen_info["plane_stress_wave_speed_p_m_s"] = s.medium.p_speed_plane_stress_m_s(rho);
   }
 
   // At rest under gravity against the vessel's walls.
   world.settings().damping = scene.loading().local_damping;
   world.settings().gravity_y_m_s2 = -s.gravity_m_s2;
   world.refresh();
-  if (world.dt_s() * 10 > s.period_s)
-    throw Error(origin + ": pulse.period_s " + format_double(s.period_s) + " s is shorter than 10 time steps (dt " +
+  if (world.dt_s() * 10 > s.pulse.period_s)
+    throw Error(origin + ": pulse.period_s " + format_double(s.pulse.period_s) + " s is shorter than 10 time steps (dt " +
                 format_double(world.dt_s()) + " s): the pulse would not be resolved");
   if (s.gravity_m_s2 > 0 &&
       !cycle_to_equilibrium(world, s.equilibrium_ratio, static_cast<std::uint64_t>(s.max_equilibrium_steps))) {
@@ -268,63 +155,22 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
 
   // The walls' load passes to their disks; fixed sides hold theirs.
   auto boundary = std::make_unique<BoundaryForces>();
-  const std::vector<std::size_t> by_id = disks_by_id(b);
+  const auto impedance = [&](std::size_t) { return DiskImpedance{rho, c_p, c_s}; };
   for (std::size_t side = 0; side < 4; ++side) {
-    std::vector<double> fx, fy, moment;
-    world.wall_forces_on_disks(fx, fy, moment, side);
-    const SideSpec& spec = s.sides[side];
-    std::vector<char> touching(b.size(), 0);
-    const ContactSet& wp = world.wall_pairs();
-    for (std::size_t k = 0; k < wp.size(); ++k)
-      if (static_cast<std::size_t>(wp.j[k]) == side && (wp.flags[k] & kTouching)) touching[static_cast<std::size_t>(wp.i[k])] = 1;
-    const std::vector<double> width_m = dashpot_widths(b, touching, side, side < 2 ? W : H, spec.width);
-    std::size_t count = 0;
-    double covered_m = 0;
-    for (std::size_t i : by_id) {  // the boundary's sums then do not depend on the disks' storage order
-      if (!touching[i]) continue;
-      ++count;
-      covered_m += 2 * b.radius[i];
-      if (spec.type == BoundaryType::fixed || spec.type == BoundaryType::velocity) {
-        b.fixed[i] = 1;
-        b.vx[i] = b.vy[i] = b.w[i] = 0;
-      }
-      // A fixed disk keeps F_app too: it does not move it, but its unbalanced force is then the wave's
-      // reaction alone, not the wall's static load as well.
-      BoundaryDisk d;
-      d.disk = i;
-      d.outward_nx = -kInward[side][0];
-      d.outward_ny = -kInward[side][1];
-      d.applied_fx_n = fx[i];
-      d.applied_fy_n = fy[i];
-      d.applied_moment_nm = moment[i];
-      d.normal_dashpot_n_s_m = width_m[i] * t * spec.xi * rho * c_p;
-      d.shear_dashpot_n_s_m = width_m[i] * t * spec.eta * rho * c_s;
-      d.input = spec.type == BoundaryType::input;
-      d.prescribed = spec.type == BoundaryType::velocity;
-      // The dashpot is explicit (it acts on the last half step's velocity): c dt / m must stay well below 2, the
-      // update's own limit, or the boundary disk's velocity flips sign each step and grows.
-      const double stiffest = std::max(d.normal_dashpot_n_s_m, d.shear_dashpot_n_s_m) * world.dt_s() / b.mass[i];
-      if (stiffest > 1.0)
-        throw Error(origin + ": boundaries." + WaveStripSpec::kSideNames[side] + ": xi " + format_double(spec.xi) +
-                    " / eta " + format_double(spec.eta) + " make a dashpot of c dt / m = " + format_double(stiffest) +
-                    " on a boundary disk, above 1: the explicit update would be unstable (smaller coefficients, or a "
-                    "smaller time step)");
-      boundary->add_disk(d);
-    }
     const std::string name = WaveStripSpec::kSideNames[side];
-    if (count == 0 && spec.type != BoundaryType::free)  // a free side the strip left has no load to keep
-      throw Error(origin + ": boundaries." + name + ": no disk touches the " + name +
-                  " wall at rest, so the side has no boundary particles");
-    result.specimen_info["boundary_disks_" + name] = static_cast<double>(count);
+    BoundarySide where;
+    where.wall = side;
+    where.name = name;
+    where.inward = kInward[side];
+    where.along_x = side < 2;
+    where.to_m = side < 2 ? W : H;
+    const SideSpec& spec = s.sides[side];
+    const BoundarySideSummary summary = install_boundary_side(world, where, spec, impedance, *boundary, origin);
+    result.specimen_info["boundary_disks_" + name] = static_cast<double>(summary.disks);
     // Sum of the boundary disks' diameters 2R over the side's length (Ma's 2R assumes it is about 1).
-    result.specimen_info["boundary_coverage_" + name] = covered_m / (side < 2 ? W : H);
-    if (spec.type == BoundaryType::viscous || spec.type == BoundaryType::input) {
-      // What the dashpots stand for: the coverage with 2R, exactly 1 with tributary lengths.
-      double dashpot_m = 0;
-      for (std::size_t i : by_id) dashpot_m += width_m[i];
-      result.specimen_info["dashpot_coverage_" + name] = dashpot_m / (side < 2 ? W : H);
-    }
-    world.walls[side].active = false;
+    result.specimen_info["boundary_coverage_" + name] = summary.covered_m / where.to_m;
+    // What the dashpots stand for: the coverage with 2R, exactly 1 with tributary lengths.
+    if (spec.has_dashpots()) result.specimen_info["dashpot_coverage_" + name] = summary.dashpot_m / where.to_m;
   }
   BoundaryForces& forces = world.add_external_forces(std::move(boundary));
   world.settings().damping = s.local_damping;
@@ -354,7 +200,8 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
       default: return W - x;
     }
   };
-  std::vector<Monitor> monitors;
+  WaveRecord rec;
+  std::vector<Monitor>& monitors = rec.monitors;
   for (std::size_t k = 0; k <= s.points.size(); ++k) {
     const bool reflection = k == s.points.size();
     const std::array<double, 2> f = reflection ? s.reflection_point : s.points[k];
@@ -363,17 +210,13 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     m.x_m = f[0] * W;
     m.y_m = f[1] * H;
     m.distance_m = distance_from_input(m.x_m, m.y_m);
-    for (std::size_t i : disks_by_id(b))
-      if (std::hypot(b.x[i] - m.x_m, b.y[i] - m.y_m) <= radius && !b.fixed[i]) m.disks.push_back(i);
-    if (m.disks.empty())
-      throw Error(origin + ": monitors: no free disk within " + format_double(radius) + " m of point " + m.label +
-                  " (" + format_double(m.x_m) + ", " + format_double(m.y_m) + " m)");
+    m.collect(b, radius, origin);
     monitors.push_back(std::move(m));
   }
 
   // The pulse, from t = 0 of the test.
   world.start_test();
-  const double period = s.period_s, a_p = s.p_amplitude_m_s, a_s = s.s_amplitude_m_s;
+  const double period = s.pulse.period_s, a_p = s.pulse.p_amplitude_m_s, a_s = s.pulse.s_amplitude_m_s;
   auto cosine = [period](double amplitude, double time) {
     return time <= period ? 0.5 * amplitude * (1 - std::cos(2 * M_PI * time / period)) : 0.0;
   };
@@ -382,61 +225,19 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   const std::vector<double> x_start = b.x, y_start = b.y;
 
   const auto loading_start = std::chrono::steady_clock::now();
-  std::unique_ptr<Progress> progress;
-  if (options.progress) progress = std::make_unique<Progress>("wave strip (% of run.duration_s)", 100);
-  int shown = 0;
   const auto steps_per_record =
       std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(s.record_every_s / world.dt_s())));
-  const double amplitude = std::max(a_p, a_s);
-  std::vector<double> times, kinetic;
-  auto record = [&] {
-    times.push_back(world.time_s());
-    kinetic.push_back(world.kinetic_energy());
-    for (Monitor& m : monitors) {
-      double vx, vy;
-      mean_velocity(b, m, vx, vy);
-      m.vx.push_back(vx);
-      m.vy.push_back(vy);
-    }
-  };
-  record();
-  result.ok = true;
-  while (world.time_s() < s.duration_s) {
-    world.run(steps_per_record);
-    record();
-    double fastest = 0;
-    bool finite = true;
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      finite = finite && std::isfinite(b.vx[i]) && std::isfinite(b.vy[i]);
-      fastest = std::max(fastest, std::abs(b.vx[i]) + std::abs(b.vy[i]));
-    }
-    if (!finite || fastest > 100 * amplitude) {
-      result.ok = false;
-      result.reason = "unstable at t = " + format_double(world.time_s()) + " s: " +
-                      (finite ? "a disk moves faster than 100 x the pulse's amplitude" : "non-finite velocities");
-      break;
-    }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > s.max_wall_s) {
-      result.ok = false;
-      result.reason = "timeout: the run took longer than run.max_wall_s " + format_double(s.max_wall_s) + " s";
-      break;
-    }
-    if (progress) {
-      const int percent = std::min(100, static_cast<int>(100 * world.time_s() / s.duration_s));
-      if (percent > shown) progress->advance(static_cast<std::uint64_t>(percent - shown));
-      shown = std::max(shown, percent);
-    }
-  }
-  if (progress) progress->finish();
+  RecordedRun run;
+  run.end_time_s = s.duration_s;
+  run.steps_per_record = steps_per_record;
+  run.amplitude_m_s = std::max(a_p, a_s);
+  run.max_wall_s = s.max_wall_s;
+  run.start = start;
+  run.progress_label = "wave strip (% of run.duration_s)";
+  run.show_progress = options.progress;
+  run_recording(world, rec, run, result);
   record_run_timing(world, options, start, loading_start, result);
-
-  // The record: time, each point's velocity, the kinetic energy.
-  result.series.emplace_back("time_s", times);
-  result.series.emplace_back("kinetic_energy_J", kinetic);
-  for (const Monitor& m : monitors) {
-    result.series.emplace_back("vx_" + m.label + "_m_s", m.vx);
-    result.series.emplace_back("vy_" + m.label + "_m_s", m.vy);
-  }
+  rec.add_series(result);  // time, the kinetic energy, each point's velocity
   if (!result.ok) return result;
 
   // Velocity along the pulse's path (P) and across it (S), per point.
@@ -451,10 +252,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   // strip), and a threshold on A would reward a weak input side with early quiet.
   std::vector<std::vector<double>> speeds;
   for (std::size_t k = 0; k < s.points.size(); ++k) {
-    const Monitor& m = monitors[k];
-    std::vector<double> speed(m.vx.size());
-    for (std::size_t q = 0; q < speed.size(); ++q) speed[q] = std::hypot(m.vx[q], m.vy[q]);
-    speeds.push_back(std::move(speed));
+    speeds.push_back(monitors[k].speeds());
   }
   std::size_t nearest_input = 0;
   for (std::size_t k = 1; k < s.points.size(); ++k)
@@ -464,7 +262,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
   double total = 0;
   for (std::size_t k = 0; k < s.points.size(); ++k) {
     const Monitor& m = monitors[k];
-    const Recovery r = recovery_time(times, speeds[k], s.recovery_fraction * carried);
+    const Recovery r = recovery_time(rec.times, speeds[k], s.recovery_fraction * carried);
     result.macro["recovery_time_s_" + m.label] = r.time_s;
     result.macro["recovered_" + m.label] = r.recovered ? 1.0 : 0.0;
     total += r.time_s;
@@ -479,7 +277,7 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     std::vector<double> distance, arrival;
     for (std::size_t k = 0; k < s.points.size(); ++k) {
       distance.push_back(monitors[k].distance_m);
-      arrival.push_back(first_crossing(times, along(monitors[k], p_wave), level));
+      arrival.push_back(first_crossing(rec.times, along(monitors[k], p_wave), level));
     }
     return arrival_speed(distance, arrival);
   };
@@ -518,8 +316,8 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     return result;
   }
   const std::vector<double> v_r = along(rp, p_wave);
-  const double incident = signed_extreme(times, v_r, 0, reflected_at);
-  const double reflected = signed_extreme(times, v_r, reflected_at, std::min(echo_at, reflected_at + 1.25 * period));
+  const double incident = signed_extreme(rec.times, v_r, 0, reflected_at);
+  const double reflected = signed_extreme(rec.times, v_r, reflected_at, std::min(echo_at, reflected_at + 1.25 * period));
   result.macro["reflection_coefficient"] = incident != 0 ? reflected / incident : 0.0;
 
   // Energy: what the input put in, what the dashpots took out, what is left moving.

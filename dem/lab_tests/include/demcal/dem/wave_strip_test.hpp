@@ -30,43 +30,17 @@
 
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/test_result.hpp"
+#include "demcal/dem/wave_boundary.hpp"
 
 namespace demcal::dem {
-
-// velocity: a fixed side whose disks move with the pulse's particle velocity
-// and stand still once it has passed (Ma et al.'s fixed boundary, the pulse
-// imposed on it): an input that reflects everything that comes back.
-enum class BoundaryType { fixed, free, viscous, input, velocity };
-
-// The length along the side each boundary disk's dashpot stands for: its
-// diameter 2R (Ma et al.'s formula, which assumes the disks tile the side), or
-// its tributary length (half the way to each neighbour along the side, the
-// end disks out to the corners), which sums to the side's length whatever the
-// packing, so the boundary's impedance does not change from specimen to specimen.
-enum class DashpotWidth { diameter, tributary };
-// Which continuum formula gives C_P from E_d and nu_d: Ma et al. 2022's,
-// sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))) (plane strain, as they wrote it
-// for their 2D model), or the plane-stress one of a 2D disk assembly,
-// sqrt(E / (rho (1 - nu^2))), 4 % slower at nu 0.22. C_S is the same in both.
-enum class PSpeedFormula { ma2022, plane_stress };
-
-struct SideSpec {
-  BoundaryType type = BoundaryType::free;
-  double xi = 0, eta = 0;  // dashpot coefficients (viscous and input sides)
-  DashpotWidth width = DashpotWidth::diameter;
-};
 
 struct WaveStripSpec {
   // Sides in the wall order of make_platen_world: bottom, top, left, right.
   static constexpr std::array<const char*, 4> kSideNames = {"bottom", "top", "left", "right"};
   std::array<SideSpec, 4> sides;
   std::size_t input_side = 2;
-  // The equivalent continuum behind the dashpots.
-  double e_d_pa = 0, nu_d = 0;
-  double given_p_speed_m_s = 0, given_s_speed_m_s = 0;  // > 0: used instead of the formulas
-  PSpeedFormula p_formula = PSpeedFormula::ma2022;
-  // The pulse.
-  double p_amplitude_m_s = 1, s_amplitude_m_s = 0, period_s = 0.2;
+  MediumSpec medium;  // the equivalent continuum behind the dashpots
+  PulseSpec pulse;
   // Monitoring points, as fractions of the specimen's width and height.
   std::vector<std::array<double, 2>> points;
   std::array<double, 2> reflection_point = {0.75, 0.5};
@@ -76,14 +50,6 @@ struct WaveStripSpec {
   double quiet_time_s = 0.2, equilibrium_ratio = 1e-4, max_equilibrium_steps = 200000, local_damping = 0;
   double max_wall_s = 600;
 
-  // C_P and C_S of the equivalent continuum of bulk density `rho` (given, or by
-  // the formulas C_P = sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))), C_S = sqrt(E / (2 rho (1 + nu)))).
-  double p_speed_m_s(double rho_kg_m3) const;
-  double s_speed_m_s(double rho_kg_m3) const;
-  double p_speed_formula_m_s(double rho_kg_m3) const;  // the chosen formula's
-  double p_speed_ma2022_m_s(double rho_kg_m3) const;
-  double p_speed_plane_stress_m_s(double rho_kg_m3) const;
-  double s_speed_formula_m_s(double rho_kg_m3) const;
   // Reads the scene's sections with `parameters`; throws an Error naming the scene file and the field.
   static WaveStripSpec from_scene(const Scene& scene, const std::map<std::string, double>& parameters);
 };

@@ -1,0 +1,165 @@
+#pragma once
+// What the 2D wave tests (the wave strip, the slope) build their boundaries
+// and records from (Ma et al. 2022, after Lysmer and Kuhlemeyer 1969): each
+// side's type and dashpot coefficients, the equivalent continuum behind the
+// dashpots, the cosine pulse, the replacement of a wall by its boundary, and
+// the monitoring points' velocity records with their recovery times. Both
+// tests read the same section keys with these, so a scene written for one
+// reads alike in the other.
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "demcal/dem/boundary_forces.hpp"
+#include "demcal/dem/scene.hpp"
+#include "demcal/dem/test_result.hpp"
+
+namespace demcal::dem {
+
+class World;
+struct Bodies;
+
+// velocity: a fixed side whose disks move with the pulse's particle velocity
+// and stand still once it has passed (Ma et al.'s fixed boundary, the pulse
+// imposed on it): an input that reflects everything that comes back.
+enum class BoundaryType { fixed, free, viscous, input, velocity };
+
+// The length along the side each boundary disk's dashpot stands for: its
+// diameter 2R (Ma et al.'s formula, which assumes the disks tile the side), or
+// its tributary length (half the way to each neighbour along the side, the
+// end disks out to the side's ends), which sums to the side's length whatever
+// the packing, so the boundary's impedance does not change from specimen to specimen.
+enum class DashpotWidth { diameter, tributary };
+// Which continuum formula gives C_P from E_d and nu_d: Ma et al. 2022's,
+// sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))) (plane strain, as they wrote it
+// for their 2D model), or the plane-stress one of a 2D disk assembly,
+// sqrt(E / (rho (1 - nu^2))), 4 % slower at nu 0.22. C_S is the same in both.
+enum class PSpeedFormula { ma2022, plane_stress };
+
+struct SideSpec {
+  BoundaryType type = BoundaryType::free;
+  double xi = 0, eta = 0;  // dashpot coefficients (viscous and input sides)
+  DashpotWidth width = DashpotWidth::diameter;
+  bool has_dashpots() const { return type == BoundaryType::viscous || type == BoundaryType::input; }
+  bool carries_input() const { return type == BoundaryType::input || type == BoundaryType::velocity; }
+};
+
+// One side's object ({"type", "xi", "eta", "dashpot_width"}); `where` is
+// "boundaries.left". Throws an Error naming the file and field.
+SideSpec read_boundary_side(const Scene& scene, const std::map<std::string, double>& parameters,
+                            const nlohmann::json& side, const std::string& where);
+
+// The equivalent continuum behind the dashpots.
+struct MediumSpec {
+  double e_d_pa = 0, nu_d = 0;
+  double given_p_speed_m_s = 0, given_s_speed_m_s = 0;  // > 0: used instead of the formulas
+  PSpeedFormula p_formula = PSpeedFormula::ma2022;
+
+  // C_P and C_S of the continuum of bulk density `rho` (given, or by the formulas
+  // C_P = sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))), C_S = sqrt(E / (2 rho (1 + nu)))).
+  double p_speed_m_s(double rho_kg_m3) const;
+  double s_speed_m_s(double rho_kg_m3) const;
+  double p_speed_formula_m_s(double rho_kg_m3) const;  // the chosen formula's
+  double p_speed_ma2022_m_s(double rho_kg_m3) const;
+  double p_speed_plane_stress_m_s(double rho_kg_m3) const;
+  double s_speed_formula_m_s(double rho_kg_m3) const;
+  // Reads {"E_d_Pa", "nu_d", "wave_speed_p_m_s", "wave_speed_s_m_s", "p_speed_formula"}
+  // plus any of `extra_keys`; `where` names the object ("medium").
+  static MediumSpec read(const Scene& scene, const std::map<std::string, double>& parameters,
+                         const nlohmann::json& medium, const std::string& where,
+                         const std::vector<std::string>& extra_keys = {});
+};
+
+// The cosine pulse v(t) = 0.5 A (1 - cos(2 pi t / T)) for t <= T, 0 after.
+struct PulseSpec {
+  double p_amplitude_m_s = 1, s_amplitude_m_s = 0, period_s = 0.2;
+  static PulseSpec read(const Scene& scene, const std::map<std::string, double>& parameters,
+                        const nlohmann::json& pulse, const std::string& where);
+  static double cosine(double amplitude_m_s, double period_s, double time_s) {
+    return time_s <= period_s ? 0.5 * amplitude_m_s * (1 - std::cos(2 * M_PI * time_s / period_s)) : 0.0;
+  }
+};
+
+// The bulk density and wave speeds a boundary disk's dashpots use.
+struct DiskImpedance {
+  double rho_kg_m3 = 0, c_p_m_s = 0, c_s_m_s = 0;
+};
+
+// One side of the model, where a wall stood.
+struct BoundarySide {
+  std::size_t wall = 0;                // the wall it replaces, in world.walls
+  std::string name;                    // "left", for messages and result keys
+  std::array<double, 2> inward = {0, 0};  // unit normal into the model
+  bool along_x = true;                 // the side runs along x (bottom, top) or along y
+  double from_m = 0, to_m = 0;         // its extent along that axis (the tributary widths' ends)
+};
+
+struct BoundarySideSummary {
+  std::size_t disks = 0;
+  double covered_m = 0;   // sum of the boundary disks' diameters 2R
+  double dashpot_m = 0;   // sum of the lengths their dashpots stand for
+};
+
+// Replaces `side`'s wall by its boundary (boundary_forces.hpp): every disk the
+// wall touches keeps the static force and moment the wall gives it now; a
+// fixed or velocity side fixes them; viscous and input sides add dashpots
+// c_n = w t xi rho C_P, c_s = w t eta rho C_S with w from `spec.width` and
+// rho, C from `impedance` (per disk). The wall is made inactive. Throws an
+// Error naming the file and "boundaries.<side>" when a dashpot would make the
+// explicit update unstable (c dt / m > 1) or a non-free side touches no disk.
+// Disks are added in id order, so the boundary's sums do not depend on storage.
+BoundarySideSummary install_boundary_side(World& world, const BoundarySide& side, const SideSpec& spec,
+                                          const std::function<DiskImpedance(std::size_t disk)>& impedance,
+                                          BoundaryForces& boundary, const std::string& origin);
+
+// A monitoring point: the free disks within its radius, whose mean velocity it records.
+struct Monitor {
+  std::string label;
+  double x_m = 0, y_m = 0, distance_m = 0;  // distance_m: from the input face along the wave's path
+  std::vector<std::size_t> disks;
+  std::vector<double> vx, vy;
+  // The free disks within `radius_m` of (x_m, y_m), in id order; an Error naming `origin` when none.
+  void collect(const Bodies& bodies, double radius_m, const std::string& origin);
+  void record(const Bodies& bodies);
+  std::vector<double> speeds() const;  // |v| per record
+};
+
+// The velocity records of a run: time, kinetic energy, each monitor's mean velocity.
+struct WaveRecord {
+  std::vector<Monitor> monitors;
+  std::vector<double> times, kinetic;
+  void record(const World& world);
+  // time_s, kinetic_energy_J, then vx_<label>_m_s and vy_<label>_m_s per monitor.
+  void add_series(TestResult& result) const;
+};
+
+// How run_recording steps a wave test's model.
+struct RecordedRun {
+  double end_time_s = 0;              // simulated time to run to
+  std::uint64_t steps_per_record = 1;
+  double amplitude_m_s = 1;           // the input's: a disk 100 x faster is unstable
+  double max_wall_s = 600;            // wall time from `start` after which the run fails
+  std::chrono::steady_clock::time_point start;
+  std::string progress_label;
+  bool show_progress = false;
+  // Called after each record; true ends the run early (as done, not failed).
+  std::function<bool()> done;
+};
+
+// Records once, then steps `world` to run.end_time_s recording every
+// run.steps_per_record steps. Sets result.ok; false with result.reason when
+// the motion goes unstable (wave_instability) or the wall time runs out.
+void run_recording(World& world, WaveRecord& record, const RecordedRun& run, TestResult& result);
+
+// Empty while the motion is sane; otherwise why the run stops as failed
+// (non-finite velocities, or a disk faster than 100 x `amplitude_m_s`).
+std::string wave_instability(const Bodies& bodies, double time_s, double amplitude_m_s);
+
+}  // namespace demcal::dem
