@@ -16,6 +16,10 @@ const std::vector<std::pair<std::string, Quantity>>& table() {
       {"mm", Quantity::Length},     {"1", Quantity::Dimensionless},  {"kg/m3", Quantity::Density},
       {"m/s", Quantity::Velocity},  {"s", Quantity::Time},           {"deg", Quantity::Angle},
       {"J", Quantity::Energy},  // per the model's thickness, as every 2D energy here
+      {"MN/m", Quantity::Stiffness},
+      // A force in 2D is per the model's thickness (PFC's unit thickness): a stress times a length, so it scales
+      // like a stress (a contact bond's strength given as a force, as PFC 4 users give it).
+      {"N", Quantity::Force},       {"kN", Quantity::Force},
   };
   return units;
 }
@@ -41,20 +45,23 @@ const char* quantity_name(Quantity q) {
     case Quantity::Time: return "time";
     case Quantity::Angle: return "angle";
     case Quantity::Energy: return "energy";
+    case Quantity::Force: return "force";
   }
   return "unknown";
 }
 
 double si_factor_of_unit(const std::string& unit, const std::string& where) {
   quantity_of_unit(unit, where);  // an unknown unit is an error here too
-  if (unit == "kPa") return 1e3;
-  if (unit == "MPa") return 1e6;
+  if (unit == "kPa" || unit == "kN") return 1e3;
+  if (unit == "MPa" || unit == "MN/m") return 1e6;
   if (unit == "GPa") return 1e9;
   if (unit == "mm") return 1e-3;
   return 1.0;
 }
 
-bool is_stress_like(Quantity q) { return q == Quantity::Stress || q == Quantity::Stiffness; }
+bool is_stress_like(Quantity q) {
+  return q == Quantity::Stress || q == Quantity::Stiffness || q == Quantity::Force;
+}
 
 std::vector<std::string> known_units() {
   std::vector<std::string> out;
