@@ -62,6 +62,30 @@ double force_ratio(const World& world) {
   return (unbalanced / static_cast<double>(free_bodies)) / (contact / static_cast<double>(touching));
 }
 
+double force_ratio(const World& world, std::uint8_t group) {
+  const Bodies& b = world.bodies;
+  const double gx = world.settings().gravity_x_m_s2, gy = world.settings().gravity_y_m_s2;
+  double unbalanced = 0;
+  std::size_t free_bodies = 0;
+  for (std::size_t i : disks_by_id(b))
+    if (b.clump[i] < 0 && b.group[i] == group && !b.fixed[i]) {
+      unbalanced += std::hypot(b.fx[i] + b.mass[i] * gx, b.fy[i] + b.mass[i] * gy);
+      ++free_bodies;
+    }
+  double contact = 0;
+  std::size_t touching = 0;
+  for_each_disk_pair(world, [&](const ContactModel& model, const ConstPairBlock& c, std::size_t k, double overlap, double) {
+    if (overlap <= 0) return;
+    if (b.group[static_cast<std::size_t>(c.i[k])] != group && b.group[static_cast<std::size_t>(c.j[k])] != group) return;
+    const double fn = model.normal_force_n(c, k, overlap);
+    if (fn <= 0) return;
+    contact += fn;
+    ++touching;
+  });
+  if (touching == 0 || free_bodies == 0) return 0.0;
+  return (unbalanced / static_cast<double>(free_bodies)) / (contact / static_cast<double>(touching));
+}
+
 bool cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps) {
   for (std::uint64_t done = 0; done < max_steps; done += 50) {
     world.run(50);

@@ -216,6 +216,7 @@ void World::update_time_step() {
   add(pairs_, run_models_, false);
   add(wall_pairs_, wall_run_models_, true);
   double dt = std::numeric_limits<double>::infinity();
+  std::array<std::vector<std::uint8_t>, 256> group_models;  // filled on first need, per material group
   // Critical step each disk must reach under density scaling.
   const double scaled_step = settings_.density_scaling_dt_s / settings_.safety_factor;
   if (scaled_step > 0)
@@ -226,8 +227,16 @@ void World::update_time_step() {
   for (std::size_t i = 0; i < n; ++i) {
     if (bodies.fixed[i]) continue;
     if (kt[i] <= 0) {
-      // No neighbour yet: bound the step by one contact of the stiffest model.
-      for (const auto& m : models_) kt[i] = std::max(kt[i], m->stiffness_estimate(bodies.radius[i], settings_.thickness_m));
+      // No neighbour yet: bound the step by one contact of the stiffest model the disk's group can meet (a soft
+      // rockfill disk alone in the air must not take the step a bonded bedrock pair needs).
+      std::vector<std::uint8_t>& can_meet = group_models[bodies.group[i]];
+      if (can_meet.empty())
+        for (std::size_t g = 0; g < table_.size(); ++g) {
+          const std::uint8_t m = table_[bodies.group[i]][g];
+          if (m != kNoModel && std::find(can_meet.begin(), can_meet.end(), m) == can_meet.end()) can_meet.push_back(m);
+        }
+      for (std::uint8_t m : can_meet)
+        kt[i] = std::max(kt[i], models_[m]->stiffness_estimate(bodies.radius[i], settings_.thickness_m));
       kr[i] = kt[i] * bodies.radius[i] * bodies.radius[i];
     }
     if (scaled_step > 0) {

@@ -13,6 +13,12 @@ namespace demcal::dem {
 // force (PFC's ratio); 0 when nothing touches.
 double force_ratio(const World& world);
 
+// The same ratio over the free disks of one material group (not fixed, not in clumps) and
+// the disk pairs that touch one of them: a part whose contacts carry far
+// smaller forces than the rest (a soft fill on a stiff bedrock) is judged
+// against its own, so its creep is not hidden by the other part's rest.
+double force_ratio(const World& world, std::uint8_t group);
+
 // Cycles in blocks of 50 steps until force_ratio < `ratio`; false when
 // `max_steps` pass first.
 bool cycle_to_equilibrium(World& world, double ratio, std::uint64_t max_steps);
