@@ -263,6 +263,35 @@ case("scene/3d_baffle_fill_does_not_fit",
                edited(baffle3d, lambda d: d["box"].update(solids_fraction=0.35, fill_height_m=0.007)))),
      path(S, "3d_baffle_fill_does_not_fit.json"), "does not fit its vessel")
 
+# The slope: patches of the small slope (tests/data/slope_small.json), read from this folder.
+def slope(name, patch):
+    d = {"extends": "../../data/slope_small.json"}
+    d.update(patch)
+    return write(S, name, d)
+
+
+case("scene/slope_profile_crosses_itself",
+     describe(slope("slope_profile_crosses_itself.json",
+                    {"slope": {"bedrock": {"surface": [[0, 40], [60, 20], [50, 25], [120, 20]]}}})),
+     path(S, "slope_profile_crosses_itself.json"), "slope.bedrock.surface[2]: x 50 m does not exceed")
+case("scene/slope_monitor_outside_the_model",
+     describe(slope("slope_monitor_outside_the_model.json",
+                    {"monitors": {"points": [{"label": "A", "x_m": 100, "y_m": 35}]}})),
+     path(S, "slope_monitor_outside_the_model.json"), "monitors.points[0]: (100, 35 m) lies outside the model")
+case("scene/slope_input_not_on_an_edge",
+     describe(slope("slope_input_not_on_an_edge.json", {"boundaries": {"top": {"type": "input", "xi": 1, "eta": 1}}})),
+     path(S, "slope_input_not_on_an_edge.json"), "boundaries.top: a slope's top is its free surface")
+write(S, "slope_record_not_numeric.dat", "# in g\n 0.01 0.02 0.03\n 0.04 O.05 0.06\n")
+case("scene/slope_record_not_numeric",
+     describe(slope("slope_record_not_numeric.json",
+                    {"pulse": None, "earthquake": {"record_file": "slope_record_not_numeric.dat", "time_step_s": 0.02}})),
+     path(S, "slope_record_not_numeric.dat"), "slope_record_not_numeric.dat: line 3: \"O.05\" is not a number")
+write(S, "slope_record_uneven_step.dat", "0.00 0.01\n0.02 0.02\n0.04 0.03\n0.05 0.01\n")
+case("scene/slope_record_uneven_step",
+     describe(slope("slope_record_uneven_step.json",
+                    {"pulse": None, "earthquake": {"record_file": "slope_record_uneven_step.dat", "format": "time_value"}})),
+     path(S, "slope_record_uneven_step.dat"), "line 4: uneven time step")
+
 # ---------------------------------------------------------------- parameter space JSON (demcal-doe, describe --space)
 def doe(f):
     return ["{bin}/demcal-doe", "ccd", "--space", f, "--out", "{tmp}/design.csv"]

@@ -242,7 +242,7 @@ TEST(WaveStrip, BadInputFailsInOneLineNamingTheField) {
   EXPECT_NE(load_error({{"boundaries", {{"top", {{"type", "sticky"}}}}}}).find("boundaries.top.type"), std::string::npos);
   EXPECT_NE(load_error({{"pulse", {{"period_s", -1}}}}).find("pulse.period_s must be positive"), std::string::npos);
   EXPECT_NE(load_error({{"boundaries", {{"right", {{"dashpot_width", "radius"}}}}}})
-                .find("boundaries.right.dashpot_width: \"radius\" (allowed: \"diameter\", \"tributary\")"),
+                .find("boundaries.right.dashpot_width: \"radius\" (allowed: \"diameter\", \"tributary\", \"tributary_by_radius\")"),
             std::string::npos);
   EXPECT_NE(load_error({{"boundaries", {{"top", {{"type", "free"}, {"dashpot_width", "tributary"}}}}}})
                 .find("boundaries.top: xi, eta and dashpot_width belong to a viscous or input side"),

@@ -24,6 +24,7 @@ void register_builtin_tests(LabTestRegistry& registry) {
   register_external_test(registry);
   register_heap_test(registry);
   register_wave_strip_test(registry);
+  register_slope_test(registry);
   dem3d::register_ucs_test_3d(registry);
   dem3d::register_brazilian_test_3d(registry);
   dem3d::register_triaxial_test(registry);

@@ -29,9 +29,14 @@ std::vector<double> dashpot_widths(const Bodies& b, const std::vector<char>& on_
   }
   auto along = [&](std::size_t i) { return side.along_x ? b.x[i] : b.y[i]; };
   std::sort(disks.begin(), disks.end(), [&](std::size_t p, std::size_t q) { return along(p) < along(q); });
+  // Where the side passes from disk p to the next disk q: half-way, or where they would touch.
+  auto split = [&](std::size_t p, std::size_t q) {
+    if (width == DashpotWidth::tributary) return 0.5 * (along(p) + along(q));
+    return along(p) + (along(q) - along(p)) * b.radius[p] / (b.radius[p] + b.radius[q]);
+  };
   for (std::size_t k = 0; k < disks.size(); ++k) {
-    const double from = k == 0 ? side.from_m : 0.5 * (along(disks[k - 1]) + along(disks[k]));
-    const double to = k + 1 == disks.size() ? side.to_m : 0.5 * (along(disks[k]) + along(disks[k + 1]));
+    const double from = k == 0 ? side.from_m : split(disks[k - 1], disks[k]);
+    const double to = k + 1 == disks.size() ? side.to_m : split(disks[k], disks[k + 1]);
     out[disks[k]] = to - from;
   }
   return out;
@@ -62,7 +67,9 @@ SideSpec read_boundary_side(const Scene& scene, const std::map<std::string, doub
       const nlohmann::json& w = o.at("dashpot_width");
       if (w == "diameter") s.width = DashpotWidth::diameter;
       else if (w == "tributary") s.width = DashpotWidth::tributary;
-      else throw Error(origin + ": " + where + ".dashpot_width: " + w.dump() + " (allowed: \"diameter\", \"tributary\")");
+      else if (w == "tributary_by_radius") s.width = DashpotWidth::tributary_by_radius;
+      else throw Error(origin + ": " + where + ".dashpot_width: " + w.dump() +
+                       " (allowed: \"diameter\", \"tributary\", \"tributary_by_radius\")");
     }
   } else if (o.contains("xi") || o.contains("eta") || o.contains("dashpot_width")) {
     throw Error(origin + ": " + where + ": xi, eta and dashpot_width belong to a viscous or input side, not a " + type +
@@ -142,8 +149,24 @@ BoundarySideSummary install_boundary_side(World& world, const BoundarySide& side
   for (std::size_t k = 0; k < wp.size(); ++k)
     if (static_cast<std::size_t>(wp.j[k]) == side.wall && (wp.flags[k] & kTouching))
       touching[static_cast<std::size_t>(wp.i[k])] = 1;
-  const std::vector<double> width_m = dashpot_widths(b, touching, side, spec.width);
+  // Disks a hair off the wall belong to the side too (a bonded block settles millimetres away from a frictionless
+  // wall); they keep no static force, having none from the wall.
+  if (side.near_gap_fraction > 0) {
+    const Wall& w = world.walls[side.wall];
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const double gap = (side.along_x ? std::abs(b.y[i] - w.y0) : std::abs(b.x[i] - w.x0)) - b.radius[i];
+      if (gap <= side.near_gap_fraction * b.radius[i]) touching[i] = 1;
+    }
+  }
+  BoundarySide extent = side;
+  if (!(extent.to_m > extent.from_m)) {
+    extent.to_m = extent.from_m;
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (touching[i]) extent.to_m = std::max(extent.to_m, (side.along_x ? b.x[i] : b.y[i]) + b.radius[i]);
+  }
+  const std::vector<double> width_m = dashpot_widths(b, touching, extent, spec.width);
   BoundarySideSummary summary;
+  summary.length_m = extent.to_m - extent.from_m;
   for (std::size_t i : disks_by_id(b)) {  // the boundary's sums then do not depend on the disks' storage order
     if (!touching[i]) continue;
     ++summary.disks;
@@ -184,10 +207,11 @@ BoundarySideSummary install_boundary_side(World& world, const BoundarySide& side
   return summary;
 }
 
-void Monitor::collect(const Bodies& b, double radius_m, const std::string& origin) {
+void Monitor::collect(const Bodies& b, double radius_m, const std::string& origin, int group) {
   disks.clear();
   for (std::size_t i : disks_by_id(b))
-    if (std::hypot(b.x[i] - x_m, b.y[i] - y_m) <= radius_m && !b.fixed[i]) disks.push_back(i);
+    if (std::hypot(b.x[i] - x_m, b.y[i] - y_m) <= radius_m && !b.fixed[i] && (group < 0 || b.group[i] == group))
+      disks.push_back(i);
   if (disks.empty())
     throw Error(origin + ": monitors: no free disk within " + format_double(radius_m) + " m of point " + label + " (" +
                 format_double(x_m) + ", " + format_double(y_m) + " m)");
@@ -233,7 +257,7 @@ void run_recording(World& world, WaveRecord& record, const RecordedRun& run, Tes
   while (world.time_s() < run.end_time_s) {
     world.run(run.steps_per_record);
     record.record(world);
-    const std::string unstable = wave_instability(world.bodies, world.time_s(), run.amplitude_m_s);
+    const std::string unstable = wave_instability(world.bodies, world.time_s(), run.max_speed_m_s, run.max_speed_reason);
     if (!unstable.empty()) {
       result.ok = false;
       result.reason = unstable;
@@ -254,16 +278,16 @@ void run_recording(World& world, WaveRecord& record, const RecordedRun& run, Tes
   if (progress) progress->finish();
 }
 
-std::string wave_instability(const Bodies& b, double time_s, double amplitude_m_s) {
+std::string wave_instability(const Bodies& b, double time_s, double max_speed_m_s, const std::string& reason) {
   double fastest = 0;
   bool finite = true;
   for (std::size_t i = 0; i < b.size(); ++i) {
     finite = finite && std::isfinite(b.vx[i]) && std::isfinite(b.vy[i]);
     fastest = std::max(fastest, std::abs(b.vx[i]) + std::abs(b.vy[i]));
   }
-  if (finite && fastest <= 100 * amplitude_m_s) return "";
+  if (finite && fastest <= max_speed_m_s) return "";
   return "unstable at t = " + format_double(time_s) + " s: " +
-         (finite ? "a disk moves faster than 100 x the pulse's amplitude" : "non-finite velocities");
+         (finite ? "a disk moves faster than " + reason : std::string("non-finite velocities"));
 }
 
 }  // namespace demcal::dem

@@ -10,5 +10,6 @@ void register_brazilian_test(LabTestRegistry& registry);
 void register_biaxial_test(LabTestRegistry& registry);
 void register_heap_test(LabTestRegistry& registry);
 void register_wave_strip_test(LabTestRegistry& registry);
+void register_slope_test(LabTestRegistry& registry);
 
 }  // namespace demcal::dem

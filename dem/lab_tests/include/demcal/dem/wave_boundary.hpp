@@ -35,8 +35,12 @@ enum class BoundaryType { fixed, free, viscous, input, velocity };
 // diameter 2R (Ma et al.'s formula, which assumes the disks tile the side), or
 // its tributary length (half the way to each neighbour along the side, the
 // end disks out to the side's ends), which sums to the side's length whatever
-// the packing, so the boundary's impedance does not change from specimen to specimen.
-enum class DashpotWidth { diameter, tributary };
+// the packing, so the boundary's impedance does not change from specimen to specimen;
+// or that length split between neighbours in proportion to their radii (where
+// they would touch on the side), the same for equal disks, which gives a
+// small disk between large ones (rockfill meeting bedrock on a slope's edge)
+// a share of its own size rather than half the gap to a large neighbour.
+enum class DashpotWidth { diameter, tributary, tributary_by_radius };
 // Which continuum formula gives C_P from E_d and nu_d: Ma et al. 2022's,
 // sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))) (plane strain, as they wrote it
 // for their 2D model), or the plane-stress one of a 2D disk assembly,
@@ -98,17 +102,23 @@ struct BoundarySide {
   std::string name;                    // "left", for messages and result keys
   std::array<double, 2> inward = {0, 0};  // unit normal into the model
   bool along_x = true;                 // the side runs along x (bottom, top) or along y
-  double from_m = 0, to_m = 0;         // its extent along that axis (the tributary widths' ends)
+  // Its extent along that axis (the tributary widths' ends); to_m <= from_m: up to the far edge of the last
+  // disk touching the wall (a side whose top is a free surface that settled).
+  double from_m = 0, to_m = 0;
+  // > 0: disks whose gap to the (axis-aligned) wall is at most this share of their radius join those touching it.
+  double near_gap_fraction = 0;
 };
 
 struct BoundarySideSummary {
   std::size_t disks = 0;
   double covered_m = 0;   // sum of the boundary disks' diameters 2R
   double dashpot_m = 0;   // sum of the lengths their dashpots stand for
+  double length_m = 0;    // the side's length the boundary stands for (to_m - from_m)
 };
 
 // Replaces `side`'s wall by its boundary (boundary_forces.hpp): every disk the
-// wall touches keeps the static force and moment the wall gives it now; a
+// wall touches (or nearly, side.near_gap_fraction) keeps the static force and
+// moment the wall gives it now; a
 // fixed or velocity side fixes them; viscous and input sides add dashpots
 // c_n = w t xi rho C_P, c_s = w t eta rho C_S with w from `spec.width` and
 // rho, C from `impedance` (per disk). The wall is made inactive. Throws an
@@ -125,8 +135,9 @@ struct Monitor {
   double x_m = 0, y_m = 0, distance_m = 0;  // distance_m: from the input face along the wave's path
   std::vector<std::size_t> disks;
   std::vector<double> vx, vy;
-  // The free disks within `radius_m` of (x_m, y_m), in id order; an Error naming `origin` when none.
-  void collect(const Bodies& bodies, double radius_m, const std::string& origin);
+  // The free disks within `radius_m` of (x_m, y_m), in id order (only those of material group `group` when it
+  // is 0-255); an Error naming `origin` when none.
+  void collect(const Bodies& bodies, double radius_m, const std::string& origin, int group = -1);
   void record(const Bodies& bodies);
   std::vector<double> speeds() const;  // |v| per record
 };
@@ -144,7 +155,8 @@ struct WaveRecord {
 struct RecordedRun {
   double end_time_s = 0;              // simulated time to run to
   std::uint64_t steps_per_record = 1;
-  double amplitude_m_s = 1;           // the input's: a disk 100 x faster is unstable
+  double max_speed_m_s = 100;         // a disk faster than this is unstable
+  std::string max_speed_reason;       // why that speed ("100 x the pulse's amplitude")
   double max_wall_s = 600;            // wall time from `start` after which the run fails
   std::chrono::steady_clock::time_point start;
   std::string progress_label;
@@ -159,7 +171,8 @@ struct RecordedRun {
 void run_recording(World& world, WaveRecord& record, const RecordedRun& run, TestResult& result);
 
 // Empty while the motion is sane; otherwise why the run stops as failed
-// (non-finite velocities, or a disk faster than 100 x `amplitude_m_s`).
-std::string wave_instability(const Bodies& bodies, double time_s, double amplitude_m_s);
+// (non-finite velocities, or a disk faster than `max_speed_m_s`, whose
+// `reason` the message names).
+std::string wave_instability(const Bodies& bodies, double time_s, double max_speed_m_s, const std::string& reason);
 
 }  // namespace demcal::dem
