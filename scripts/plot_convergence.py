@@ -23,7 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-ORDER = ["ga", "sa", "sa-vfsr", "wca", "lhs-wca", "search"]
+ORDER = ["ga", "sa", "sa-vfsr", "wca", "lhs-wca", "hs", "search"]
 
 
 def fail(message):

@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
       "demcal-invert: micro-parameters whose predicted macro values match targets.\n"
       "  demcal-invert --model M1.json [--model M2.json ...] --target NAME=VALUE [--target ...] [--space S.json]\n"
       "  demcal-invert --dem-scene SCENE.json --space S.json --target NAME=VALUE ... [--dem-seeds K] [--jobs J]\n"
-      "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|search] [--objective sum-rel|max-rel|sse-rel|minimise] [--polish]\n"
+      "                [--algo ga|sa|sa-vfsr|wca|lhs-wca|hs|search] [--objective sum-rel|max-rel|sse-rel|minimise] [--polish]\n"
       "                [--restarts R] [--seed S] --out SOLUTION.json",
       "demcal-invert"};
   app.add_option("--model", a.models, "saved model (demcal-fit); repeat for several");
@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
   bool list_algorithms = false;
   app.add_flag("--list-algorithms", list_algorithms, "print the algorithms and objectives (JSON) and exit");
   app.add_option("--space", a.space, "parameter space JSON: bounds, fixed and tied values (default: the models' domains)");
-  app.add_option("--algo", a.algorithm, "ga, sa, sa-vfsr, wca, lhs-wca or search")->capture_default_str();
+  app.add_option("--algo", a.algorithm, "ga, sa, sa-vfsr, wca, lhs-wca, hs or search")->capture_default_str();
   app.add_option("--objective", a.objective,
                  "sum-rel, max-rel or sse-rel (relative errors to the targets), or minimise (the outputs over the "
                  "--target values as references, e.g. a fitness to drive down)")->capture_default_str();

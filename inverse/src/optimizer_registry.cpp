@@ -2,6 +2,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/inverse/genetic_algorithm.hpp"
+#include "demcal/inverse/harmony_search.hpp"
 #include "demcal/inverse/optimizer.hpp"
 #include "demcal/inverse/simulated_annealing.hpp"
 #include "demcal/inverse/water_cycle.hpp"
@@ -37,7 +38,7 @@ class SettingsReader {
 
 }  // namespace
 
-std::vector<std::string> optimizer_names() { return {"ga", "sa", "sa-vfsr", "wca", "lhs-wca"}; }
+std::vector<std::string> optimizer_names() { return {"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "hs"}; }
 
 std::unique_ptr<Optimizer> make_optimizer(const std::string& name, const Settings& settings) {
   SettingsReader r(settings, name);
@@ -75,6 +76,19 @@ std::unique_ptr<Optimizer> make_optimizer(const std::string& name, const Setting
     s.dmax = r.get("dmax", s.dmax);
     s.max_iterations = r.get_int("iterations", s.max_iterations);
     optimizer = std::make_unique<WaterCycle>(s);
+  } else if (name == "hs") {
+    HsSettings s;
+    s.memory_size = r.get_int("hms", s.memory_size);
+    s.hmcr = r.get("hmcr", s.hmcr);
+    s.par_min = r.get("par_min", s.par_min);
+    s.par_max = r.get("par_max", s.par_max);
+    s.bandwidth_max = r.get("bw_max", s.bandwidth_max);
+    s.bandwidth_min = r.get("bw_min", s.bandwidth_min);
+    s.improvisations = r.get_int("improvisations", s.improvisations);
+    if (s.memory_size < 2 || !(s.hmcr >= 0 && s.hmcr <= 1) || !(s.par_min >= 0 && s.par_min <= s.par_max && s.par_max <= 1) ||
+        !(s.bandwidth_min > 0 && s.bandwidth_min <= s.bandwidth_max && s.bandwidth_max <= 1) || s.improvisations < 1)
+      throw Error("hs: hms >= 2, 0 <= hmcr <= 1, 0 <= par_min <= par_max <= 1, 0 < bw_min <= bw_max <= 1, improvisations >= 1");
+    optimizer = std::make_unique<HarmonySearch>(s);
   } else {
     std::string list;
     for (const std::string& n : optimizer_names()) list += (list.empty() ? "" : ", ") + n;

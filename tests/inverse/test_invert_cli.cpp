@@ -319,7 +319,7 @@ TEST(DemcalInvertList, AlgorithmsAndObjectivesAreListedForTheStudyLayer) {
   auto r = run_program("demcal-invert", "--list-algorithms");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json listed = nlohmann::json::parse(r.out);
-  EXPECT_EQ(listed["algorithms"], nlohmann::json({"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "search"}));
+  EXPECT_EQ(listed["algorithms"], nlohmann::json({"ga", "sa", "sa-vfsr", "wca", "lhs-wca", "hs", "search"}));
   EXPECT_EQ(listed["objectives"], nlohmann::json({"sum-rel", "max-rel", "sse-rel", "minimise"}));
   auto missing = run_program("demcal-invert", "--out x.json");
   EXPECT_EQ(missing.code, 2);

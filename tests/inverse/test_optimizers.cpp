@@ -71,10 +71,13 @@ INSTANTIATE_TEST_SUITE_P(Inverse, EveryOptimizer,
                                            Case{"sa", {{"T0", 1.0}, {"beta", 0.9}, {"parallel_trials", 4}}, 60000, 1e-2, 1e-2},
                                            Case{"sa-vfsr", {{"T0", 1.0}, {"beta", 0.9}}, 60000, 1e-2, 1e-2},
                                            Case{"wca", {}, 20000, 1e-2, 1e-3},
-                                           Case{"lhs-wca", {}, 20000, 1e-2, 1e-3}),
+                                           Case{"lhs-wca", {}, 20000, 1e-2, 1e-3},
+                                           Case{"hs", {}, 20000, 1e-2, 1e-3},
+                                           Case{"hs", {{"improvisations", 4}}, 20000, 1e-2, 1e-3}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            std::string name = info.param.algorithm;
                            if (info.param.settings.count("parallel_trials")) name += "_parallel_trials";
+                           if (info.param.settings.count("improvisations")) name += "_improvisations";
                            for (char& ch : name)
                              if (ch == '-') ch = '_';
                            return name;

@@ -22,7 +22,7 @@ struct SearchSettings {
 };
 
 struct InversionSettings {
-  std::string algorithm = "ga";  // ga, sa, sa-vfsr, wca, lhs-wca or search
+  std::string algorithm = "ga";  // ga, sa, sa-vfsr, wca, lhs-wca, hs or search
   Settings optimizer_settings;
   SearchSettings search;
   int restarts = 1;

@@ -82,7 +82,7 @@ class Optimizer {
 // the ones it knows and the registry rejects the others.
 using Settings = std::map<std::string, double>;
 
-// The optimisers by name: ga, sa, sa-vfsr, wca, lhs-wca. Unknown names and
+// The optimisers by name: ga, sa, sa-vfsr, wca, lhs-wca, hs. Unknown names and
 // unknown settings are errors listing the known ones.
 std::unique_ptr<Optimizer> make_optimizer(const std::string& name, const Settings& settings);
 std::vector<std::string> optimizer_names();
