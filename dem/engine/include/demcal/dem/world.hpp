@@ -4,6 +4,7 @@
 // differences with local non-viscous damping.
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -97,6 +98,19 @@ class World {
   // `wall` only, or of every active wall when it is npos.
   void wall_forces_on_disks(std::vector<double>& fx, std::vector<double>& fy, std::vector<double>& moment,
                             std::size_t wall = static_cast<std::size_t>(-1));
+
+  // A checkpoint of the world's state (world_state.cpp): the disks (positions,
+  // velocities, forces, properties, groups, ids), the walls, the disk and wall
+  // pairs with their models' state, the break log, the time and the steps.
+  // Not the models, the settings or external forces: a world built the same
+  // way (the same disks, walls and models, bound to the same values) takes it
+  // back with read_state (which rebuilds the neighbour list from the restored
+  // pairs) and steps on with the same bits the saved one would have after a
+  // refresh(). A world with clumps is refused. read_state
+  // throws an Error when the file is not one of these or belongs to a world of
+  // other disks or models.
+  void write_state(std::ostream& out) const;
+  void read_state(std::istream& in);
 
   // Advances one time step (rebuilding the neighbour list when a body has
   // moved more than half the skin since the last build).
