@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -53,7 +54,7 @@ std::string error_of(const json& patch) {
 
 // A file in the test's temporary folder with `text`; returns its path.
 std::string temp_file(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + name;
+  const std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -146,6 +147,39 @@ TEST(Slope, TheBoundariesHoldItAndThePulseRisesThroughTheBedrock) {
   // Tributary-by-radius dashpots stand for each side's whole length.
   for (const char* side : {"bottom", "left", "right"})
     EXPECT_NEAR(r.specimen_info.at(std::string("dashpot_coverage_") + side), 1.0, 1e-9) << side;
+}
+
+TEST(Slope, ARestStateFromTheCacheGivesTheSameBitsAsComingToRest) {
+  const std::string cache = ::testing::TempDir() + "slope_rest_cache";
+  std::filesystem::remove_all(cache);
+  const Scene s = patched(json::object());
+  RunOptions options;
+  options.seed = 1;
+  options.cache_dir = cache;
+  const TestResult first = run_test(s, s.resolve({}), options);  // comes to rest and keeps it
+  const TestResult again = run_test(s, s.resolve({}), options);  // reads it back
+  RunOptions uncached = options;
+  uncached.cache_dir = "";
+  const TestResult plain = run_test(s, s.resolve({}), uncached);
+  ASSERT_TRUE(first.ok && again.ok && plain.ok);
+  EXPECT_EQ(first.macro, again.macro);
+  EXPECT_EQ(first.macro, plain.macro);
+  EXPECT_EQ(first.series, again.series);
+  EXPECT_EQ(first.specimen_info, again.specimen_info);
+  // Other boundaries share the rest (it does not depend on them); another friction does not.
+  std::size_t rests = 0;
+  const Scene softer = patched(json::parse(R"({"parameters": {"xi_left": {"value": 1.5}}})"));
+  run_test(softer, softer.resolve({}), options);
+  for (const auto& entry : std::filesystem::directory_iterator(cache))
+    rests += entry.path().filename().string().rfind("slope_rest_", 0) == 0;
+  EXPECT_EQ(rests, 1u);
+  const Scene rougher = patched(json::parse(R"({"parameters": {"mu_rockfill": {"value": 0.3}}})"));
+  run_test(rougher, rougher.resolve({}), options);
+  rests = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(cache))
+    rests += entry.path().filename().string().rfind("slope_rest_", 0) == 0;
+  EXPECT_EQ(rests, 2u);
+  std::filesystem::remove_all(cache);
 }
 
 TEST(Slope, ViscousBoundariesQuietItFarSoonerThanFixedOnes) {

@@ -9,13 +9,16 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
+#include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/dem/builtin_tests.hpp"
 #include "demcal/dem/disk_scene.hpp"
@@ -28,6 +31,8 @@
 #include "demcal/dem/vtk_writer.hpp"
 #include "demcal/dem/wave_signals.hpp"
 #include "demcal/dem/world.hpp"
+
+#include <unistd.h>
 
 namespace demcal::dem {
 namespace {
@@ -108,6 +113,75 @@ EarthquakeSpec read_earthquake(const Scene& scene, const std::map<std::string, d
   const std::vector<double> record = read_acceleration_record(q.record_path, q.format, step, origin + ": earthquake");
   q.motion = ground_motion(record, step, q.to_m_s2 * q.scale, q.duration_s, q.baseline);
   return q;
+}
+
+// What the rest under gravity depends on: the section (the parts and profiles), the contact models as bound, the
+// bond tolerance, gravity and the equilibrium's keys, the seed and the disks' order of entry; not the boundaries,
+// the medium, the input or the monitors.
+std::string slope_rest_key(const Scene& scene, const std::map<std::string, double>& parameters, const SlopeTestSpec& s,
+                           const RunOptions& options) {
+  std::ostringstream key;
+  key.precision(17);
+  const SlopeSpec& g = s.geometry;
+  auto part = [&](const SlopePart& p) {
+    key << p.name << ' ' << p.radius_min_m << ' ' << p.radius_max_m << ' ' << p.porosity << ' ' << p.density_kg_m3 << ';';
+  };
+  auto profile = [&](const Profile& p) {
+    for (std::size_t k = 0; k < p.x.size(); ++k) key << p.x[k] << ',' << p.y[k] << ' ';
+    key << ';';
+  };
+  key << "slope rest v1;" << g.width_m << ' ' << g.height_m << ' ' << g.thickness_m << ' ' << g.column_width_m << ';';
+  part(g.bedrock);
+  profile(g.bedrock_surface);
+  for (const SlopeZone& z : g.zones) {
+    part(z.part);
+    profile(z.top);
+  }
+  for (const auto& [role, contact] : scene.contacts())
+    key << role << '=' << contact.model << scene.bind(contact, parameters, scene.origin() + ": contacts." + role).dump() << ';';
+  key << s.bond_gap_tolerance_m << ' ' << s.gravity_m_s2 << ' ' << s.equilibrium_ratio << ' ' << s.max_equilibrium_steps
+      << ' ' << s.equilibrium_damping << ';' << options.seed << ' ' << options.particle_order_seed;
+  return key.str();
+}
+
+std::string rest_state_path(const std::string& cache_dir, const std::string& key) {
+  std::ostringstream name;
+  name << cache_dir << "/slope_rest_" << std::hex << std::hash<std::string>{}(key) << ".bin";
+  return name.str();
+}
+
+// True when `path` holds the rest state of `key` and the world now has it; a missing file is not an error, a
+// stale or damaged one is said and recomputed.
+bool read_rest_state(World& world, const std::string& path, const std::string& key) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  try {
+    std::uint64_t n = 0;
+    in.read(reinterpret_cast<char*>(&n), sizeof(n));
+    std::string stored(in && n < (1u << 24) ? n : 0, '\0');
+    in.read(stored.data(), static_cast<std::streamsize>(stored.size()));
+    if (!in || stored != key) throw Error("it holds another section's rest");
+    world.read_state(in);
+  } catch (const Error& e) {
+    log::warn(path + ": " + e.what() + "; bringing the section to rest again");
+    return false;
+  }
+  return true;
+}
+
+// Written to a temporary file and renamed, so a crash or a parallel run never leaves half a file under the name.
+void write_rest_state(const World& world, const std::string& path, const std::string& key) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    const std::uint64_t n = key.size();
+    out.write(reinterpret_cast<const char*>(&n), sizeof(n));
+    out.write(key.data(), static_cast<std::streamsize>(key.size()));
+    world.write_state(out);
+    if (!out) throw Error(path + ": cannot write the section's rest state");
+  }
+  std::filesystem::rename(temporary, path);
 }
 
 }  // namespace
@@ -367,11 +441,18 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
   auto ratios = [&] {
     return std::array<double, 2>{force_ratio(world, kBedrockGroup), has_deposit ? force_ratio(world, kRockfillGroup) : 0.0};
   };
-  bool at_rest = false;
-  for (std::uint64_t done = 0; done < static_cast<std::uint64_t>(s.max_equilibrium_steps) && !at_rest; done += 50) {
-    world.run(50);
-    const std::array<double, 2> r = ratios();
-    at_rest = r[0] < s.equilibrium_ratio && r[1] < s.equilibrium_ratio;
+  // The rest under gravity does not depend on what comes after it (the boundaries' coefficients, the input): a
+  // section brought to rest once is kept in the cache and read back by every run that shares it.
+  const std::string rest_key = slope_rest_key(scene, parameters, s, options);
+  const std::string rest_path = options.cache_dir.empty() ? std::string() : rest_state_path(options.cache_dir, rest_key);
+  bool at_rest = !rest_path.empty() && read_rest_state(world, rest_path, rest_key);
+  if (!at_rest) {
+    for (std::uint64_t done = 0; done < static_cast<std::uint64_t>(s.max_equilibrium_steps) && !at_rest; done += 50) {
+      world.run(50);
+      const std::array<double, 2> r = ratios();
+      at_rest = r[0] < s.equilibrium_ratio && r[1] < s.equilibrium_ratio;
+    }
+    if (at_rest && !rest_path.empty()) write_rest_state(world, rest_path, rest_key);
   }
   const std::array<double, 2> rest_ratio = ratios();
   result.specimen_info["equilibrium_steps"] = static_cast<double>(world.steps_done());
