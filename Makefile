@@ -52,9 +52,12 @@ calibrate: build
 calibration-benchmark: build
 	scripts/calibration_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(GLOBAL),--global) $(if $(KRIGING),--kriging)
 
-# The wave strip's viscous boundary calibrated in the loop by LHS-WCA, WCA, GA and SA (docs/explanation/wave_strip.md); about 30 min.
+# Viscous boundary coefficients calibrated in the loop by LHS-WCA, WCA, GA, SA and harmony search at equal budgets:
+# the wave strip by default (docs/explanation/wave_strip.md), SCENE=data/scenes/rockfill_slope.json for the slope
+# (docs/explanation/rockfill_slope.md); BUDGET= and SEEDS= change the runs per optimiser run and the seeds.
 boundary-calibration: build
-	scripts/boundary_calibration_comparison.py --build $(BUILD) --jobs $(JOBS) $(if $(FIGURE),--figure $(FIGURE))
+	scripts/boundary_calibration_comparison.py --build $(BUILD) --jobs $(JOBS) $(if $(SCENE),--scene $(SCENE)) \
+	  $(if $(BUDGET),--budget $(BUDGET)) $(if $(SEEDS),--seeds $(SEEDS)) $(if $(FIGURE),--figure $(FIGURE))
 
 # Our DEM at published PFC2D parameter sets (docs/explanation/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
 fidelity-benchmark: build

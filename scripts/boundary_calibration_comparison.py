@@ -1,15 +1,19 @@
 #!/usr/bin/python3
-"""The viscous boundary's coefficients calibrated with the DEM in the loop by four optimisers (the
-convergence comparison, after Ma et al. 2022's Figure of LHS-WCA against WCA and GA).
+"""The viscous boundary's coefficients calibrated with the DEM in the loop by five optimisers (the convergence
+comparison, after Ma et al. 2022's figure of LHS-WCA against WCA, GA and harmony search).
 
-The problem: the four coefficients of data/spaces/ma2022_viscous_boundary.json on data/scenes/wave_strip.json (seed
-1, the same specimen for every candidate), the fitness Ma's total recovery time over the fixed far side's
-(demcal-invert --objective minimise). Each optimiser runs with the same budget of DEM runs and three optimiser
-seeds; a finished run is kept (the folder is resumable: rerunning skips it, and an interrupted one reuses its DEM
-runs). Writes OUT/summary.md (per optimiser: best total recovery time and the DEM runs it took to come within
-5 % of that best, medians over the seeds) and, with --figure, the best-so-far against DEM runs.
+The problem: the coefficients of a space (for the wave strip data/spaces/ma2022_viscous_boundary.json, four; for
+the rockfill slope data/spaces/ma2022_slope_boundary.json, six) on a scene (seed 1, the same specimen for every
+candidate), the fitness Ma's total recovery time over the scene's fixed-boundary reference (demcal-invert
+--objective minimise). Each optimiser runs with the same budget of DEM runs and several optimiser seeds; a finished
+run is kept (the folder is resumable: rerunning skips it, and an interrupted one reuses its DEM runs). Writes
+OUT/summary.md (per optimiser: best total recovery time and the DEM runs it took to come within 5 % of that best,
+medians and ranges over the seeds, and the coefficients of the best run) and, with --figure, the best-so-far
+against DEM runs (each optimiser's median over its seeds and their range).
 
-    scripts/boundary_calibration_comparison.py --build build [--budget 200] [--seeds 3] [--figure F.png]
+    scripts/boundary_calibration_comparison.py --build build [--scene S] [--budget N] [--seeds 3] [--figure F.png]
+
+The shipped scenes know their space and reference; another scene needs --space and --fixed-scene.
 """
 import argparse
 import csv
@@ -21,13 +25,19 @@ import statistics
 import subprocess
 import sys
 
-SCENE = "data/scenes/wave_strip.json"
-FIXED_SCENE = "data/scenes/wave_strip_fixed.json"
-SPACE = "data/spaces/ma2022_viscous_boundary.json"
+# Each shipped scene's space, fixed-boundary reference and default budget (DEM runs per optimiser run).
+SCENES = {
+    "data/scenes/wave_strip.json": {"space": "data/spaces/ma2022_viscous_boundary.json",
+                                    "fixed": "data/scenes/wave_strip_fixed.json", "budget": 200},
+    "data/scenes/rockfill_slope.json": {"space": "data/spaces/ma2022_slope_boundary.json",
+                                        "fixed": "data/scenes/rockfill_slope_fixed.json", "budget": 400},
+}
 # Populations of 20 let a 200-run budget see several generations; the annealing tries two moves at once (two
-# cores) with its temperature scaled to a fitness of order 1 and steps of a tenth of each range.
+# cores) with its temperature scaled to a fitness of order 1 and steps of a tenth of each range; harmony search
+# improvises two points at once (two cores).
 SETTINGS = {"lhs-wca": ["population=20"], "wca": ["population=20"], "ga": ["population=20"],
-            "sa": ["T0=0.05", "markov_chain_length=10", "step_scale=0.1", "parallel_trials=2"]}
+            "sa": ["T0=0.05", "markov_chain_length=10", "step_scale=0.1", "parallel_trials=2"],
+            "hs": ["improvisations=2"]}
 
 
 def fail(message):
@@ -42,15 +52,15 @@ def run(command):
     return done
 
 
-def reference(bin_dir, out, cache):
-    """The fixed far side's total recovery time (seed 1): the fitness's unit."""
+def reference(bin_dir, out, cache, fixed_scene):
+    """The fixed boundary's total recovery time (seed 1): the fitness's unit."""
     path = os.path.join(out, "fixed.json")
     if not os.path.exists(path):
-        run([os.path.join(bin_dir, "demcal-dem"), "run", "--scene", FIXED_SCENE, "--seed", "1", "--cache", cache,
+        run([os.path.join(bin_dir, "demcal-dem"), "run", "--scene", fixed_scene, "--seed", "1", "--cache", cache,
              "--quiet", "--out", path])
     result = json.load(open(path))
     if result.get("status") != "ok":
-        fail(f"{path}: the fixed strip's run failed: {result.get('reason')}")
+        fail(f"{path}: the fixed-boundary run failed: {result.get('reason')}")
     return result["macro"]["total_recovery_time_s"]
 
 
@@ -72,29 +82,44 @@ def runs_to_within(points, fraction):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build", default="build")
-    parser.add_argument("--out", help="default: BUILD/boundary_calibration")
-    parser.add_argument("--budget", type=int, default=200, help="DEM runs per optimiser run")
+    parser.add_argument("--scene", default="data/scenes/wave_strip.json")
+    parser.add_argument("--space", help="the coefficients and their ranges (the shipped scenes know theirs)")
+    parser.add_argument("--fixed-scene", help="the fixed-boundary reference (the shipped scenes know theirs)")
+    parser.add_argument("--out", help="default: BUILD/boundary_calibration/<scene's name>")
+    parser.add_argument("--budget", type=int, help="DEM runs per optimiser run (the strip 200, the slope 400)")
     parser.add_argument("--seeds", type=int, default=3, help="optimiser seeds per optimiser")
+    parser.add_argument("--optimisers", nargs="+", default=list(SETTINGS), choices=list(SETTINGS))
     parser.add_argument("--jobs", default="2")
     parser.add_argument("--figure", help="PNG of the best-so-far against DEM runs")
     args = parser.parse_args()
-    if args.budget < 10 or args.seeds < 1:
+    known = SCENES.get(os.path.normpath(args.scene), {})
+    space, fixed_scene = args.space or known.get("space"), args.fixed_scene or known.get("fixed")
+    budget = args.budget or known.get("budget", 200)
+    if not space or not fixed_scene:
+        fail(f"{args.scene}: not a shipped boundary scene; give --space and --fixed-scene")
+    for path in (args.scene, space, fixed_scene):
+        if not os.path.exists(path):
+            fail(f"{path}: no such file")
+    if budget < 10 or args.seeds < 1:
         fail("--budget must be at least 10 and --seeds at least 1")
+    coefficients = [p["name"] for p in json.load(open(space))["parameters"]]
     bin_dir = os.path.join(args.build, "bin")
-    out = args.out or os.path.join(args.build, "boundary_calibration")
+    name_of_scene = os.path.splitext(os.path.basename(args.scene))[0]
+    out = args.out or os.path.join(args.build, "boundary_calibration", name_of_scene)
     cache = os.path.join(args.build, "cache")
     os.makedirs(out, exist_ok=True)
-    ref = reference(bin_dir, out, cache)
-    print(f"fixed far side: total recovery time {ref:.3f} s (the fitness's unit)", flush=True)
+    ref = reference(bin_dir, out, cache, fixed_scene)
+    print(f"fixed boundary: total recovery time {ref:.3f} s (the fitness's unit)", flush=True)
     table = {}
-    for algo, settings in SETTINGS.items():
+    for algo in args.optimisers:
+        settings = SETTINGS[algo]
         for seed in range(1, args.seeds + 1):
             name = f"{algo}_seed{seed}"
             solution, hist = os.path.join(out, name + ".json"), os.path.join(out, name + "_history.csv")
             if not (os.path.exists(solution) and os.path.exists(hist)):
-                command = [os.path.join(bin_dir, "demcal-invert"), "--dem-scene", SCENE, "--space", SPACE,
+                command = [os.path.join(bin_dir, "demcal-invert"), "--dem-scene", args.scene, "--space", space,
                            "--target", f"total_recovery_time_s={ref!r}", "--objective", "minimise", "--algo", algo,
-                           "--seed", str(seed), "--budget", str(args.budget), "--stop-below", "0", "--jobs",
+                           "--seed", str(seed), "--budget", str(budget), "--stop-below", "0", "--jobs",
                            args.jobs, "--cache", cache, "--quiet", "--out", solution, "--history", hist]
                 for s in settings:
                     command += ["--set", s]
@@ -109,18 +134,18 @@ def main():
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     lines = [f"Measured {datetime.date.today()} at commit {commit or 'unknown'} on {os.cpu_count()} cores, "
              f"{platform.processor() or platform.machine()}, {platform.system()} {platform.release()}; "
-             f"budget {args.budget} DEM runs, {args.seeds} optimiser seeds; fixed far side {ref:.3f} s.", "",
-             "| optimiser | best total recovery s, median (range) | DEM runs to within 5 % of its best, median (range) | coefficients of the best run (xi_in, eta_in, xi_far, eta_far) |",
+             f"{args.scene}, budget {budget} DEM runs, {args.seeds} optimiser seeds; fixed boundary {ref:.3f} s.", "",
+             f"| optimiser | best total recovery s, median (range) | DEM runs to within 5 % of its best, median (range) | "
+             f"coefficients of the best run ({', '.join(coefficients)}) |",
              "|---|---|---|---|"]
     for algo, rows in table.items():
         best = [r["best_s"] for r in rows]
         to5 = [r["to_5pct"] for r in rows]
         top = min(rows, key=lambda r: r["best_s"])
         x = top["x"] or {}
-        coefficients = ", ".join(f"{x.get(k, float('nan')):.2f}"
-                                 for k in ("xi_input", "eta_input", "xi_reflecting", "eta_reflecting"))
+        values = ", ".join(f"{x.get(k, float('nan')):.2f}" for k in coefficients)
         lines.append(f"| {algo} | {statistics.median(best):.3f} ({min(best):.3f}-{max(best):.3f}) | "
-                     f"{statistics.median(to5):.0f} ({min(to5)}-{max(to5)}) | {coefficients} |")
+                     f"{statistics.median(to5):.0f} ({min(to5)}-{max(to5)}) | {values} |")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
@@ -130,10 +155,22 @@ def main():
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(7, 4))
         for algo, rows in table.items():
-            for k, r in enumerate(rows):
-                e, v = zip(*r["points"])
-                ax.step(e, [x * ref for x in v], where="post", lw=1, alpha=0.8, color=f"C{list(table).index(algo)}",
-                        label=algo if k == 0 else None)
+            # Each seed's best-so-far on a common grid of DEM runs: the median line and the range shaded.
+            grid = list(range(1, max(r["points"][-1][0] for r in rows) + 1))
+            curves = []
+            for r in rows:
+                values, k = [], 0
+                for e in grid:
+                    while k + 1 < len(r["points"]) and r["points"][k + 1][0] <= e:
+                        k += 1
+                    values.append(r["points"][k][1] * ref if r["points"][k][0] <= e else float("nan"))
+                curves.append(values)
+            colour = f"C{list(table).index(algo)}"
+            med = [statistics.median([c[i] for c in curves if c[i] == c[i]] or [float("nan")]) for i in range(len(grid))]
+            low = [min([c[i] for c in curves if c[i] == c[i]] or [float("nan")]) for i in range(len(grid))]
+            high = [max([c[i] for c in curves if c[i] == c[i]] or [float("nan")]) for i in range(len(grid))]
+            ax.step(grid, med, where="post", lw=1.2, color=colour, label=f"{algo} (median of {len(rows)})")
+            ax.fill_between(grid, low, high, step="post", color=colour, alpha=0.15)
         ax.set_xlabel("DEM runs")
         ax.set_ylabel("best total recovery time so far, s")
         ax.grid(alpha=0.3)
