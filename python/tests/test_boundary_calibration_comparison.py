@@ -31,3 +31,16 @@ def test_bad_arguments_are_one_line_errors(tmp_path):
     assert done.returncode == 2
     assert "--budget must be at least 10" in done.stderr
     assert len(done.stderr.strip().splitlines()) == 1
+
+
+def test_a_scene_the_script_does_not_know_needs_its_space_and_reference(tmp_path):
+    done = subprocess.run([sys.executable, SCRIPT, "--scene", "data/scenes/ucs_rock_pb.json", "--out", str(tmp_path)],
+                          capture_output=True, text=True, cwd=REPO)
+    assert done.returncode == 2
+    assert "data/scenes/ucs_rock_pb.json: not a shipped boundary scene; give --space and --fixed-scene" in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1
+    done = subprocess.run([sys.executable, SCRIPT, "--scene", "data/scenes/rockfill_slope.json", "--fixed-scene",
+                           "data/scenes/no_such_scene.json", "--out", str(tmp_path)], capture_output=True, text=True,
+                          cwd=REPO)
+    assert done.returncode == 2
+    assert "data/scenes/no_such_scene.json: no such file" in done.stderr
