@@ -311,3 +311,48 @@ TEST(Slope, AnEarthquakeRecordShakesItAndTheRunEndsWhenItIsAtRestAgain) {
                 .find("shaking_word.dat: line 1: \"x\" is not a number"),
             std::string::npos);
 }
+
+TEST(Slope, ARunThatStopsResumesFromItsCheckpointWithTheSameBits) {
+  std::string text = "# 4 Hz, 0.05 g\n";
+  for (int k = 0; k <= 50; ++k) text += std::to_string(0.05 * std::sin(2 * M_PI * 4 * 0.01 * k)) + "\n";
+  const std::string record = temp_file("shaking_checkpoint.dat", text);
+  const json quake = {{"pulse", nullptr},
+                      {"earthquake", {{"record_file", record}, {"time_step_s", 0.01}}},
+                      {"run", {{"duration_s", 1.5}, {"checkpoint_every_s", 0.1}}}};
+  const std::string cache = ::testing::TempDir() + "slope_checkpoint_cache";
+  std::filesystem::remove_all(cache);
+  auto run = [&](const json& patch, const std::string& cache_dir) {
+    json p = quake;
+    p.merge_patch(patch);
+    const Scene s = patched(p);
+    RunOptions options;
+    options.seed = 1;
+    options.cache_dir = cache_dir;
+    return run_test(s, s.resolve({}), options);
+  };
+  const TestResult through = run(json::object(), "");
+  ASSERT_TRUE(through.ok) << through.reason;
+  // The same run stopped part-way (a disk's speed limit it reaches as the shaking grows, as a crash would stop
+  // it): its checkpoints stay in the cache.
+  const TestResult stopped = run({{"run", {{"max_speed_m_s", 0.04}}}}, cache);
+  ASSERT_FALSE(stopped.ok);
+  std::size_t checkpoints = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(cache))
+    checkpoints += entry.path().filename().string().rfind("slope_run_", 0) == 0;
+  ASSERT_EQ(checkpoints, 1u) << "the stopped run left no checkpoint: " << stopped.reason;
+  std::vector<double> stopped_times;
+  for (const auto& [name, values] : stopped.series)
+    if (name == "time_s") stopped_times = values;
+  ASSERT_GT(stopped_times.back(), 0.1);  // it got past its first checkpoint
+  ASSERT_LT(stopped_times.back(), 1.4);  // and stopped well before the end
+  // Run again: it resumes and ends as the run that went through, to the bit; its checkpoint is then removed.
+  const TestResult resumed = run(json::object(), cache);
+  ASSERT_TRUE(resumed.ok) << resumed.reason;
+  EXPECT_EQ(resumed.macro, through.macro);
+  EXPECT_EQ(resumed.series, through.series);
+  checkpoints = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(cache))
+    checkpoints += entry.path().filename().string().rfind("slope_run_", 0) == 0;
+  EXPECT_EQ(checkpoints, 0u);
+  std::filesystem::remove_all(cache);
+}

@@ -184,6 +184,129 @@ void write_rest_state(const World& world, const std::string& path, const std::st
   std::filesystem::rename(temporary, path);
 }
 
+// The parts of a wave run a checkpoint carries besides the world: the boundary's work sums, the record so far,
+// the disks taken out, whether the input's end was drawn.
+struct WaveRunState {
+  World& world;
+  BoundaryForces& forces;
+  WaveRecord& record;
+  std::size_t& disks_out;
+  bool& input_snapshot_done;
+};
+
+template <typename T>
+void put_value(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+void put_doubles(std::ostream& out, const std::vector<double>& v) {
+  put_value(out, static_cast<std::uint64_t>(v.size()));
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(sizeof(double) * v.size()));
+}
+template <typename T>
+void get_value(std::istream& in, T& v) {
+  in.read(reinterpret_cast<char*>(&v), sizeof(T));
+  if (!in) throw Error("the checkpoint ends early");
+}
+void get_doubles(std::istream& in, std::vector<double>& v) {
+  std::uint64_t n = 0;
+  get_value(in, n);
+  if (n > (1ull << 28)) throw Error("a damaged checkpoint");
+  v.resize(n);
+  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(sizeof(double) * n));
+  if (!in) throw Error("the checkpoint ends early");
+}
+
+// What sets a wave run's numbers beyond its rest: every section but the limits at which a run gives up (wall time,
+// a disk's speed), which change nothing in a run that stays within them; and the parameters.
+std::string wave_run_key(const Scene& scene, const std::map<std::string, double>& parameters) {
+  std::ostringstream key;
+  key.precision(17);
+  key << "slope wave v1;";
+  for (const char* name : {"boundaries", "medium", "pulse", "earthquake", "monitors", "run"}) {
+    nlohmann::json section = scene.section(name);
+    if (section.is_object()) {
+      section.erase("max_wall_s");
+      section.erase("max_speed_m_s");
+    }
+    key << name << '=' << section.dump() << ';';
+  }
+  for (const auto& [name, value] : parameters) key << name << '=' << value << ' ';
+  return key.str();
+}
+
+std::string checkpoint_file(const std::string& cache_dir, const std::string& key) {
+  std::ostringstream name;
+  name << cache_dir << "/slope_run_" << std::hex << std::hash<std::string>{}(key) << ".bin";
+  return name.str();
+}
+
+void write_wave_checkpoint(const std::string& path, const std::string& key, const WaveRunState& state) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    put_value(out, static_cast<std::uint64_t>(key.size()));
+    out.write(key.data(), static_cast<std::streamsize>(key.size()));
+    state.world.write_state(out);
+    put_value(out, state.forces.input_work_j());
+    put_value(out, state.forces.dashpot_work_j());
+    put_value(out, state.forces.applied_work_j());
+    put_value(out, static_cast<std::uint64_t>(state.disks_out));
+    put_value(out, static_cast<std::uint8_t>(state.input_snapshot_done));
+    put_doubles(out, state.record.times);
+    put_doubles(out, state.record.kinetic);
+    put_value(out, static_cast<std::uint64_t>(state.record.monitors.size()));
+    for (const Monitor& m : state.record.monitors) {
+      put_doubles(out, m.vx);
+      put_doubles(out, m.vy);
+    }
+    if (!out) throw Error(path + ": cannot write the checkpoint");
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+// True when `path` holds a checkpoint of this run and the state now has it. A missing file, or another run's (the
+// same name by a hash collision), leaves the state as it is; a checkpoint of this run that cannot be read fails
+// the run, since the state is then half replaced: delete the file to start again.
+bool read_wave_checkpoint(const std::string& path, const std::string& key, WaveRunState& state) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::uint64_t n = 0;
+  in.read(reinterpret_cast<char*>(&n), sizeof(n));
+  std::string stored(in && n < (1u << 24) ? n : 0, '\0');
+  in.read(stored.data(), static_cast<std::streamsize>(stored.size()));
+  if (!in || stored != key) {
+    log::warn(path + ": not a checkpoint of this run; it starts from the beginning");
+    return false;
+  }
+  try {
+    state.world.read_state(in);
+    double input = 0, dashpot = 0, applied = 0;
+    get_value(in, input);
+    get_value(in, dashpot);
+    get_value(in, applied);
+    state.forces.restore_work(input, dashpot, applied);
+    std::uint64_t out = 0;
+    std::uint8_t drawn = 0;
+    get_value(in, out);
+    get_value(in, drawn);
+    state.disks_out = static_cast<std::size_t>(out);
+    state.input_snapshot_done = drawn != 0;
+    get_doubles(in, state.record.times);
+    get_doubles(in, state.record.kinetic);
+    std::uint64_t monitors = 0;
+    get_value(in, monitors);
+    if (monitors != state.record.monitors.size()) throw Error("it records other monitoring points");
+    for (Monitor& m : state.record.monitors) {
+      get_doubles(in, m.vx);
+      get_doubles(in, m.vy);
+    }
+  } catch (const Error& e) {
+    throw Error(path + ": a damaged checkpoint of this run (" + e.what() + "); delete it to run from the beginning");
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string slope_output_label(const std::string& label) {
@@ -319,7 +442,7 @@ SlopeTestSpec SlopeTestSpec::from_scene(const Scene& scene, const std::map<std::
   const nlohmann::json& r = scene.section("run");
   require_known_fields(r, {"duration_s", "gravity_m_s2", "record_every_s", "recovery_fraction", "recovery_speed_m_s",
                            "quiet_time_s", "equilibrium_ratio", "max_equilibrium_steps", "equilibrium_damping",
-                           "local_damping", "max_wall_s", "max_speed_m_s", "stop_force_ratio", "note"},
+                           "local_damping", "max_wall_s", "max_speed_m_s", "stop_force_ratio", "checkpoint_every_s", "note"},
                        origin + ": run");
   number("run", r, "duration_s", s.duration_s, false);
   number("run", r, "gravity_m_s2", s.gravity_m_s2, false);
@@ -334,6 +457,7 @@ SlopeTestSpec SlopeTestSpec::from_scene(const Scene& scene, const std::map<std::
   number("run", r, "max_wall_s", s.max_wall_s, false);
   number("run", r, "max_speed_m_s", s.max_speed_m_s, false);
   number("run", r, "stop_force_ratio", s.stop_force_ratio, false);
+  number("run", r, "checkpoint_every_s", s.checkpoint_every_s, false);
   const std::string rw = origin + ": run";
   if (!s.earthquake_input && !(s.duration_s > s.pulse.period_s)) throw Error(rw + ".duration_s must exceed pulse.period_s");
   if (!(s.gravity_m_s2 > 0)) throw Error(rw + ".gravity_m_s2 must be positive (the slope rests under gravity)");
@@ -343,6 +467,7 @@ SlopeTestSpec SlopeTestSpec::from_scene(const Scene& scene, const std::map<std::
   if (s.earthquake_input && !(s.duration_s > s.earthquake.motion.duration_s()))
     throw Error(rw + ".duration_s " + format_double(s.duration_s) + " s must exceed the earthquake's " +
                 format_double(s.earthquake.motion.duration_s()) + " s");
+  if (!(s.checkpoint_every_s >= 0)) throw Error(rw + ".checkpoint_every_s must be >= 0 (0: no checkpoints)");
   if (!(s.stop_force_ratio >= 0 && s.stop_force_ratio < 1))
     throw Error(rw + ".stop_force_ratio must lie in [0, 1) (0: run to run.duration_s)");
   if (!(s.recovery_fraction > 0 && s.recovery_fraction < 1)) throw Error(rw + ".recovery_fraction must lie in (0, 1)");
@@ -600,6 +725,17 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
   };
   snapshot_at("start");
   bool input_snapshot_done = false;
+  // A checkpoint of this very run (everything that sets its numbers, not the limits it gives up at), written every
+  // run.checkpoint_every_s and read back by a run that finds it; the neighbour list is rebuilt at each one on both
+  // paths, so the resumed run has the bits of the one that went through.
+  const std::string checkpoint_key = rest_key + "|" + wave_run_key(scene, parameters);
+  const std::string checkpoint_path = s.checkpoint_every_s > 0 && !options.cache_dir.empty()
+                                          ? checkpoint_file(options.cache_dir, checkpoint_key)
+                                          : std::string();
+  WaveRunState state{world, forces, rec, disks_out, input_snapshot_done};
+  const bool resumed = !checkpoint_path.empty() && read_wave_checkpoint(checkpoint_path, checkpoint_key, state);
+  if (resumed) log::info("slope: resuming from the checkpoint at t = " + format_double(world.time_s()) + " s (" + checkpoint_path + ")");
+  double next_checkpoint_s = s.checkpoint_every_s > 0 ? (std::floor(world.time_s() / s.checkpoint_every_s) + 1) * s.checkpoint_every_s : INFINITY;
   const auto loading_start = std::chrono::steady_clock::now();
   RecordedRun run;
   run.end_time_s = s.duration_s;
@@ -610,17 +746,24 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
   run.start = start;
   run.progress_label = "slope (% of run.duration_s)";
   run.show_progress = options.progress;
+  run.record_first = !resumed;
   run.done = [&] {
     retire_escaped();
     if (!input_snapshot_done && world.time_s() >= input_end_s) {
       snapshot_at("input_end");
       input_snapshot_done = true;
     }
+    if (world.time_s() >= next_checkpoint_s) {
+      if (!checkpoint_path.empty()) write_wave_checkpoint(checkpoint_path, checkpoint_key, state);
+      world.refresh();  // on both paths, so a resumed run steps on from the same neighbour list and time step
+      next_checkpoint_s += s.checkpoint_every_s;
+    }
     if (!(s.stop_force_ratio > 0) || world.time_s() < input_end_s) return false;
     const std::array<double, 2> r = ratios();
     return r[0] < s.stop_force_ratio && r[1] < s.stop_force_ratio;
   };
   run_recording(world, rec, run, result);
+  if (result.ok && !checkpoint_path.empty()) std::filesystem::remove(checkpoint_path);  // done: nothing to resume
   snapshot_at("end");
   result.macro["end_time_s"] = world.time_s();
   result.macro["end_force_ratio"] = std::max(ratios()[0], ratios()[1]);

@@ -252,7 +252,7 @@ void run_recording(World& world, WaveRecord& record, const RecordedRun& run, Tes
   std::unique_ptr<Progress> progress;
   if (run.show_progress) progress = std::make_unique<Progress>(run.progress_label, 100);
   int shown = 0;
-  record.record(world);
+  if (run.record_first) record.record(world);
   result.ok = true;
   while (world.time_s() < run.end_time_s) {
     world.run(run.steps_per_record);

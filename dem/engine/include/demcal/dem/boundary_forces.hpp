@@ -52,6 +52,12 @@ class BoundaryForces : public ExternalForces {
   double input_work_j() const { return input_work_j_; }
   double dashpot_work_j() const { return dashpot_work_j_; }  // <= 0
   double applied_work_j() const { return applied_work_j_; }
+  // Sets the three work sums (a run resumed from a checkpoint carries on from them).
+  void restore_work(double input_j, double dashpot_j, double applied_j) {
+    input_work_j_ = input_j;
+    dashpot_work_j_ = dashpot_j;
+    applied_work_j_ = applied_j;
+  }
 
  private:
   std::vector<BoundaryDisk> disks_;

@@ -67,6 +67,9 @@ struct SlopeTestSpec {
   double max_speed_m_s = 100;  // a disk faster than this fails the run as unstable
   // > 0: the run ends once the input is over and every material's mean unbalanced-force ratio is below it.
   double stop_force_ratio = 0;
+  // > 0: every this much simulated time the wave run is checkpointed in the cache, so a run that stops (a crash,
+  // run.max_wall_s) resumes from there when run again, with the same bits.
+  double checkpoint_every_s = 0;
 
   // Reads the scene's sections with `parameters`; throws an Error naming the scene file and the field.
   static SlopeTestSpec from_scene(const Scene& scene, const std::map<std::string, double>& parameters);

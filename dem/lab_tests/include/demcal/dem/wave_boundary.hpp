@@ -163,6 +163,7 @@ struct RecordedRun {
   bool show_progress = false;
   // Called after each record; true ends the run early (as done, not failed).
   std::function<bool()> done;
+  bool record_first = true;  // false: the record already holds the present state (a resumed run)
 };
 
 // Records once, then steps `world` to run.end_time_s recording every
