@@ -619,22 +619,15 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
       }
     }
     const BoundarySideSummary summary = install_boundary_side(world, where, spec, impedance, *boundary, origin);
-    result.specimen_info["boundary_disks_" + name] = static_cast<double>(summary.disks);
+    record_boundary_side(result, name, spec, summary);
     result.specimen_info["boundary_length_m_" + name] = summary.length_m;
-    result.specimen_info["boundary_coverage_" + name] = summary.covered_m / summary.length_m;
-    if (spec.has_dashpots()) result.specimen_info["dashpot_coverage_" + name] = summary.dashpot_m / summary.length_m;
   }
   BoundaryForces& forces = world.add_external_forces(std::move(boundary));
   world.settings().damping = s.local_damping;
   world.refresh();
 
   // A quiet period: the boundaries must hold the slope where the walls did.
-  const std::vector<double> x_rest = b.x, y_rest = b.y;
-  world.run(static_cast<std::uint64_t>(std::ceil(s.quiet_time_s / world.dt_s())));
-  double drift2 = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    drift2 = std::max(drift2, (b.x[i] - x_rest[i]) * (b.x[i] - x_rest[i]) + (b.y[i] - y_rest[i]) * (b.y[i] - y_rest[i]));
-  result.macro["quiet_drift_m"] = std::sqrt(drift2);
+  result.macro["quiet_drift_m"] = run_quiet_period(world, s.quiet_time_s);
   result.macro["quiet_force_ratio"] = force_ratio(world, kBedrockGroup);
   if (has_deposit) result.specimen_info["quiet_force_ratio_rockfill"] = force_ratio(world, kRockfillGroup);
 
@@ -845,10 +838,7 @@ class SlopeTest : public LabTest {
     }
     for (const SlopeMonitorSpec& p : spec.monitors) {
       const std::string l = slope_output_label(p.label);
-      out.push_back({"recovery_time_s_" + l, "s",
-                     "time after which the speed at " + p.label + " stays below the recovery threshold (run.duration_s "
-                     "if it never does)", true, kNonNegative});
-      out.push_back({"recovered_" + l, "1", "1 when " + p.label + " fell quiet within run.duration_s, else 0", true, kFlag});
+      add_recovery_outputs(out, l, "the recovery threshold");
       out.push_back({"peak_speed_m_s_" + l, "m/s", "largest speed recorded at " + p.label, true, kNonNegative});
       out.push_back({"peak_time_s_" + l, "s", "when it was recorded", true, kNonNegative});
     }
@@ -873,14 +863,9 @@ class SlopeTest : public LabTest {
     out.push_back({"disks_out_of_section", "1", "disks whose centre left the section (more than the largest radius "
                    "beyond its left, right or bottom edge) and were held there: a viscous boundary damps the disks "
                    "crossing it, it does not hold them", true, kNonNegative});
-    out.push_back({"energy_input_J", "J", "work of the input boundary's wave on the model"});
-    out.push_back({"energy_absorbed_J", "J", "work the dashpots took out of the model", true, kNonNegative});
-    out.push_back({"kinetic_energy_end_J", "J", "kinetic energy at the end of the run", true, kNonNegative});
+    add_energy_outputs(out);
     out.push_back({"bonds_broken", "1", "bonds broken since the wave started", true, kNonNegative});
-    out.push_back({"quiet_drift_m", "m", "largest move of a disk over the quiet period after the walls were replaced",
-                   true, kNonNegative});
-    out.push_back({"quiet_force_ratio", "1", "the bedrock's mean unbalanced-force ratio at the end of the quiet period", true,
-                   kNonNegative});
+    add_quiet_outputs(out, "the bedrock's");
     return out;
   }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,

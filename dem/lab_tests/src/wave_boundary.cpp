@@ -207,6 +207,43 @@ BoundarySideSummary install_boundary_side(World& world, const BoundarySide& side
   return summary;
 }
 
+void record_boundary_side(TestResult& result, const std::string& name, const SideSpec& spec,
+                          const BoundarySideSummary& summary) {
+  result.specimen_info["boundary_disks_" + name] = static_cast<double>(summary.disks);
+  result.specimen_info["boundary_coverage_" + name] = summary.covered_m / summary.length_m;
+  if (spec.has_dashpots()) result.specimen_info["dashpot_coverage_" + name] = summary.dashpot_m / summary.length_m;
+}
+
+double run_quiet_period(World& world, double quiet_time_s) {
+  const Bodies& b = world.bodies;
+  const std::vector<double> x_rest = b.x, y_rest = b.y;
+  world.run(static_cast<std::uint64_t>(std::ceil(quiet_time_s / world.dt_s())));
+  double drift2 = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    drift2 = std::max(drift2, (b.x[i] - x_rest[i]) * (b.x[i] - x_rest[i]) + (b.y[i] - y_rest[i]) * (b.y[i] - y_rest[i]));
+  return std::sqrt(drift2);
+}
+
+void add_recovery_outputs(std::vector<OutputSpec>& out, const std::string& label, const std::string& below) {
+  out.push_back({"recovery_time_s_" + label, "s",
+                 "time after which the speed at " + label + " stays below " + below + " (run.duration_s if it never does)",
+                 true, kNonNegative});
+  out.push_back({"recovered_" + label, "1", "1 when " + label + " fell quiet within run.duration_s, else 0", true, kFlag});
+}
+
+void add_energy_outputs(std::vector<OutputSpec>& out) {
+  out.push_back({"energy_input_J", "J", "work of the input boundary's wave on the model"});
+  out.push_back({"energy_absorbed_J", "J", "work the dashpots took out of the model", true, kNonNegative});
+  out.push_back({"kinetic_energy_end_J", "J", "kinetic energy at the end of the run", true, kNonNegative});
+}
+
+void add_quiet_outputs(std::vector<OutputSpec>& out, const std::string& ratio_of) {
+  out.push_back({"quiet_drift_m", "m", "largest move of a disk over the quiet period after the walls were replaced",
+                 true, kNonNegative});
+  out.push_back({"quiet_force_ratio", "1", ratio_of + " mean unbalanced-force ratio at the end of the quiet period", true,
+                 kNonNegative});
+}
+
 void Monitor::collect(const Bodies& b, double radius_m, const std::string& origin, int group) {
   disks.clear();
   for (std::size_t i : disks_by_id(b))

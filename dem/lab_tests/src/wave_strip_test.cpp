@@ -165,24 +165,14 @@ TestResult run_wave_strip(const Scene& scene, const std::map<std::string, double
     where.along_x = side < 2;
     where.to_m = side < 2 ? W : H;
     const SideSpec& spec = s.sides[side];
-    const BoundarySideSummary summary = install_boundary_side(world, where, spec, impedance, *boundary, origin);
-    result.specimen_info["boundary_disks_" + name] = static_cast<double>(summary.disks);
-    // Sum of the boundary disks' diameters 2R over the side's length (Ma's 2R assumes it is about 1).
-    result.specimen_info["boundary_coverage_" + name] = summary.covered_m / where.to_m;
-    // What the dashpots stand for: the coverage with 2R, exactly 1 with tributary lengths.
-    if (spec.has_dashpots()) result.specimen_info["dashpot_coverage_" + name] = summary.dashpot_m / where.to_m;
+    record_boundary_side(result, name, spec, install_boundary_side(world, where, spec, impedance, *boundary, origin));
   }
   BoundaryForces& forces = world.add_external_forces(std::move(boundary));
   world.settings().damping = s.local_damping;
   world.refresh();
 
   // A quiet period: the boundaries must hold the strip where the walls did.
-  const std::vector<double> x_rest = b.x, y_rest = b.y;
-  world.run(static_cast<std::uint64_t>(std::ceil(s.quiet_time_s / world.dt_s())));
-  double drift2 = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    drift2 = std::max(drift2, (b.x[i] - x_rest[i]) * (b.x[i] - x_rest[i]) + (b.y[i] - y_rest[i]) * (b.y[i] - y_rest[i]));
-  result.macro["quiet_drift_m"] = std::sqrt(drift2);
+  result.macro["quiet_drift_m"] = run_quiet_period(world, s.quiet_time_s);
   result.macro["quiet_force_ratio"] = force_ratio(world);
   double quiet_speed = 0;
   for (std::size_t i = 0; i < b.size(); ++i) quiet_speed = std::max(quiet_speed, std::hypot(b.vx[i], b.vy[i]));
@@ -371,10 +361,7 @@ class WaveStripTest : public PackedTest {
     }
     for (std::size_t k = 1; k <= points; ++k) {
       const std::string label = "T" + std::to_string(k);
-      out.push_back({"recovery_time_s_" + label, "s",
-                     "time after which the speed at " + label + " stays below run.recovery_fraction of the peak "
-                     "speed the pulse had at the point nearest the input (run.duration_s if it never does)", true, kNonNegative});
-      out.push_back({"recovered_" + label, "1", "1 when " + label + " fell quiet within run.duration_s, else 0", true, kFlag});
+      add_recovery_outputs(out, label, "run.recovery_fraction of the peak speed the pulse had at the point nearest the input");
     }
     out.push_back({"total_recovery_time_s", "s", "sum of the points' recovery times (Ma et al. 2022's fitness)", true,
                    kNonNegative});
@@ -384,13 +371,8 @@ class WaveStripTest : public PackedTest {
     out.push_back({"wave_speed_p_m_s", "m/s", "P wave speed from the pulse's arrivals at T1, T2, ... (a P pulse only)",
                    false, kNonNegative});
     out.push_back({"wave_speed_s_m_s", "m/s", "S wave speed from the arrivals (an S pulse only)", false, kNonNegative});
-    out.push_back({"energy_input_J", "J", "work of the input boundary's wave on the model"});
-    out.push_back({"energy_absorbed_J", "J", "work the dashpots took out of the model", true, kNonNegative});
-    out.push_back({"kinetic_energy_end_J", "J", "kinetic energy at the end of the run", true, kNonNegative});
-    out.push_back({"quiet_drift_m", "m", "largest move of a disk over the quiet period after the walls were replaced",
-                   true, kNonNegative});
-    out.push_back({"quiet_force_ratio", "1", "mean unbalanced-force ratio at the end of the quiet period", true,
-                   kNonNegative});
+    add_energy_outputs(out);
+    add_quiet_outputs(out, "the");
     return out;
   }
   TestResult run(const Scene& scene, const std::map<std::string, double>& parameters,

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demcal/dem/boundary_forces.hpp"
+#include "demcal/dem/lab_test.hpp"
 #include "demcal/dem/scene.hpp"
 #include "demcal/dem/test_result.hpp"
 
@@ -128,6 +129,23 @@ struct BoundarySideSummary {
 BoundarySideSummary install_boundary_side(World& world, const BoundarySide& side, const SideSpec& spec,
                                           const std::function<DiskImpedance(std::size_t disk)>& impedance,
                                           BoundaryForces& boundary, const std::string& origin);
+
+// The side's numbers in a result's specimen block: boundary_disks_<name>, boundary_coverage_<name> (the boundary
+// disks' diameters over the side's length: Ma's 2R assumes about 1) and, for a side with dashpots,
+// dashpot_coverage_<name> (what they stand for: the coverage with 2R, 1 with tributary lengths).
+void record_boundary_side(TestResult& result, const std::string& name, const SideSpec& spec,
+                          const BoundarySideSummary& summary);
+
+// Runs `quiet_time_s` with no wave (the boundaries must hold the model where the walls did) and returns the
+// largest move of a disk over it, m.
+double run_quiet_period(World& world, double quiet_time_s);
+
+// A point's recovery outputs (recovery_time_s_<label>, recovered_<label>); `below` says the threshold.
+void add_recovery_outputs(std::vector<OutputSpec>& out, const std::string& label, const std::string& below);
+// The energy outputs every wave test reports: energy_input_J, energy_absorbed_J, kinetic_energy_end_J.
+void add_energy_outputs(std::vector<OutputSpec>& out);
+// quiet_drift_m and quiet_force_ratio (whose ratio `ratio_of` names).
+void add_quiet_outputs(std::vector<OutputSpec>& out, const std::string& ratio_of);
 
 // A monitoring point: the free disks within its radius, whose mean velocity it records.
 struct Monitor {
