@@ -71,14 +71,6 @@ SlopePart read_part(const Scene& scene, const std::map<std::string, double>& par
   return p;
 }
 
-// The material's top at x: the highest zone top covering x, else the bedrock's surface.
-double surface_at(const SlopeSpec& g, double x) {
-  double top = g.bedrock_surface.at(x);
-  for (const SlopeZone& z : g.zones)
-    if (z.top.covers(x)) top = std::max(top, z.top.at(x));
-  return top;
-}
-
 EarthquakeSpec read_earthquake(const Scene& scene, const std::map<std::string, double>& parameters) {
   const std::string& origin = scene.origin();
   const nlohmann::json& e = scene.section("earthquake");
@@ -420,10 +412,10 @@ SlopeTestSpec SlopeTestSpec::from_scene(const Scene& scene, const std::map<std::
       throw Error(origin + ": " + where + ".label: \"" + point.label + "\" is used twice");
     number(where, p, "x_m", point.x_m, true);
     number(where, p, "y_m", point.y_m, true);
-    if (!(point.x_m >= 0 && point.x_m <= geo.width_m && point.y_m >= 0 && point.y_m <= surface_at(geo, point.x_m)))
+    if (!(point.x_m >= 0 && point.x_m <= geo.width_m && point.y_m >= 0 && point.y_m <= geo.surface_at(point.x_m)))
       throw Error(origin + ": " + where + ": (" + format_double(point.x_m) + ", " + format_double(point.y_m) +
                   " m) lies outside the model (x from 0 to " + format_double(geo.width_m) + " m, y from 0 to the surface, " +
-                  format_double(surface_at(geo, std::clamp(point.x_m, 0.0, geo.width_m))) + " m there)");
+                  format_double(geo.surface_at(std::clamp(point.x_m, 0.0, geo.width_m))) + " m there)");
     s.monitors.push_back(point);
   }
   if (mo.contains("objective")) {

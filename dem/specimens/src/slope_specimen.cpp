@@ -135,20 +135,17 @@ void SlopeSpec::validate(const std::string& where) const {
     const int samples = 200;
     for (int q = 0; q <= samples && !room; ++q) {
       const double xq = top.x.front() + (top.x.back() - top.x.front()) * q / samples;
-      double under = bedrock_surface.at(xq);
-      for (std::size_t j = 0; j < z; ++j)
-        if (zones[j].top.covers(xq)) under = std::max(under, zones[j].top.at(xq));
-      room = top.at(xq) - under >= 2 * zones[z].part.radius_max_m;
+      room = top.at(xq) - top_below_zone(z, xq) >= 2 * zones[z].part.radius_max_m;
     }
     if (!room)
       throw Error(w + ".top: lies nowhere a diameter above the bedrock and the zones before it, so the zone is empty");
   }
 }
 
-double SlopeSpecimen::surface_at(double x_m) const {
+double SlopeSpec::top_below_zone(std::size_t z, double x_m) const {
   double top = bedrock_surface.at(x_m);
-  for (const Profile& p : zone_tops)
-    if (p.covers(x_m)) top = std::max(top, p.at(x_m));
+  for (std::size_t j = 0; j < z && j < zones.size(); ++j)
+    if (zones[j].top.covers(x_m)) top = std::max(top, zones[j].top.at(x_m));
   return top;
 }
 
@@ -157,7 +154,7 @@ SlopeSpecimen build_slope_specimen(const SlopeSpec& spec, const std::string& cac
   s.width_m = spec.width_m;
   s.height_m = spec.height_m;
   s.thickness_m = spec.thickness_m;
-  s.bedrock_surface = spec.bedrock_surface;
+  s.geometry = spec;
   double r_largest = spec.bedrock.radius_max_m;
   for (const SlopeZone& z : spec.zones) r_largest = std::max(r_largest, z.part.radius_max_m);
   DiskGrid grid(2 * r_largest);
@@ -188,12 +185,7 @@ SlopeSpecimen build_slope_specimen(const SlopeSpec& spec, const std::string& cac
   for (std::size_t z = 0; z < spec.zones.size(); ++z) {
     const SlopeZone& zone = spec.zones[z];
     const Profile& top = zone.top;
-    auto under = [&](double x) {
-      double u = spec.bedrock_surface.at(x);
-      for (std::size_t j = 0; j < z; ++j)
-        if (spec.zones[j].top.covers(x)) u = std::max(u, spec.zones[j].top.at(x));
-      return u;
-    };
+    auto under = [&](double x) { return spec.top_below_zone(z, x); };
     const double r_max = zone.part.radius_max_m, span = top.x.back() - top.x.front();
     const std::size_t columns =
         std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(span / std::max(spec.column_width_m, kRadiiAcross * r_max))));
@@ -228,7 +220,6 @@ SlopeSpecimen build_slope_specimen(const SlopeSpec& spec, const std::string& cac
     s.part_area_m2.push_back(area);
     s.part_disks.push_back(s.size() - before);
     for (std::size_t k = before; k < s.size(); ++k) grid.insert(k, s.x[k], s.y[k]);
-    s.zone_tops.push_back(top);
     r_below = std::max(r_below, r_max);
   }
   return s;

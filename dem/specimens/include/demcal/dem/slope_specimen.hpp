@@ -48,6 +48,10 @@ struct SlopeSpec {
   std::uint64_t seed = 1;
   // An Error "<where>.<field>: ..." on anything out of range (profiles outside the model, a zone with no room).
   void validate(const std::string& where) const;
+  // The top of what lies under zone `z` at x: the bedrock's surface, raised by the tops of the zones before z
+  // that cover x. With z = zones.size(), the material's surface.
+  double top_below_zone(std::size_t z, double x_m) const;
+  double surface_at(double x_m) const { return top_below_zone(zones.size(), x_m); }
 };
 
 struct SlopeSpecimen {
@@ -59,10 +63,7 @@ struct SlopeSpecimen {
   std::vector<double> part_area_m2;  // the region each part fills
   std::vector<std::size_t> part_disks;
   double width_m = 0, height_m = 0, thickness_m = 1;
-  // The highest point of the material at x: the top of the last zone covering x, else the bedrock's surface.
-  double surface_at(double x_m) const;
-  Profile bedrock_surface;
-  std::vector<Profile> zone_tops;
+  SlopeSpec geometry;  // what it was built from
   std::size_t size() const { return x.size(); }
 };
 
