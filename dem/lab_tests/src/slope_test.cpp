@@ -751,7 +751,8 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
   if (result.ok && !checkpoint_path.empty()) std::filesystem::remove(checkpoint_path);  // done: nothing to resume
   snapshot_at("end");
   result.macro["end_time_s"] = world.time_s();
-  result.macro["end_force_ratio"] = std::max(ratios()[0], ratios()[1]);
+  const std::array<double, 2> end_ratio = ratios();
+  result.macro["end_force_ratio"] = std::max(end_ratio[0], end_ratio[1]);
   result.macro["disks_out_of_section"] = static_cast<double>(disks_out);
   record_run_timing(world, options, start, loading_start, result);
   rec.add_series(result);
