@@ -9,10 +9,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,11 +26,10 @@
 #include "demcal/dem/particle_order.hpp"
 #include "demcal/dem/platen_test.hpp"
 #include "demcal/dem/run_settings.hpp"
+#include "demcal/dem/slope_state.hpp"
 #include "demcal/dem/vtk_writer.hpp"
 #include "demcal/dem/wave_signals.hpp"
 #include "demcal/dem/world.hpp"
-
-#include <unistd.h>
 
 namespace demcal::dem {
 namespace {
@@ -105,198 +102,6 @@ EarthquakeSpec read_earthquake(const Scene& scene, const std::map<std::string, d
   const std::vector<double> record = read_acceleration_record(q.record_path, q.format, step, origin + ": earthquake");
   q.motion = ground_motion(record, step, q.to_m_s2 * q.scale, q.duration_s, q.baseline);
   return q;
-}
-
-// What the rest under gravity depends on: the section (the parts and profiles), the contact models as bound, the
-// bond tolerance, gravity and the equilibrium's keys, the seed and the disks' order of entry; not the boundaries,
-// the medium, the input or the monitors.
-std::string slope_rest_key(const Scene& scene, const std::map<std::string, double>& parameters, const SlopeTestSpec& s,
-                           const RunOptions& options) {
-  std::ostringstream key;
-  key.precision(17);
-  const SlopeSpec& g = s.geometry;
-  auto part = [&](const SlopePart& p) {
-    key << p.name << ' ' << p.radius_min_m << ' ' << p.radius_max_m << ' ' << p.porosity << ' ' << p.density_kg_m3 << ';';
-  };
-  auto profile = [&](const Profile& p) {
-    for (std::size_t k = 0; k < p.x.size(); ++k) key << p.x[k] << ',' << p.y[k] << ' ';
-    key << ';';
-  };
-  key << "slope rest v1;" << g.width_m << ' ' << g.height_m << ' ' << g.thickness_m << ' ' << g.column_width_m << ';';
-  part(g.bedrock);
-  profile(g.bedrock_surface);
-  for (const SlopeZone& z : g.zones) {
-    part(z.part);
-    profile(z.top);
-  }
-  for (const auto& [role, contact] : scene.contacts())
-    key << role << '=' << contact.model << scene.bind(contact, parameters, scene.origin() + ": contacts." + role).dump() << ';';
-  key << s.bond_gap_tolerance_m << ' ' << s.gravity_m_s2 << ' ' << s.equilibrium_ratio << ' ' << s.max_equilibrium_steps
-      << ' ' << s.equilibrium_damping << ';' << options.seed << ' ' << options.particle_order_seed;
-  return key.str();
-}
-
-std::string rest_state_path(const std::string& cache_dir, const std::string& key) {
-  std::ostringstream name;
-  name << cache_dir << "/slope_rest_" << std::hex << std::hash<std::string>{}(key) << ".bin";
-  return name.str();
-}
-
-// True when `path` holds the rest state of `key` and the world now has it; a missing file is not an error, a
-// stale or damaged one is said and recomputed.
-bool read_rest_state(World& world, const std::string& path, const std::string& key) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  try {
-    std::uint64_t n = 0;
-    in.read(reinterpret_cast<char*>(&n), sizeof(n));
-    std::string stored(in && n < (1u << 24) ? n : 0, '\0');
-    in.read(stored.data(), static_cast<std::streamsize>(stored.size()));
-    if (!in || stored != key) throw Error("it holds another section's rest");
-    world.read_state(in);
-  } catch (const Error& e) {
-    log::warn(path + ": " + e.what() + "; bringing the section to rest again");
-    return false;
-  }
-  return true;
-}
-
-// Written to a temporary file and renamed, so a crash or a parallel run never leaves half a file under the name.
-void write_rest_state(const World& world, const std::string& path, const std::string& key) {
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    const std::uint64_t n = key.size();
-    out.write(reinterpret_cast<const char*>(&n), sizeof(n));
-    out.write(key.data(), static_cast<std::streamsize>(key.size()));
-    world.write_state(out);
-    if (!out) throw Error(path + ": cannot write the section's rest state");
-  }
-  std::filesystem::rename(temporary, path);
-}
-
-// The parts of a wave run a checkpoint carries besides the world: the boundary's work sums, the record so far,
-// the disks taken out, whether the input's end was drawn.
-struct WaveRunState {
-  World& world;
-  BoundaryForces& forces;
-  WaveRecord& record;
-  std::size_t& disks_out;
-  bool& input_snapshot_done;
-};
-
-template <typename T>
-void put_value(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-void put_doubles(std::ostream& out, const std::vector<double>& v) {
-  put_value(out, static_cast<std::uint64_t>(v.size()));
-  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(sizeof(double) * v.size()));
-}
-template <typename T>
-void get_value(std::istream& in, T& v) {
-  in.read(reinterpret_cast<char*>(&v), sizeof(T));
-  if (!in) throw Error("the checkpoint ends early");
-}
-void get_doubles(std::istream& in, std::vector<double>& v) {
-  std::uint64_t n = 0;
-  get_value(in, n);
-  if (n > (1ull << 28)) throw Error("a damaged checkpoint");
-  v.resize(n);
-  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(sizeof(double) * n));
-  if (!in) throw Error("the checkpoint ends early");
-}
-
-// What sets a wave run's numbers beyond its rest: every section but the limits at which a run gives up (wall time,
-// a disk's speed), which change nothing in a run that stays within them; and the parameters.
-std::string wave_run_key(const Scene& scene, const std::map<std::string, double>& parameters) {
-  std::ostringstream key;
-  key.precision(17);
-  key << "slope wave v1;";
-  for (const char* name : {"boundaries", "medium", "pulse", "earthquake", "monitors", "run"}) {
-    nlohmann::json section = scene.section(name);
-    if (section.is_object()) {
-      section.erase("max_wall_s");
-      section.erase("max_speed_m_s");
-    }
-    key << name << '=' << section.dump() << ';';
-  }
-  for (const auto& [name, value] : parameters) key << name << '=' << value << ' ';
-  return key.str();
-}
-
-std::string checkpoint_file(const std::string& cache_dir, const std::string& key) {
-  std::ostringstream name;
-  name << cache_dir << "/slope_run_" << std::hex << std::hash<std::string>{}(key) << ".bin";
-  return name.str();
-}
-
-void write_wave_checkpoint(const std::string& path, const std::string& key, const WaveRunState& state) {
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    put_value(out, static_cast<std::uint64_t>(key.size()));
-    out.write(key.data(), static_cast<std::streamsize>(key.size()));
-    state.world.write_state(out);
-    put_value(out, state.forces.input_work_j());
-    put_value(out, state.forces.dashpot_work_j());
-    put_value(out, state.forces.applied_work_j());
-    put_value(out, static_cast<std::uint64_t>(state.disks_out));
-    put_value(out, static_cast<std::uint8_t>(state.input_snapshot_done));
-    put_doubles(out, state.record.times);
-    put_doubles(out, state.record.kinetic);
-    put_value(out, static_cast<std::uint64_t>(state.record.monitors.size()));
-    for (const Monitor& m : state.record.monitors) {
-      put_doubles(out, m.vx);
-      put_doubles(out, m.vy);
-    }
-    if (!out) throw Error(path + ": cannot write the checkpoint");
-  }
-  std::filesystem::rename(temporary, path);
-}
-
-// True when `path` holds a checkpoint of this run and the state now has it. A missing file, or another run's (the
-// same name by a hash collision), leaves the state as it is; a checkpoint of this run that cannot be read fails
-// the run, since the state is then half replaced: delete the file to start again.
-bool read_wave_checkpoint(const std::string& path, const std::string& key, WaveRunState& state) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::uint64_t n = 0;
-  in.read(reinterpret_cast<char*>(&n), sizeof(n));
-  std::string stored(in && n < (1u << 24) ? n : 0, '\0');
-  in.read(stored.data(), static_cast<std::streamsize>(stored.size()));
-  if (!in || stored != key) {
-    log::warn(path + ": not a checkpoint of this run; it starts from the beginning");
-    return false;
-  }
-  try {
-    state.world.read_state(in);
-    double input = 0, dashpot = 0, applied = 0;
-    get_value(in, input);
-    get_value(in, dashpot);
-    get_value(in, applied);
-    state.forces.restore_work(input, dashpot, applied);
-    std::uint64_t out = 0;
-    std::uint8_t drawn = 0;
-    get_value(in, out);
-    get_value(in, drawn);
-    state.disks_out = static_cast<std::size_t>(out);
-    state.input_snapshot_done = drawn != 0;
-    get_doubles(in, state.record.times);
-    get_doubles(in, state.record.kinetic);
-    std::uint64_t monitors = 0;
-    get_value(in, monitors);
-    if (monitors != state.record.monitors.size()) throw Error("it records other monitoring points");
-    for (Monitor& m : state.record.monitors) {
-      get_doubles(in, m.vx);
-      get_doubles(in, m.vy);
-    }
-  } catch (const Error& e) {
-    throw Error(path + ": a damaged checkpoint of this run (" + e.what() + "); delete it to run from the beginning");
-  }
-  return true;
 }
 
 }  // namespace
@@ -561,7 +366,7 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
   // The rest under gravity does not depend on what comes after it (the boundaries' coefficients, the input): a
   // section brought to rest once is kept in the cache and read back by every run that shares it.
   const std::string rest_key = slope_rest_key(scene, parameters, s, options);
-  const std::string rest_path = options.cache_dir.empty() ? std::string() : rest_state_path(options.cache_dir, rest_key);
+  const std::string rest_path = options.cache_dir.empty() ? std::string() : cache_file(options.cache_dir, "slope_rest_", rest_key);
   bool at_rest = !rest_path.empty() && read_rest_state(world, rest_path, rest_key);
   if (!at_rest) {
     for (std::uint64_t done = 0; done < static_cast<std::uint64_t>(s.max_equilibrium_steps) && !at_rest; done += 50) {
@@ -715,7 +520,7 @@ TestResult run_slope(const Scene& scene, const std::map<std::string, double>& pa
   // paths, so the resumed run has the bits of the one that went through.
   const std::string checkpoint_key = rest_key + "|" + wave_run_key(scene, parameters);
   const std::string checkpoint_path = s.checkpoint_every_s > 0 && !options.cache_dir.empty()
-                                          ? checkpoint_file(options.cache_dir, checkpoint_key)
+                                          ? cache_file(options.cache_dir, "slope_run_", checkpoint_key)
                                           : std::string();
   WaveRunState state{world, forces, rec, disks_out, input_snapshot_done};
   const bool resumed = !checkpoint_path.empty() && read_wave_checkpoint(checkpoint_path, checkpoint_key, state);
