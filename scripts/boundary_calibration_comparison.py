@@ -156,7 +156,7 @@ def main():
         fig, ax = plt.subplots(figsize=(7, 4))
         for algo, rows in table.items():
             # Each seed's best-so-far on a common grid of DEM runs: the median line and the range shaded.
-            grid = list(range(1, max(r["points"][-1][0] for r in rows) + 1))
+            grid = list(range(1, max(max(r["points"][-1][0] for r in rows), budget) + 1))  # drawn to the budget
             curves = []
             for r in rows:
                 values, k = [], 0
