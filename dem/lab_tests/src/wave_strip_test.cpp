@@ -14,7 +14,6 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
-#include "demcal/core/progress.hpp"
 #include "demcal/dem/boundary_forces.hpp"
 #include "demcal/dem/equilibrium.hpp"
 #include "demcal/dem/builtin_tests.hpp"
