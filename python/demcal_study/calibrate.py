@@ -31,7 +31,7 @@ import time
 
 import numpy as np
 
-from . import calibrate_runs, commands, executables, lab_targets, outputs, trust_region
+from . import calibrate_runs, commands, executables, lab_targets, outputs, posterior_predictive, trust_region
 from . import searches
 from .calibrate_limits import (EXIT_BUDGET, EXIT_FAILED, EXIT_MET, EXIT_UNREACHABLE,  # noqa: F401 (the exit codes)
                                FIRST_VERIFICATION_SEEDS, INITIAL_RADIUS, MAX_ROUNDS, MAX_VERIFICATION_SEEDS)
@@ -108,6 +108,7 @@ class Calibration:
         self.config, self.out, self.tools, self.quiet = config, out, tools, quiet
         self.scene = config["scene"]
         description = executables.describe(self.scene, config.get("space"))
+        self.description = description
         space = load_json(config["space"], "parameter space") if config.get("space") else None
         self.problem = Problem(description, config["targets"], space=space, fixed=config.get("fixed"),
                                scale_parameter=config.get("scale_parameter"), where=config.get("where", "calibrate"))
@@ -119,6 +120,7 @@ class Calibration:
         self.rounds = []   # what each round decided
         self.verifications = []
         self.runs = 0
+        self.posterior = None  # the Bayesian search's last posterior: its draws and exported point
         self.specimen_variance = 0.0  # of the modelled responses over fresh specimens, once a verification ran
         # Set when the scale factor the scale target wants leaves the bounds: the search then goes on with the
         # scale held at its bound and the scale target as one more residual (bounded_scale_residual).
@@ -418,6 +420,8 @@ class Calibration:
             write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")
         if verification is not None:
             write_target(os.path.join(self.out, "verification.json"), json.dumps(verification, indent=1) + "\n")
+        if self.posterior and self.posterior.get("draws") is not None:
+            posterior_predictive.predictive(self, self.posterior["draws"], self.posterior["exported"])
         if status in ("met", "noisy") and point is not None and self.check_tests:
             solution["checks"] = self.run_checks(point["x"])
             write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")

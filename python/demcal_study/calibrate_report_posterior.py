@@ -44,4 +44,29 @@ def posterior_lines(out, solution):
         lines += ["", "The search stops once the emulators' SD is at most half the lab's standard error for every "
                       "target (median over the draws): more DEM runs would barely narrow the posterior. An acceptance "
                       "of 0.2-0.5 and effective draws in the hundreds are what a sound MCMC run shows."]
+    return lines + predictive_lines(out)
+
+
+def predictive_lines(out):
+    """Markdown lines of the posterior predictive (predictive.json), or none."""
+    path = os.path.join(out, "predictive.json")
+    if not os.path.exists(path):
+        return []
+    pred = load_json(path, "posterior predictive")
+    n = pred["seeds_in_mean"]
+    lines = ["", f"### What a mean of {n} fresh specimens will show", "",
+             f"The posterior predictive of every output of every test, targeted or not: {md(pred['how'])}. At the "
+             "exported point, and over the whole posterior (the parameters' uncertainty too). The last columns hold the "
+             f"first verification's mean of {n} seeds ({md(pred['verification'])}) against the interval at the exported "
+             "point.", "",
+             "| output | target | at the exported point, 95 % | over the posterior, 95 % | specimens' SD | "
+             f"verified {n}-seed mean | inside |", "|---|---|---|---|---|---|---|"]
+    for name, r in sorted(pred["outputs"].items()):
+        lo, hi = r["exported"]["interval_95"]
+        plo, phi = r["posterior"]["interval_95"]
+        target = "-" if r["target"] is None else num(r["target"])
+        verified = "-" if r["verified_mean"] is None else num(r["verified_mean"])
+        inside = "-" if r["inside"] is None else ("yes" if r["inside"] else "**no**")
+        lines.append(f"| {md(name)} | {target} | {num(lo)} to {num(hi)} | {num(plo)} to {num(phi)} | "
+                     f"{num(r['specimen_sd'])} | {verified} | {inside} |")
     return lines

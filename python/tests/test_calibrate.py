@@ -35,6 +35,9 @@ DESCRIPTION = {
         "nu": {"unit": "1", "stress_like": False, "si_factor": 1.0},
     },
 }
+# The fake DEM's tensile strength, described only where a test reads outputs it does not target.
+WITH_TENSILE = dict(DESCRIPTION, outputs=dict(DESCRIPTION["outputs"], sigma_t_MPa={
+    "unit": "MPa", "stress_like": True, "si_factor": 1e6}))
 
 # Two-sided 95 % Student t for 1..30 degrees of freedom (tables).
 T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
@@ -52,7 +55,14 @@ def fake_dem(p, seed):
     s = specimen(seed)
     return {"E_GPa": s[0] * p["Ec_Pa"] / 1e9 * (0.4 + 0.4 / p["kn_ks"]),
             "sigma_u_MPa": s[1] * p["sc_Pa"] / 1e6 * (0.8 + 0.6 * p["mu"]) * (1 + 0.1 * math.log(p["kn_ks"])),
-            "nu": s[2] * (0.12 + 0.08 * math.log(p["kn_ks"]))}
+            "nu": s[2] * (0.12 + 0.08 * math.log(p["kn_ks"])),
+            # Never a target here: the posterior predictive must still say what it will be.
+            "sigma_t_MPa": specimen_t(seed) * p["sc_Pa"] / 1e6 * 0.12 * (1 + 0.2 * p["mu"])}
+
+
+def specimen_t(seed):
+    """The tensile strength's own specimen deviation (a stream apart: the other outputs' draws stay as they were)."""
+    return 1 + 3 * SCATTER * np.random.default_rng(5000 + seed).normal()
 
 
 @pytest.fixture
@@ -626,6 +636,7 @@ def test_the_bayesian_search_gives_a_posterior_and_a_verified_point(fake, tmp_pa
     # Unextended chains keep this test at about 20 s (friction's flat posterior would run each to the cap);
     # the extension itself is tested in test_bayes_posterior.py.
     monkeypatch.setattr(bayes_search, "MAX_STEPS", 4000)
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: WITH_TENSILE)
     # The lab's means at a reachable point, with a 3 % SD over 5 specimens (SE 1.3 %): the exported point must still
     # meet every target within 5 % on fresh seeds, and the posterior must say what the data pin down.
     targets = {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2}
@@ -662,3 +673,26 @@ def test_the_bayesian_search_gives_a_posterior_and_a_verified_point(fake, tmp_pa
     assert "| kn_ks |" in section and "| E_GPa | 6.5 | 0.195 | 5 |" in section
     rounds = [r for r in solution["rounds"] if "bayes" in r]
     assert rounds and section.count("\n| ") >= len(rounds) + 4 + 3
+    # The posterior predictive: every output, the untargeted tensile strength included. At the exported point the
+    # 95 % interval of a 5-specimen mean holds the verified 5-seed mean, and is at least as wide as the specimens'
+    # scatter makes it (specimen 1's own deviation plus the mean's: 1.96 sqrt(1 + 1/5) SD).
+    predictive = json.load(open(os.path.join(out, "predictive.json")))
+    rows = predictive["outputs"]
+    assert set(rows) == {"E_GPa", "sigma_u_MPa", "nu", "sigma_t_MPa"}
+    assert rows["sigma_t_MPa"]["target"] is None and rows["E_GPa"]["target"] == 6.5
+    seeds = json.load(open(os.path.join(out, solution["verifications"][0]["folder"], "verification.json")))["seeds"]
+    for o, r in rows.items():
+        values = np.array([s["macro"][o] for s in seeds])
+        assert r["verified_mean"] == pytest.approx(values[:5].mean(), rel=1e-12)
+        assert r["specimen_sd"] == pytest.approx(values.std(ddof=1), rel=1e-12)
+        lo, hi = r["exported"]["interval_95"]
+        assert hi - lo >= 2 * 1.959963984540054 * math.sqrt(1.2) * r["specimen_sd"] * (1 - 1e-12)
+        assert r["inside"] and lo <= r["verified_mean"] <= hi, (o, lo, r["verified_mean"], hi)
+        plo, phi = r["posterior"]["interval_95"]
+        assert plo < r["posterior"]["median"] < phi
+    # The untargeted output's interval holds the population's true mean at the verified point (300 specimens).
+    x = json.load(open(os.path.join(out, solution["verifications"][0]["folder"], "solution.json")))["x"]
+    truth = np.mean([fake_dem(x, s)["sigma_t_MPa"] for s in range(100, 400)])
+    lo, hi = rows["sigma_t_MPa"]["exported"]["interval_95"]
+    assert lo <= truth <= hi
+    assert "### What a mean of 5 fresh specimens will show" in md and "| sigma_t_MPa | - |" in md

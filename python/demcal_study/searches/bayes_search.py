@@ -88,7 +88,7 @@ class BayesSearch:
             support = scale_support(p)
         lab_r = correlation_in_order(cal.config.get("lab_correlation"), names)
         reserve = cal.verification_reserve()
-        converged, samples, posterior, exported = False, None, None, None
+        converged, samples, posterior, exported, draws = False, None, None, None, None
         # The emulators must know the whole prior, not only the first design's neighbourhood of the reference point,
         # or the posterior spreads to where nothing was run: a Latin hypercube over the whole coded box first.
         cal.run_round(f"{label}01_global", [(u, 1.0) for u in global_design(d, global_size(d), seed=7)])
@@ -151,7 +151,9 @@ class BayesSearch:
             if os.path.exists(src):
                 with open(src) as f:
                     write_target(os.path.join(cal.out, name), f.read())
-        cal.posterior = {"round": k, "converged": converged}
+        # Kept for the posterior predictive, which needs the verification that follows (posterior_predictive.py).
+        cal.posterior = {"round": k, "converged": converged, "exported": exported,
+                         "draws": None if draws is None else draws.theta}
         centre = np.array(exported[:d]) if exported is not None else centre
         best = cal.best_point() or best
         return centre, INITIAL_RADIUS, best, converged, False
