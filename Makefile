@@ -35,6 +35,7 @@ study: build
 #   make calibrate SCENE=data/scenes/ucs_rock_cb.json TARGETS="sigma_u_MPa=48 E_GPa=6.5 nu=0.27"
 #                  [SPACE=...] [FIXED="R_min_m=0.00075 ..."] [TOLERANCE=0.05] [BUDGET=80] [NAME=...]
 #                  [STRATEGY=kriging] [CHECK_RESOLUTION=2] [CHECK_TESTS="data/scenes/biaxial_rock_fj.json"]
+#                  [CURVES="lab_curve.csv"] [CURVE_WINDOW=0.1:1.0]
 #   with the lab's scatter: TARGETS="sigma_u_MPa=200+-22/n=5 ..." or LAB_SPECIMENS=lab.csv, and STRATEGY=bayes
 TOLERANCE ?= 0.05
 BUDGET    ?= 80
@@ -45,6 +46,7 @@ calibrate: build
 	  $(foreach f,$(FIXED),--fixed $(f)) --tolerance $(TOLERANCE) --budget $(BUDGET) $(if $(NAME),--name $(NAME)) \
 	  $(if $(STRATEGY),--strategy $(STRATEGY)) $(if $(CHECK_RESOLUTION),--check-resolution $(CHECK_RESOLUTION)) \
 	  $(foreach c,$(CHECK_TESTS),--check-test $(c)) $(if $(LAB_SPECIMENS),--lab-specimens $(LAB_SPECIMENS)) \
+	  $(foreach c,$(CURVES),--curve $(c)) $(if $(CURVE_WINDOW),--curve-window $(CURVE_WINDOW)) \
 	  --out-root $(BUILD)/calibrations
 
 # Hours: every target of data/benchmarks/calibration_targets.json (resumable; ONLY=a,b runs a part; GLOBAL=1 adds

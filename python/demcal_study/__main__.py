@@ -140,6 +140,12 @@ def parser():
                      help="targets from the lab's specimens: a CSV test,output,value[,specimen], one row per "
                           "measurement (each output's mean, SD and count, and the correlation of outputs measured on "
                           "one specimen)")
+    cal.add_argument("--curve", action="append", metavar="[LABEL:]CURVE.csv",
+                     help="a measured stress-strain curve as a target (repeatable): CSV axial_strain,axial_stress_MPa"
+                          "[,lateral_strain][,sd_MPa], compression positive, strains as fractions; compared at 8 "
+                          "strains over --curve-window; LABEL names the test of a test list")
+    cal.add_argument("--curve-window", metavar="A:B",
+                     help="the strains a curve is compared over, as fractions of its measured peak strain (0.1:1.0)")
     cal.add_argument("--space", metavar="SPACE.json", help="ranges to search (default: the scene's physical bounds)")
     cal.add_argument("--fixed", action="append", metavar="NAME=VALUE",
                      help="a scene parameter held at a value inside its physical bounds (repeatable)")

@@ -31,7 +31,7 @@ import time
 
 import numpy as np
 
-from . import calibrate_runs, commands, executables, lab_targets, outputs, posterior_predictive, trust_region
+from . import calibrate_runs, commands, curve_targets, executables, lab_targets, outputs, posterior_predictive, trust_region
 from . import searches
 from .calibrate_limits import (EXIT_BUDGET, EXIT_FAILED, EXIT_MET, EXIT_UNREACHABLE,  # noqa: F401 (the exit codes)
                                FIRST_VERIFICATION_SEEDS, INITIAL_RADIUS, MAX_ROUNDS, MAX_VERIFICATION_SEEDS)
@@ -107,7 +107,10 @@ class Calibration:
     def __init__(self, config, out, tools, quiet=False):
         self.config, self.out, self.tools, self.quiet = config, out, tools, quiet
         self.scene = config["scene"]
-        description = executables.describe(self.scene, config.get("space"))
+        # A measured curve's points are outputs the scene does not describe: its runs' curves give them.
+        self.curves = config.get("curves", [])
+        description = curve_targets.extend_description(executables.describe(self.scene, config.get("space")),
+                                                       self.curves)
         self.description = description
         space = load_json(config["space"], "parameter space") if config.get("space") else None
         self.problem = Problem(description, config["targets"], space=space, fixed=config.get("fixed"),
@@ -253,8 +256,9 @@ class Calibration:
         self.runs += len(entries) * self.tests
         added = []
         for (u, s), r in zip(entries, results):
+            measured = dict(r["outputs"], **curve_targets.point_values(r.get("curve"), self.curves))
             p = {"u": [float(x) for x in u], "scale": float(s), "status": r["status"],
-                 "outputs": outputs.with_ratios(r["outputs"], self.problem.targets),
+                 "outputs": outputs.with_ratios(measured, self.problem.targets),
                  "reason": r["reason"], "round": label}
             self.points.append(p)
             added.append(p)
@@ -622,6 +626,9 @@ def checked_command(args):
             targets[name], uncertainty[name] = t.mean, {"sd": t.sd, "n": t.n}
         if len(names) > 1 and not np.array_equal(r, np.eye(len(names))):
             lab_correlation = {"names": names, "matrix": r.tolist()}
+    curves = measured_curves(args, targets, uncertainty, description, strategy, problems)
+    if description and curves:
+        description = curve_targets.extend_description(description, curves)
     tests = outputs.tests_described(description) if description else 1
     coordinates = 0
     if description:
@@ -658,6 +665,8 @@ def checked_command(args):
         config["check_resolution"] = check_resolution
     if check_tests:
         config["check_tests"] = check_tests
+    if curves:  # absent without any, so calibrations stored before curves resume
+        config["curves"] = curves
     if strategy != "trust-region":  # absent for the default, so calibrations stored before the option resume
         config["strategy"] = strategy
     if uncertainty:  # likewise absent without any
@@ -666,7 +675,10 @@ def checked_command(args):
         config["lab_correlation"] = lab_correlation
     out, replace = None, False
     if targets and args.scene:
-        name = args.name or default_name(args.scene, targets) + ("" if strategy == "trust-region" else f"_{strategy}")
+        on_curve = set(curve_targets.names(curves))
+        name = args.name or (default_name(args.scene, {k: v for k, v in targets.items() if k not in on_curve})
+                             + (f"_curves{len(curves)}" if curves else "")
+                             + ("" if strategy == "trust-region" else f"_{strategy}"))
         out = os.path.join(args.out_root, name)
         stored = os.path.join(out, "calibration.json")
         existing = os.path.abspath(out)
@@ -691,6 +703,38 @@ def checked_command(args):
                                  f"settings); remove {out} or give --name")
     problems.raise_if_any()
     return config, out, replace
+
+
+def measured_curves(args, targets, uncertainty, description, strategy, problems):
+    """The --curve targets (curve_targets.curve_target each), their points added to `targets` (and, with an sd_MPa
+    column, to `uncertainty`, one specimen's SD); problems added for every defect."""
+    specs = list(getattr(args, "curve", None) or [])
+    window_text = getattr(args, "curve_window", None)
+    if window_text is not None and not specs:
+        problems.add("--curve-window: give the curve it applies to (--curve CURVE.csv)")
+    if not specs:
+        return []
+    window = curve_targets.parse_window(window_text if window_text is not None else "%g:%g" % curve_targets.DEFAULT_WINDOW,
+                                        "--curve-window", problems)
+    curves = [c for c in (curve_targets.curve_target(spec, window, "--curve", problems) for spec in specs) if c]
+    if description:
+        curve_targets.check_against_scene(curves, description, "--curve", problems)
+    if len(curves) == len(specs) and not targets:
+        problems.add("--curve: give at least one NAME=VALUE target beside the curve (the verification decides how "
+                     "many fresh seeds to run by those)")
+    for c in curves:
+        for q in c["points"]:
+            if q["name"] in targets:
+                problems.add(f"--curve {c['spec']}: a second curve of the same test gives {q['name']} again")
+                continue
+            targets[q["name"]] = q["value"]
+            if q["sd"] is not None:
+                uncertainty[q["name"]] = {"sd": q["sd"], "n": 1}
+        if strategy == "bayes" and any(q["sd"] is None for q in c["points"]):
+            problems.add(f"--curve {c['spec']}: the Bayesian search weighs each point by the lab's scatter: give the "
+                         "curve an sd_MPa column" + (" and no lateral_strain column (it has no scatter column)"
+                                                     if any(q["kind"] == "lateral" for q in c["points"]) else ""))
+    return curves
 
 
 def calibrate(args):

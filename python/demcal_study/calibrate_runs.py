@@ -6,7 +6,7 @@ import json
 import os
 import subprocess
 
-from . import commands
+from . import commands, curve_targets
 from .errors import fail, load_json
 from .files import write_target
 
@@ -66,16 +66,18 @@ def run_points(tools, scene, folder, points, quiet):
     missing = [k + 1 for k in range(len(points)) if k + 1 not in results]
     if missing:
         fail(f"{table}: no result for run(s) {missing}")
-    return [dict(results[k + 1], reason=point_reason(out, k + 1)) for k in range(len(points))]
+    return [dict(results[k + 1], **point_file(out, k + 1)) for k in range(len(points))]
 
 
-def point_reason(out, run):
+def point_file(out, run):
+    """A point's failure reason and its curve ({column: list}), from its result file beside the batch."""
     path = f"{out}.points/run{run}_seed1.json"
     try:
         with open(path) as f:
-            return json.load(f).get("reason", "")
+            r = json.load(f)
+        return {"reason": r.get("reason", ""), "curve": r.get("curve")}
     except (OSError, ValueError):
-        return ""
+        return {"reason": "", "curve": None}
 
 
 def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
@@ -116,9 +118,17 @@ def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
 
 
 def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet,
-           intervals=None, scale_resolution=None):
+           intervals=None, scale_resolution=None, curves=None):
     """demcal-verify at absolute `parameters` on seeds first_seed.. (seeds to start with, up to max_seeds);
-    `intervals` ({output: [low, high]}, the local model's 95 % prediction interval) is shown beside the DEM's."""
+    `intervals` ({output: [low, high]}, the local model's 95 % prediction interval) is shown beside the DEM's.
+    The points of measured curves (`curves`) are not demcal-verify's outputs: it runs the other targets, and their
+    rows are added from the seeds' curves (curve_targets.add_to_verification)."""
+    curves = curves or []
+    all_targets, all_predicted, all_intervals = targets, predicted, intervals
+    on_curve = set(curve_targets.names(curves))
+    targets = {o: t for o, t in targets.items() if o not in on_curve}
+    predicted = {o: t for o, t in (predicted or {}).items() if o not in on_curve}
+    intervals = {o: t for o, t in intervals.items() if o not in on_curve} if intervals else intervals
     os.makedirs(folder, exist_ok=True)
     solution = os.path.join(folder, "solution.json")
     stored_x = load_json(solution, "verified solution").get("x") if os.path.exists(solution) else None
@@ -145,4 +155,10 @@ def verify(tools, scene, folder, parameters, targets, predicted, first_seed, see
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
     if done.returncode != 0:
         fail(f"{folder}: demcal-verify failed (exit {done.returncode})")
-    return load_json(out, "verification")
+    v = load_json(out, "verification")
+    if curves:
+        seed_curves = curve_targets.read_seed_curves(os.path.join(folder, "runs"), [s["seed"] for s in v["seeds"]])
+        v = curve_targets.add_to_verification(v, seed_curves, curves, all_targets, all_predicted or {}, all_intervals,
+                                              tolerance)
+        write_target(out, json.dumps(v, indent=1) + "\n")
+    return v

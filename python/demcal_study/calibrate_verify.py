@@ -134,7 +134,7 @@ class Verifier:
             folder = os.path.join(cal.out, "verify", f"v{k:02d}")
             v = calibrate_runs.verify(cal.tools, cal.scene, folder, point["x"], p.targets, point["predicted"],
                                       next_seed, seeds, most, cal.tolerance, cal.quiet,
-                                      intervals=point["prediction_interval_95"])
+                                      intervals=point["prediction_interval_95"], curves=cal.curves)
             verified = point
             used = len(v["seeds"])
             cal.runs += used * cal.tests
@@ -155,7 +155,7 @@ class Verifier:
                 v = calibrate_runs.verify(cal.tools, cal.scene, folder, point["x"], p.targets, point["predicted"],
                                           next_seed - used, seeds, most, cal.tolerance, cal.quiet,
                                           intervals=point["prediction_interval_95"],
-                                          scale_resolution=cal.config["check_resolution"])
+                                          scale_resolution=cal.config["check_resolution"], curves=cal.curves)
                 cal.say("at disk radii / {:g}: ".format(cal.config["check_resolution"]) + ", ".join(
                     f"{o} shift {s:+.1f} %" for o, s in v["finer"]["shift_pct"].items() if s is not None))
             if met:

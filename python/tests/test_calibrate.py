@@ -10,7 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from demcal_study import calibrate, calibrate_runs, calibrate_verify, commands, executables, outputs, trust_region
+from demcal_study import (calibrate, calibrate_runs, calibrate_verify, commands, curve_targets, executables, outputs,
+                          trust_region)
 from demcal_study.calibration_problem import Problem
 from demcal_study.calibrate_report import report
 from demcal_study.searches import bayes_search
@@ -60,6 +61,19 @@ def fake_dem(p, seed):
             "sigma_t_MPa": specimen_t(seed) * p["sc_Pa"] / 1e6 * 0.12 * (1 + 0.2 * p["mu"])}
 
 
+def fake_curve(p, seed):
+    """The fake specimen's stress-strain curve, as a DEM result's `curve`: a parabola of initial slope E up to the
+    peak sigma_u at strain 2 sigma_u / E, then a straight drop to zero at 1.5 times that strain; the lateral strain
+    nu times the axial, positive as the DEM counts a swelling specimen."""
+    m = fake_dem(p, seed)
+    peak = 2 * m["sigma_u_MPa"] / (m["E_GPa"] * 1e3)
+    e = np.linspace(0, 1.5 * peak, 61)
+    rise = m["sigma_u_MPa"] * (2 * e / peak - (e / peak) ** 2)
+    fall = m["sigma_u_MPa"] * np.clip(1 - (e - peak) / (0.5 * peak), 0, 1)
+    return {"axial_strain": e.tolist(), "stress_MPa": np.where(e <= peak, rise, fall).tolist(),
+            "lateral_strain": (m["nu"] * e).tolist(), "cracks": [0] * len(e)}
+
+
 def specimen_t(seed):
     """The tensile strength's own specimen deviation (a stream apart: the other outputs' draws stay as they were)."""
     return 1 + 3 * SCATTER * np.random.default_rng(5000 + seed).normal()
@@ -71,11 +85,15 @@ def fake(monkeypatch, tmp_path):
 
     def run_points(tools, scene, folder, points, quiet):
         calls["points"] += len(points)
-        return [{"status": "ok", "outputs": fake_dem(p, 1), "reason": ""} for p in points]
+        return [{"status": "ok", "outputs": fake_dem(p, 1), "reason": "", "curve": fake_curve(p, 1)} for p in points]
 
     def verify(tools, scene, folder, parameters, targets, predicted, first_seed, seeds, max_seeds, tolerance, quiet,
-               intervals=None, scale_resolution=None):
+               intervals=None, scale_resolution=None, curves=None):
+        # As demcal-verify and calibrate_runs.verify: the seed count follows the scalar targets, the curve's points
+        # are added from the seeds' curves.
         os.makedirs(folder, exist_ok=True)
+        all_targets = targets
+        targets = {o: t for o, t in targets.items() if o not in set(curve_targets.names(curves or []))}
         n = seeds
         while True:
             runs = [outputs.with_ratios(fake_dem(parameters, s), targets) for s in range(first_seed, first_seed + n)]
@@ -96,6 +114,9 @@ def fake(monkeypatch, tmp_path):
             json.dump({"x": parameters, "predicted": predicted, "prediction_interval_95": intervals}, f)
         v = {"passed": passed, "verdict": "mean_inside_band" if passed else "outside", "outputs": rows,
              "seeds": [{"seed": s, "status": "ok", "macro": {k: float(x) for k, x in r.items()}} for s, r in zip(range(first_seed, first_seed + n), runs)]}
+        if curves:
+            v = curve_targets.add_to_verification(v, {s: fake_curve(parameters, s) for s in range(first_seed, first_seed + n)},
+                                                  curves, all_targets, predicted or {}, intervals, tolerance)
         if scale_resolution:
             v["finer"] = {"factor": scale_resolution, "seeds": v["seeds"][:2], "shift_pct": {o: 0.0 for o in targets}}
         with open(os.path.join(folder, "verification.json"), "w") as f:
@@ -696,3 +717,58 @@ def test_the_bayesian_search_gives_a_posterior_and_a_verified_point(fake, tmp_pa
     lo, hi = rows["sigma_t_MPa"]["exported"]["interval_95"]
     assert lo <= truth <= hi
     assert "### What a mean of 5 fresh specimens will show" in md and "| sigma_t_MPa | - |" in md
+
+
+def lab_curve_at(p, path, seeds=range(100, 400)):
+    """The population's mean curve at parameters p (the fake's specimens averaged), written as a lab curve file:
+    compression positive, so the lateral strain negative; returns its rows."""
+    peak = np.mean([2 * fake_dem(p, s)["sigma_u_MPa"] / (fake_dem(p, s)["E_GPa"] * 1e3) for s in seeds])
+    e = np.linspace(0, 1.3 * peak, 40)
+    stress = np.mean([np.interp(e, c["axial_strain"], c["stress_MPa"]) for c in (fake_curve(p, s) for s in seeds)], axis=0)
+    lateral = -np.mean([np.interp(e, c["axial_strain"], c["lateral_strain"]) for c in (fake_curve(p, s) for s in seeds)], axis=0)
+    with open(path, "w") as f:
+        f.write("axial_strain,axial_stress_MPa,lateral_strain\n")
+        for row in zip(e, stress, lateral):
+            f.write(",".join(repr(float(x)) for x in row) + "\n")
+    return e, stress, lateral
+
+
+def test_a_measured_curve_is_met_point_by_point_and_verified(fake, tmp_path, bin_dir):
+    # The lab's curve is the population's mean curve at a truth, with the lateral strain: the calibration must meet
+    # its 16 points (8 stresses, 8 lateral strains over 0.1-1.0 of the peak strain) and the one scalar target on
+    # fresh seeds, and the population's curve at the answer must lie within 5 % of the lab's at every point.
+    truth = {"Ec_Pa": 15e9, "sc_Pa": 80e6, "kn_ks": 2.5, "mu": 0.5}
+    path = str(tmp_path / "lab_curve.csv")
+    lab_curve_at(truth, path)
+    targets = {"sigma_u_MPa": float(np.mean([fake_dem(truth, s)["sigma_u_MPa"] for s in range(100, 400)]))}
+    uncertainty = {}
+    problems = calibrate.Problems()
+    args = type("Args", (), {"curve": [path], "curve_window": None})()
+    with_axes = dict(DESCRIPTION, curve_axes={"x": "axial strain", "y": "axial stress (MPa)"})
+    curves = calibrate.measured_curves(args, targets, uncertainty, with_axes, "trust-region", problems)
+    problems.raise_if_any()
+    assert len(targets) == 1 + 16 and not uncertainty
+    out = str(tmp_path / "cal")
+    os.makedirs(out)
+    config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05, "budget": 80,
+              "scale_parameter": None, "curves": curves}
+    with open(os.path.join(out, "calibration.json"), "w") as f:
+        json.dump(config, f)
+    tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
+    code = calibrate.Calibration(config, out, tools, quiet=True).run()
+    solution = json.load(open(os.path.join(out, "solution.json")))
+    assert code == calibrate.EXIT_MET, solution["why"]
+    assert solution["dem_runs"] <= 80
+    rows = json.load(open(os.path.join(out, "verification.json")))["outputs"]
+    names = curve_targets.names(curves)
+    assert set(names) < set(rows) and all(rows[n]["passed"] for n in names)
+    assert all(rows[n]["mean"] < 0 for n in names if "curve_lateral@" in n)  # compression positive, as the file
+    x = solution["x"]
+    for q in curves[0]["points"]:
+        kind = "stress_MPa" if q["kind"] == "stress" else "lateral_strain"
+        sign = 1 if q["kind"] == "stress" else -1
+        mean = np.mean([sign * np.interp(q["strain"], c["axial_strain"], c[kind])
+                        for c in (fake_curve(x, s) for s in range(100, 400))])
+        assert abs(mean / q["value"] - 1) < 0.05, (q["name"], mean, q["value"])
+    report(out)
+    assert "| curve_MPa@" in open(os.path.join(out, "report.md")).read()

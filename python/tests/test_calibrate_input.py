@@ -4,12 +4,13 @@ against the scene's bounds, the budget, the tolerance, the checks, the strategy)
 every problem of the command at once, one line each, exit 2, and the corrected command then runs."""
 import json
 
+import numpy as np
 import pytest
 
 from conftest import fake_describing_bin, run_study_layer
 from demcal_study import calibrate, executables
 from demcal_study.__main__ import parser
-from demcal_study.errors import StudyErrors
+from demcal_study.errors import Problems, StudyErrors
 from test_calibrate import DESCRIPTION, fake  # noqa: F401 (fake: the closed-form stand-in for the DEM)
 
 
@@ -170,3 +171,80 @@ def test_assignments_refuse_a_name_given_twice():
     with pytest.raises(Exception, match="nu is given twice"):
         calibrate.parse_assignments(["nu=0.2", "E_GPa=3 nu=0.3"], "--target")
     assert calibrate.parse_assignments(["nu=0.2 E_GPa=3"], "--target") == {"nu": 0.2, "E_GPa": 3.0}
+
+
+def write_curve(path, rows, header="axial_strain,axial_stress_MPa"):
+    path.write_text(header + "\n" + "".join(",".join(str(x) for x in r) + "\n" for r in rows))
+    return str(path)
+
+
+def test_every_problem_of_a_measured_curve_is_one_line_and_nothing_is_written(tmp_path):
+    description = dict(with_ranges(), curve_axes={"x": "axial strain", "y": "axial stress (MPa)"})
+    bin_dir = fake_describing_bin(str(tmp_path / "bin"), description)
+    (tmp_path / "scene.json").write_text("{}")
+    good = [(0.0, 0.0), (0.001, 10.0), (0.002, 18.0), (0.003, 22.0), (0.004, 20.0)]
+    short = write_curve(tmp_path / "short.csv", good[:4])
+    unordered = write_curve(tmp_path / "unordered.csv", [good[0], good[2], good[1], good[3], good[4]])
+    ok = write_curve(tmp_path / "ok.csv", good)
+    words = write_curve(tmp_path / "words.csv", good[:2] + [(0.002, "high")] + good[3:])
+    done = run_study_layer(["calibrate", "--scene", str(tmp_path / "scene.json"), "--out-root", str(tmp_path / "out"),
+                            "--target", "nu=0.2", "--curve", short, "--curve", unordered, "--curve", words,
+                            "--curve", "ucs:" + ok, "--curve", str(tmp_path / "none.csv"),
+                            "--curve-window", "0.1:1.5"], bin_dir)
+    assert done.returncode == 2, done.stderr
+    lines = [x.removeprefix("demcal_study: error: ") for x in done.stderr.strip().splitlines()]
+    assert lines == [
+        f"--curve: {short}: 4 point(s); a curve needs at least 5",
+        f"--curve: {unordered}: line 4: axial_strain 0.001 is not above the one before (0.002): strains must increase",
+        f"--curve: {words}: line 4: axial_stress_MPa \"high\" is not a number",
+        f"--curve: {ok}: the window 0.1:1.5 of the peak strain 0.003 spans strains 0.0003 to 0.0045, outside the "
+        "curve's 0 to 0.004",
+        f"--curve: {tmp_path / 'none.csv'}: cannot be read (No such file or directory)",
+    ], done.stderr
+    assert not (tmp_path / "out").exists()
+    # A window of the right form that the curve holds, a label on a single test, and no scalar target beside it.
+    done = run_study_layer(["calibrate", "--scene", str(tmp_path / "scene.json"), "--out-root", str(tmp_path / "out"),
+                            "--curve", "ucs:" + ok, "--curve-window", "0.5"], bin_dir)
+    lines = [x.removeprefix("demcal_study: error: ") for x in done.stderr.strip().splitlines()]
+    assert done.returncode == 2 and lines == [
+        "--target: give at least one NAME=VALUE (e.g. --target E_GPa=6.5)",
+        "--curve-window: \"0.5\" is not A:B with 0 <= A < B (fractions of the peak strain, e.g. 0.1:1.0)",
+    ], done.stderr
+    done = run_study_layer(["calibrate", "--scene", str(tmp_path / "scene.json"), "--out-root", str(tmp_path / "out"),
+                            "--target", "nu=0.2", "--curve", "ucs:" + ok], bin_dir)
+    lines = [x.removeprefix("demcal_study: error: ") for x in done.stderr.strip().splitlines()]
+    assert done.returncode == 2 and lines == [
+        f"--curve: ucs:{ok}: the scene is a single test: give the curve without a label"], done.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_bayesian_search_takes_a_curve_with_its_sd_and_weighs_each_point_by_it(tmp_path):
+    description = dict(DESCRIPTION, curve_axes={"x": "axial strain", "y": "axial stress (MPa)"})
+    rows = [(0.0, 0.0, 0.5), (0.001, 10.0, 0.7), (0.002, 18.0, 0.9), (0.003, 22.0, 1.1), (0.004, 20.0, 1.3)]
+    with_sd = write_curve(tmp_path / "sd.csv", rows, "axial_strain,axial_stress_MPa,sd_MPa")
+    bare = write_curve(tmp_path / "bare.csv", [r[:2] for r in rows])
+    lateral = write_curve(tmp_path / "lateral.csv", [r[:2] + (-r[0] / 4, r[2]) for r in rows],
+                          "axial_strain,axial_stress_MPa,lateral_strain,sd_MPa")
+
+    def curves_of(path, strategy):
+        problems, targets, uncertainty = Problems(), {"nu": 0.2}, {"nu": {"sd": 0.01, "n": 3}}
+        args = type("Args", (), {"curve": [path], "curve_window": "0.2:1.0"})()
+        curves = calibrate.measured_curves(args, targets, uncertainty, description, strategy, problems)
+        return curves, targets, uncertainty, problems.messages
+
+    curves, targets, uncertainty, problems = curves_of(with_sd, "bayes")
+    assert not problems
+    points = curves[0]["points"]
+    # 8 strains from 0.2 to 1.0 of the peak strain 0.003, the SD interpolated between the file's rows.
+    assert [q["strain"] for q in points] == pytest.approx(list(np.linspace(0.0006, 0.003, 8)))
+    for q in points:
+        assert targets[q["name"]] == pytest.approx(np.interp(q["strain"], [r[0] for r in rows], [r[1] for r in rows]))
+        assert uncertainty[q["name"]] == {"sd": pytest.approx(0.5 + 200 * q["strain"]), "n": 1}
+    _, _, _, problems = curves_of(bare, "bayes")
+    assert problems == [f"--curve {bare}: the Bayesian search weighs each point by the lab's scatter: give the curve "
+                        "an sd_MPa column"]
+    _, _, _, problems = curves_of(lateral, "bayes")
+    assert problems == [f"--curve {lateral}: the Bayesian search weighs each point by the lab's scatter: give the "
+                        "curve an sd_MPa column and no lateral_strain column (it has no scatter column)"]
+    _, targets, _, problems = curves_of(lateral, "trust-region")
+    assert not problems and len(targets) == 1 + 16

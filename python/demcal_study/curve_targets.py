@@ -1,0 +1,266 @@
+"""A measured stress-strain curve as a target: the curve becomes a few scalar targets, the measured stress (and
+lateral strain, when given) at evenly spaced strains over a window of the measured peak strain, and every search,
+the Bayesian one included, meets those as it meets any target.
+
+The curve file is CSV with a header, `axial_strain,axial_stress_MPa[,lateral_strain][,sd_MPa]`, compression
+positive and strains as fractions (so a specimen that swells has a negative lateral strain), one row per
+measurement, strains increasing. The window `A:B` is given in fractions of the measured peak strain (the strain at
+the largest stress). The points' names say where they are: `curve_MPa@0.0021` (a stress at axial strain 0.0021),
+`curve_lateral@0.0021`, prefixed by the test's label in a test list (`ucs.curve_MPa@0.0021`).
+
+The DEM's curve is read at the same strains by linear interpolation; past the end of a DEM curve (a specimen that
+failed and stopped earlier) the curve's last value stands, which is what the failed specimen carries."""
+import csv
+import math
+import os
+
+import numpy as np
+
+POINTS = 8             # strains a curve is compared at
+DEFAULT_WINDOW = (0.1, 1.0)
+MIN_ROWS = 5
+STRESS, LATERAL = "curve_MPa", "curve_lateral"
+
+
+def parse_spec(spec):
+    """`[LABEL:]PATH` -> (label or None, path). A path may hold a colon only when a label is given."""
+    if ":" in spec and not os.path.exists(spec):
+        label, path = spec.split(":", 1)
+        return label, path
+    return None, spec
+
+
+def parse_window(text, where, problems):
+    """`A:B` (fractions of the peak strain, 0 <= A < B) -> (A, B), or None with a problem added."""
+    parts = str(text).split(":")
+    try:
+        a, b = (float(x) for x in parts) if len(parts) == 2 else (None, None)
+    except ValueError:
+        a = b = None
+    if a is None or not (math.isfinite(a) and math.isfinite(b)) or not 0 <= a < b:
+        problems.add(f"{where}: \"{text}\" is not A:B with 0 <= A < B (fractions of the peak strain, e.g. 0.1:1.0)")
+        return None
+    return a, b
+
+
+def read_curve(path, where, problems):
+    """The measured curve as {column: numpy array}, or None with one problem per defect."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        problems.add(f"{where}: {path}: cannot be read ({e.strerror})")
+        return None
+    if not rows:
+        problems.add(f"{where}: {path}: empty; give the header axial_strain,axial_stress_MPa[,lateral_strain][,sd_MPa]")
+        return None
+    header = [h.strip() for h in rows[0]]
+    known = ("axial_strain", "axial_stress_MPa", "lateral_strain", "sd_MPa")
+    bad = [h for h in header if h not in known]
+    if bad or "axial_strain" not in header or "axial_stress_MPa" not in header:
+        problems.add(f"{where}: {path}: header {','.join(header)}: give axial_strain,axial_stress_MPa and optionally "
+                     "lateral_strain and sd_MPa" + (f" (unknown: {', '.join(bad)})" if bad else ""))
+        return None
+    columns = {h: [] for h in header}
+    for k, row in enumerate(rows[1:], start=2):
+        if not any(cell.strip() for cell in row):
+            continue
+        if len(row) != len(header):
+            problems.add(f"{where}: {path}: line {k} has {len(row)} values, the header {len(header)}")
+            return None
+        for h, cell in zip(header, row):
+            try:
+                x = float(cell)
+            except ValueError:
+                x = float("nan")
+            if not math.isfinite(x):
+                problems.add(f"{where}: {path}: line {k}: {h} \"{cell.strip()}\" is not a number")
+                return None
+            columns[h].append(x)
+    curve = {h: np.array(v) for h, v in columns.items()}
+    n = len(curve["axial_strain"])
+    if n < MIN_ROWS:
+        problems.add(f"{where}: {path}: {n} point(s); a curve needs at least {MIN_ROWS}")
+        return None
+    steps = np.diff(curve["axial_strain"])
+    if np.any(steps <= 0):
+        k = int(np.argmax(steps <= 0)) + 3  # the file's line of the first strain not above the one before
+        problems.add(f"{where}: {path}: line {k}: axial_strain {curve['axial_strain'][k - 2]:g} is not above the one "
+                     f"before ({curve['axial_strain'][k - 3]:g}): strains must increase")
+        return None
+    if "sd_MPa" in curve and np.any(curve["sd_MPa"] <= 0):
+        problems.add(f"{where}: {path}: sd_MPa must be positive on every line")
+        return None
+    return curve
+
+
+def point_names(label, strains, lateral):
+    """The targets' names, stress points first: each strain with the digits that tell it from its neighbours."""
+    prefix = f"{label}." if label else ""
+    for digits in range(4, 12):
+        texts = [f"{e:.{digits}g}" for e in strains]
+        if len(set(texts)) == len(texts):
+            break
+    names = [f"{prefix}{STRESS}@{t}" for t in texts]
+    if lateral:
+        names += [f"{prefix}{LATERAL}@{t}" for t in texts]
+    return names
+
+
+def curve_target(spec, window, where, problems):
+    """A curve target as the calibration stores it: {"spec", "label", "path", "window", "peak_strain", "points":
+    [{"name", "strain", "kind", "value", "sd"}]}, or None with problems added."""
+    label, path = parse_spec(spec)
+    curve = read_curve(path, where, problems)
+    if curve is None or window is None:
+        return None
+    strain, stress = curve["axial_strain"], curve["axial_stress_MPa"]
+    peak = float(strain[int(np.argmax(stress))])
+    if peak <= 0:
+        problems.add(f"{where}: {path}: the peak stress is at strain {peak:g}; a curve needs its peak at a positive strain")
+        return None
+    lo, hi = window[0] * peak, window[1] * peak
+    if lo < strain[0] or hi > strain[-1]:
+        problems.add(f"{where}: {path}: the window {window[0]:g}:{window[1]:g} of the peak strain {peak:g} spans "
+                     f"strains {lo:g} to {hi:g}, outside the curve's {strain[0]:g} to {strain[-1]:g}")
+        return None
+    at = np.linspace(lo, hi, POINTS)
+    lateral = "lateral_strain" in curve
+    names = point_names(label, at, lateral)
+    sd = np.interp(at, strain, curve["sd_MPa"]) if "sd_MPa" in curve else [None] * POINTS
+    points = [{"name": n, "strain": float(e), "kind": "stress", "value": float(v),
+               "sd": None if s is None else float(s)}
+              for n, e, v, s in zip(names, at, np.interp(at, strain, stress), sd)]
+    if lateral:
+        points += [{"name": n, "strain": float(e), "kind": "lateral", "value": float(v), "sd": None}
+                   for n, e, v in zip(names[POINTS:], at, np.interp(at, strain, curve["lateral_strain"]))]
+    for q in points:
+        if q["value"] == 0:
+            problems.add(f"{where}: {path}: the {q['kind']} at strain {q['strain']:g} is 0; a target must be non-zero "
+                         "(start the window later)")
+            return None
+    return {"spec": spec, "label": label, "path": path, "window": list(window), "peak_strain": peak,
+            "points": points}
+
+
+def check_against_scene(curves, description, where, problems):
+    """A curve must name a test of a list by its label (and a single test takes none), and that test's curve must
+    be an axial stress against axial strain; a confined test's curve is not supported yet."""
+    tests = description.get("tests") if description.get("test") == "list" else None
+    for c in curves:
+        if tests is not None:
+            labels = [t["label"] for t in tests]
+            if c["label"] not in labels:
+                problems.add(f"{where}: {c['spec']}: a test list's curve names its test, LABEL:{c['path']} "
+                             f"(labels: {', '.join(labels)})")
+                continue
+            axes = next(t for t in tests if t["label"] == c["label"]).get("curve_axes", {})
+        else:
+            if c["label"] is not None:
+                problems.add(f"{where}: {c['spec']}: the scene is a single test: give the curve without a label")
+                continue
+            axes = description.get("curve_axes", {})
+        if axes.get("x") != "axial strain" or not str(axes.get("y", "")).startswith("axial stress"):
+            problems.add(f"{where}: {c['spec']}: the test's curve is {axes.get('y', 'none')} against "
+                         f"{axes.get('x', 'none')}; a measured curve is compared with an axial stress against axial "
+                         "strain (a uniaxial test)")
+
+
+def extend_description(description, curves):
+    """describe's JSON with each curve point as an output: stresses stress-like (MPa), lateral strains pure
+    numbers."""
+    out = dict(description, outputs=dict(description["outputs"]))
+    for c in curves:
+        for q in c["points"]:
+            out["outputs"][q["name"]] = (
+                {"unit": "MPa", "stress_like": True, "si_factor": 1e6,
+                 "description": f"measured curve's axial stress at axial strain {q['strain']:g}"}
+                if q["kind"] == "stress" else
+                {"unit": "1", "stress_like": False, "si_factor": 1.0,
+                 "description": f"measured curve's lateral strain (compression positive) at axial strain {q['strain']:g}"})
+    return out
+
+
+def point_values(curve, curves):
+    """The DEM run's values at every curve point, from its result's `curve` ({column: list}); a point the run has
+    no curve for is left out."""
+    out = {}
+    for c in curves:
+        prefix = f"{c['label']}." if c["label"] else ""
+        strain = curve.get(prefix + "axial_strain") if curve else None
+        stress = curve.get(prefix + "stress_MPa") if curve else None
+        if not strain or not stress or len(strain) != len(stress):
+            continue
+        strain, stress = np.asarray(strain, float), np.asarray(stress, float)
+        lateral = curve.get(prefix + "lateral_strain")
+        for q in c["points"]:
+            if q["kind"] == "stress":
+                out[q["name"]] = float(np.interp(q["strain"], strain, stress))
+            elif lateral is not None and len(lateral) == len(strain):
+                # The DEM counts a swelling specimen's lateral strain positive; the lab file compression positive.
+                out[q["name"]] = -float(np.interp(q["strain"], strain, np.asarray(lateral, float)))
+    return out
+
+
+def names(curves):
+    return [q["name"] for c in curves for q in c["points"]]
+
+
+VERDICTS = ("interval_inside_band", "mean_inside_band", "outside")  # best first, as demcal-verify ranks them
+
+
+def add_to_verification(v, seed_curves, curves, targets, predicted, intervals, tolerance):
+    """demcal-verify's result `v` (which ran the scalar targets) with the curve points added as demcal-verify
+    would: each seed's values at the points joined to its `macro`, and a row per point (mean, SD, CV, 95 % interval
+    of the mean by Student's t, relative error, passed, verdict); `passed` and `verdict` then cover them.
+    seed_curves: {seed: the run's curve}. Returns v."""
+    from .trust_region import t975
+    for s in v["seeds"]:
+        if s.get("status") == "ok":
+            s["macro"].update(point_values(seed_curves.get(s["seed"]), curves))
+    rank = VERDICTS.index(v.get("verdict", VERDICTS[0])) if v.get("verdict") in VERDICTS else 0
+    for name in names(curves):
+        target = targets[name]
+        x = np.array([s["macro"][name] for s in v["seeds"] if s.get("status") == "ok"
+                      and isinstance(s["macro"].get(name), (int, float)) and math.isfinite(s["macro"][name])])
+        n = len(x)
+        mean = float(x.mean()) if n else float("nan")
+        sd = float(x.std(ddof=1)) if n > 1 else float("nan")
+        half = t975(n - 1) * sd / math.sqrt(n) if n > 1 else float("nan")
+        err = 100.0 * (mean - target) / abs(target)
+        passed = n >= 2 and abs(err) <= 100.0 * tolerance
+        band = (target - tolerance * abs(target), target + tolerance * abs(target))
+        verdict = VERDICTS[2] if not passed else (
+            VERDICTS[0] if band[0] <= mean - half and mean + half <= band[1] else VERDICTS[1])
+        pi = intervals.get(name) if intervals else None
+        v["outputs"][name] = {"target": target, "predicted": predicted.get(name), "predicted_interval_95": pi,
+                              "mean": _number(mean), "sd": _number(sd), "cv_pct": _number(100.0 * sd / abs(mean)),
+                              "ci95_low": _number(mean - half), "ci95_high": _number(mean + half),
+                              "half_width_pct": _number(100.0 * half / abs(target)),
+                              "relative_error_pct": _number(err), "runs": n, "passed": bool(passed),
+                              "verdict": verdict}
+        v["passed"] = bool(v["passed"] and passed)
+        rank = max(rank, VERDICTS.index(verdict))
+    if curves:
+        v["verdict"] = VERDICTS[rank]
+    return v
+
+
+def _number(x):
+    """As demcal-verify writes a number: null when it is not finite."""
+    return float(x) if math.isfinite(x) else None
+
+
+def read_seed_curves(runs_folder, seeds):
+    """{seed: the `curve` of runs_folder/runs.h5.points/run1_seedS.json} for the seeds whose file is there (the
+    folder demcal-verify ran them in)."""
+    import json
+    out = {}
+    for s in seeds:
+        path = os.path.join(runs_folder, "runs.h5.points", f"run1_seed{s}.json")
+        try:
+            with open(path) as f:
+                out[s] = json.load(f).get("curve")
+        except (OSError, ValueError):
+            pass
+    return out
