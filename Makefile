@@ -37,6 +37,7 @@ study: build
 #                  [STRATEGY=kriging] [CHECK_RESOLUTION=2] [CHECK_TESTS="data/scenes/biaxial_rock_fj.json"]
 #                  [CURVES="lab_curve.csv"] [CURVE_WINDOW=0.1:1.0]
 #   with the lab's scatter: TARGETS="sigma_u_MPa=200+-22/n=5 ..." or LAB_SPECIMENS=lab.csv, and STRATEGY=bayes
+#   [MODEL_DISCREPANCY=0.1]
 TOLERANCE ?= 0.05
 BUDGET    ?= 80
 calibrate: build
@@ -47,6 +48,7 @@ calibrate: build
 	  $(if $(STRATEGY),--strategy $(STRATEGY)) $(if $(CHECK_RESOLUTION),--check-resolution $(CHECK_RESOLUTION)) \
 	  $(foreach c,$(CHECK_TESTS),--check-test $(c)) $(if $(LAB_SPECIMENS),--lab-specimens $(LAB_SPECIMENS)) \
 	  $(foreach c,$(CURVES),--curve $(c)) $(if $(CURVE_WINDOW),--curve-window $(CURVE_WINDOW)) \
+	  $(if $(MODEL_DISCREPANCY),--model-discrepancy $(MODEL_DISCREPANCY)) \
 	  --out-root $(BUILD)/calibrations
 
 # Hours: every target of data/benchmarks/calibration_targets.json (resumable; ONLY=a,b runs a part; GLOBAL=1 adds

@@ -158,6 +158,9 @@ def parser():
                      help="the search on specimen 1: local linear models in a trust region (default), Gaussian "
                           "processes with expected improvement, or a posterior over the parameters from targets "
                           "with their scatter (bayes: posterior.csv and posterior.json beside the solution)")
+    cal.add_argument("--model-discrepancy", metavar="F",
+                     help="bayes only: the model's own misfit as a fraction F of each target, added to the DEM's SD "
+                          "in quadrature (a 2D model of 3D lab data, e.g. 0.1); none by default")
     cal.add_argument("--check-resolution", metavar="F",
                      help="once met, verify again with the disk radii divided by F (> 1) and report the shift")
     cal.add_argument("--check-test", action="append", metavar="SCENE.json",

@@ -40,10 +40,11 @@ class Posterior:
 
     targets: lab_targets.LabTarget per emulator, in the same order; stress_like: which of them scale with s;
     scale_bounds: (low, high) of s, or None when nothing scales; lab_correlation: the lab's correlation matrix of
-    the targets (None: independent)."""
+    the targets (None: independent); discrepancy: the model's own misfit, a relative SD of each target's mean added
+    to the DEM's SD in quadrature (a 2D model of 3D lab data cannot meet it better than that; 0: none)."""
 
     def __init__(self, emulators, targets, stress_like, dimensions, scale_bounds=None, lab_correlation=None,
-                 scale_support=None):
+                 scale_support=None, discrepancy=0.0):
         if len(emulators) != len(targets) or len(stress_like) != len(targets):
             raise ValueError("one emulator and one stress-like flag per target")
         if scale_bounds is None and any(stress_like):
@@ -58,6 +59,9 @@ class Posterior:
         # bounds there (None: the fixed bounds alone); the prior is then 1/s over that region of (u, s).
         self.scale_support = scale_support
         self.lab_r = None if lab_correlation is None else np.asarray(lab_correlation, dtype=float)
+        if not 0.0 <= discrepancy < 1.0:
+            raise ValueError("the model discrepancy is a relative SD in [0, 1)")
+        self.discrepancy_sd = discrepancy * np.abs(np.array([t.mean for t in self.targets], dtype=float))
 
     @property
     def ndim(self):
@@ -95,6 +99,7 @@ class Posterior:
         if not np.any(inside):
             return out
         mean, sd = self.predicted(theta[inside])
+        sd = np.hypot(sd, self.discrepancy_sd)
         value = gaussian_log_likelihood(self.targets, mean, sd, lab_correlation=self.lab_r)
         if self.scale_bounds is not None:
             value -= np.log(s[inside])  # log-uniform prior on s

@@ -593,6 +593,15 @@ def checked_command(args):
             if name not in uncertainty:
                 problems.add(f"--target: {name}: the Bayesian search weighs each target by the lab's scatter: write "
                              f"{name}=MEAN+-SD (or +-SD/n=N for a mean of N specimens), or give --lab-specimens")
+    discrepancy = None
+    if getattr(args, "model_discrepancy", None) is not None:
+        discrepancy = number_option(args.model_discrepancy, "--model-discrepancy", problems)
+        if discrepancy is not None and not 0 < discrepancy < 1:
+            problems.add(f"--model-discrepancy: {discrepancy:g} must lie in (0, 1) (a fraction of each target)")
+            discrepancy = None
+        if strategy != "bayes":
+            problems.add("--model-discrepancy: only the Bayesian search weighs the targets by their uncertainty: "
+                         "add --strategy bayes")
     check_resolution = None
     if args.check_resolution is not None:
         check_resolution = number_option(args.check_resolution, "--check-resolution", problems)
@@ -673,6 +682,8 @@ def checked_command(args):
         config["target_uncertainty"] = uncertainty
     if lab_correlation:
         config["lab_correlation"] = lab_correlation
+    if discrepancy is not None:
+        config["model_discrepancy"] = discrepancy
     out, replace = None, False
     if targets and args.scene:
         on_curve = set(curve_targets.names(curves))

@@ -27,6 +27,9 @@ def posterior_lines(out, solution):
         sd = "-" if t["sd"] is None else num(t["sd"])
         se = "-" if t["standard_error"] is None else num(t["standard_error"])
         lines.append(f"| {md(name)} | {num(t['mean'])} | {sd} | {t['n']} | {se} |")
+    if posterior.get("model_discrepancy"):
+        lines += ["", f"A model discrepancy of {num(100 * posterior['model_discrepancy'])} % of each target was added to "
+                      "the DEM's SD in the likelihood: the model is not expected to meet the lab closer than that."]
     exported = posterior["exported"]
     lines += ["", f"Exported point: {md(exported['how'])}; it is the point the verifications above ran (then corrected "
                   "by specimen 1's measured offset where a verification missed)."]

@@ -107,3 +107,15 @@ def test_a_chain_shorter_than_fifty_autocorrelation_times_runs_on_up_to_its_cap(
     assert 50 * max(short.autocorrelation_steps) > 300
     long = p.sample(seed=4, steps=4000, max_steps=16000)
     assert long.steps == 4000 and long.converged
+
+
+def test_a_stated_model_discrepancy_widens_the_posterior_by_its_share_of_the_target():
+    # A 2 % discrepancy of a target of 3.0 is an SD of 0.06 beside the lab's 0.08: 0.10 in all.
+    targets = [LabTarget("x", 3.0, 0.08, 1)]
+    plain = Posterior([Linear(3.0, [1.0])], targets, [False], dimensions=1).sample(seed=5, steps=4000)
+    with_misfit = Posterior([Linear(3.0, [1.0])], targets, [False], dimensions=1,
+                            discrepancy=0.02).sample(seed=5, steps=4000)
+    assert np.std(plain.theta[:, 0]) == pytest.approx(0.08, rel=0.1)
+    assert np.std(with_misfit.theta[:, 0]) == pytest.approx(0.10, rel=0.1)
+    with pytest.raises(ValueError):
+        Posterior([Linear(3.0, [1.0])], targets, [False], dimensions=1, discrepancy=1.0)

@@ -248,3 +248,20 @@ def test_the_bayesian_search_takes_a_curve_with_its_sd_and_weighs_each_point_by_
                         "curve an sd_MPa column and no lateral_strain column (it has no scatter column)"]
     _, targets, _, problems = curves_of(lateral, "trust-region")
     assert not problems and len(targets) == 1 + 16
+
+
+def test_a_model_discrepancy_is_a_fraction_and_only_for_the_bayesian_search(monkeypatch, tmp_path):
+    bin_dir = fake_describing_bin(str(tmp_path / "bin"), with_ranges())
+    (tmp_path / "scene.json").write_text("{}")
+    done = run_study_layer(["calibrate", "--scene", str(tmp_path / "scene.json"), "--out-root", str(tmp_path / "out"),
+                            "--target", "E_GPa=6.5", "--model-discrepancy", "1.5"], bin_dir)
+    lines = [x.removeprefix("demcal_study: error: ") for x in done.stderr.strip().splitlines()]
+    assert done.returncode == 2 and lines == [
+        "--model-discrepancy: 1.5 must lie in (0, 1) (a fraction of each target)",
+        "--model-discrepancy: only the Bayesian search weighs the targets by their uncertainty: add --strategy bayes",
+    ], done.stderr
+    assert not (tmp_path / "out").exists()
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: with_ranges())
+    config, _, _ = calibrate.checked_command(command(tmp_path, "--target", "E_GPa=6.5+-0.3", "--strategy", "bayes",
+                                                     "--model-discrepancy", "0.1"))
+    assert config["model_discrepancy"] == 0.1
