@@ -125,7 +125,8 @@ def verify(tools, solution, scene, space, verification, work, out, md=None, csv=
 
 
 def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=None, fixed=None, scale_parameter=None,
-              check_resolution=None, check_tests=(), search=None, target_scatter=None, lab_specimens=None):
+              check_resolution=None, check_tests=(), search=None, target_scatter=None, lab_specimens=None,
+              curves=(), curve_window=None, model_discrepancy=None):
     """python -m demcal_study calibrate: the trust-region calibration (docs/explanation/calibration_method.md) of a
     "strategy": "trust_region" study, into out_root/name (resumable; exit 0 met, 3 unreachable, 4 budget).
     target_scatter: {output: {"sd", "n"}}, written as --target NAME=MEAN+-SD/n=N."""
@@ -152,6 +153,12 @@ def calibrate(tools, scene, targets, tolerance, budget, out_root, name, space=No
         args += ["--check-test", path]
     if search and search != "trust-region":  # the default stays off the line, so stored calibrations resume
         args += ["--strategy", search]
+    for spec in curves:
+        args += ["--curve", spec]
+    if curve_window:
+        args += ["--curve-window", curve_window]
+    if model_discrepancy:
+        args += ["--model-discrepancy", repr(model_discrepancy)]
     return args + ["--name", name, "--out-root", out_root]
 
 

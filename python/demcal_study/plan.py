@@ -3,7 +3,7 @@
 import json
 import os
 
-from . import commands, executables, scatter, schema, strategy
+from . import commands, curve_targets, executables, scatter, schema, strategy
 from .commands import IN_MAKE, for_make
 from .errors import fail, load_json
 from .files import write_if_changed
@@ -123,7 +123,8 @@ def trust_region_rules(study, scene, out):
     report.md. Its exits 3 (unreachable) and 4 (budget spent) are results the report states, not failures of the
     study; any other non-zero exit stops make (rerunning resumes)."""
     files = ([study["scene"]] + ([study["space"]] if "space" in study else []) + study.get("check_tests", [])
-             + ([study["lab_specimens"]] if "lab_specimens" in study else []))
+             + ([study["lab_specimens"]] if "lab_specimens" in study else [])
+             + [curve_targets.parse_spec(c)[1] for c in study.get("curves", [])])
     args = commands.calibrate(IN_MAKE, study["scene"], study.get("targets", {}),
                               study.get("verification", {}).get("tolerance", 0.05), study["budget"],
                               os.path.dirname(os.path.normpath(out)) or ".", os.path.basename(os.path.normpath(out)),
@@ -131,7 +132,9 @@ def trust_region_rules(study, scene, out):
                               scale_parameter=study.get("scale_parameter"),
                               check_resolution=study.get("check_resolution"),
                               check_tests=study.get("check_tests", []), search=study.get("search"),
-                              target_scatter=study.get("target_scatter"), lab_specimens=study.get("lab_specimens"))
+                              target_scatter=study.get("target_scatter"), lab_specimens=study.get("lab_specimens"),
+                              curves=study.get("curves", []), curve_window=study.get("curve_window"),
+                              model_discrepancy=study.get("model_discrepancy"))
     code = " ".join(os.path.join(os.path.relpath(PACKAGE), name) for name in TRUST_REGION_CODE)
     return [f"$(D)/report.md: $(D)/config/study.json {scene_files(files[0])} {' '.join(files[1:])} {code}",
             "\t" + for_make(args) + "; code=$$?; [ $$code -eq 0 ] || [ $$code -eq 3 ] || [ $$code -eq 4 ]",

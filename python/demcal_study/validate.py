@@ -4,8 +4,8 @@ scene's outputs, the factor limits of each design kind (demcal-doe) and the algo
 first problem stops it with one line naming the file and the field."""
 import os
 
-from . import executables, lab_targets, schema, strategy
-from .errors import StudyError, fail, load_json
+from . import curve_targets, executables, lab_targets, schema, strategy
+from .errors import Problems, StudyError, fail, load_json
 from .outputs import is_output, tests_per_point
 
 
@@ -21,7 +21,7 @@ def validate(study, path):
     if "space" not in study:
         fail(f"{where}: missing \"space\" (the parameter space file)")
     for key in ("budget", "scale_parameter", "check_resolution", "check_tests", "search", "target_scatter",
-                "lab_specimens"):
+                "lab_specimens", "curves", "curve_window", "model_discrepancy"):
         if key in study:
             fail(f"{where}: \"{key}\" applies to strategy trust_region only")
     if study.get("seeds_per_point") == "auto" and not strategy.in_the_loop(study):
@@ -81,6 +81,7 @@ def validate_trust_region(study, where):
         if not is_output(outputs, name, f"{where}: lab_specimens"):
             fail(f"{where}: lab_specimens: {name}: not a DEM output, nor a ratio A/B of two (outputs of "
                  f"{study['scene']}: {', '.join(sorted(outputs))})")
+    check_curves(study, where, scene)
     for name in study.get("targets", {}):
         if not is_output(outputs, name, f"{where}: targets"):
             fail(f"{where}: targets.{name}: not a DEM output, nor a ratio A/B of two (outputs of {study['scene']}: "
@@ -114,6 +115,31 @@ def validate_trust_region(study, where):
         fail(f"{where}: budget: {study['budget']} DEM runs cannot hold a design and a verification (at least 10 "
              f"points of {tests} test(s): {10 * tests} test runs)")
     return scene, space_path
+
+
+def check_curves(study, where, scene):
+    """Each curve file reads, holds the window and belongs to a uniaxial test of the scene; the bayes search needs
+    its sd_MPa column; a discrepancy needs the bayes search. The first problem fails, naming the field."""
+    if "curve_window" in study and "curves" not in study:
+        fail(f"{where}: curve_window: give the curves it applies to (\"curves\")")
+    if "model_discrepancy" in study and study.get("search") != "bayes":
+        fail(f"{where}: model_discrepancy: only the bayes search weighs the targets by their uncertainty "
+             "(\"search\": \"bayes\")")
+    if "curves" not in study:
+        return
+    problems = Problems()
+    window = curve_targets.parse_window(study.get("curve_window", "%g:%g" % curve_targets.DEFAULT_WINDOW),
+                                        "curve_window", problems)
+    curves = [c for c in (curve_targets.curve_target(spec, window, f"curves[{k}]", problems)
+                          for k, spec in enumerate(study["curves"])) if c]
+    curve_targets.check_against_scene(curves, scene, "curves", problems)
+    if study.get("search") == "bayes":
+        for c in curves:
+            if any(q["sd"] is None for q in c["points"]):
+                problems.add(f"curves: {c['spec']}: the bayes search weighs each point by the lab's scatter: give it "
+                             "an sd_MPa column and no lateral_strain column")
+    if problems:
+        fail(f"{where}: {problems.messages[0]}")
 
 
 def check_lab_scatter(study, where, outputs):

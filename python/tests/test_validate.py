@@ -291,3 +291,48 @@ def test_lab_specimens_may_not_repeat_a_target(tmp_path, bin_dir):
     specimens.write_text("test,output,value\n,nu,0.17\n,nu,0.19\n")
     message = plan_error(tmp_path, edited(four_targets, lambda d: d.update(lab_specimens=str(specimens))), bin_dir)
     assert "lab_specimens: nu is also in targets: give it once" in message
+
+
+def write_lab_curve(path, header="axial_strain,axial_stress_MPa,sd_MPa"):
+    rows = [(0.0, 0.0, 0.5), (0.001, 10.0, 0.7), (0.002, 18.0, 0.9), (0.003, 22.0, 1.1), (0.004, 20.0, 1.3)]
+    path.write_text(header + "\n" + "".join(",".join(str(x) for x in r) + "\n" for r in rows))
+    return str(path)
+
+
+def test_a_study_passes_its_curves_window_and_discrepancy_to_the_calibration(tmp_path, bin_dir):
+    curve = write_lab_curve(tmp_path / "ucs_curve.csv")
+
+    def with_curve(d):
+        d.update(search="bayes", curves=[f"ucs:{curve}"], curve_window="0.2:1.0", model_discrepancy=0.1,
+                 target_scatter={"sigma_u_MPa": {"sd": 4.0, "n": 5}, "E_GPa": {"sd": 1.2}, "nu": {"sd": 0.02},
+                                 "sigma_t_MPa": {"sd": 0.4}})
+    path = tmp_path / "curve.json"
+    path.write_text(json.dumps(edited(four_targets, with_curve)))
+    out = tmp_path / "studies" / "c"
+    done = run_study_layer(["plan", str(path), str(out)], bin_dir)
+    assert done.returncode == 0, done.stderr
+    plan = (out / "plan.mk").read_text()
+    recipe = [line for line in plan.splitlines() if "demcal_study calibrate" in line]
+    assert f"--curve ucs:{curve} --curve-window 0.2:1.0 --model-discrepancy 0.1" in recipe[0]
+    rule = [line for line in plan.splitlines() if line.startswith("$(D)/report.md:")]
+    assert curve in rule[0].split()  # a new measured curve reruns the calibration
+
+
+def test_a_bad_curve_field_is_named(tmp_path, bin_dir):
+    curve = write_lab_curve(tmp_path / "c.csv")
+    bare = write_lab_curve(tmp_path / "bare.csv", "axial_strain,axial_stress_MPa,lateral_strain")
+    cases = [
+        (lambda d: d.update(curves=[curve]), f"curves: {curve}: a test list's curve names its test, LABEL:{curve} "
+                                             "(labels: ucs, brazilian)"),
+        (lambda d: d.update(curves=[f"brazilian:{curve}"]), "the test's curve is 2F / (pi D t) (MPa) against platen "
+                                                            "approach / D"),
+        (lambda d: d.update(curves=[f"ucs:{curve}"], curve_window="0.2:3"), "curves[0]: " + curve + ": the window 0.2:3"),
+        (lambda d: d.update(curve_window="0.2:1"), "curve_window: give the curves it applies to"),
+        (lambda d: d.update(model_discrepancy=0.1), "model_discrepancy: only the bayes search weighs"),
+        (lambda d: d.update(model_discrepancy=2), "model_discrepancy must lie in (0, 1)"),
+        (lambda d: d.update(curves=[f"ucs:{bare}"], search="bayes", target_scatter={
+            o: {"sd": 1.0} for o in ("sigma_u_MPa", "E_GPa", "nu", "sigma_t_MPa")}),
+         f"curves: ucs:{bare}: the bayes search weighs each point by the lab's scatter"),
+    ]
+    for change, message in cases:
+        assert message in plan_error(tmp_path, edited(four_targets, change), bin_dir), message
