@@ -44,3 +44,14 @@ def test_a_scene_the_script_does_not_know_needs_its_space_and_reference(tmp_path
                           cwd=REPO)
     assert done.returncode == 2
     assert "data/scenes/no_such_scene.json: no such file" in done.stderr
+
+
+def test_make_passes_a_budget_only_when_one_is_given():
+    # make calibrate's default BUDGET of 80 once reached this target and cut the slope's 400 runs to 80.
+    def dry(*args):
+        done = subprocess.run(["make", "-n", "boundary-calibration"] + list(args), cwd=REPO, capture_output=True,
+                              text=True)
+        assert done.returncode == 0, done.stderr
+        return [line for line in done.stdout.splitlines() if "--budget" in line or "--scene" in line]
+    assert not any("--budget" in line for line in dry("SCENE=data/scenes/rockfill_slope.json"))
+    assert any("--budget 12" in line for line in dry("BUDGET=12"))
