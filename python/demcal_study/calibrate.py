@@ -35,6 +35,7 @@ from . import calibrate_runs, commands, curve_targets, executables, lab_targets,
 from . import searches
 from .calibrate_limits import (EXIT_BUDGET, EXIT_FAILED, EXIT_MET, EXIT_UNREACHABLE,  # noqa: F401 (the exit codes)
                                FIRST_VERIFICATION_SEEDS, INITIAL_RADIUS, MAX_ROUNDS, MAX_VERIFICATION_SEEDS)
+from .calibrate_runner import Runner
 from .calibrate_verify import Verifier
 from .calibrate_report import report
 from .calibration_problem import Problem
@@ -116,13 +117,11 @@ class Calibration:
         self.problem = Problem(description, config["targets"], space=space, fixed=config.get("fixed"),
                                scale_parameter=config.get("scale_parameter"), where=config.get("where", "calibrate"))
         self.tolerance = config["tolerance"]
-        self.budget = config["budget"]
         # The budget counts lab-test runs: a point of a test list runs each of its tests.
-        self.tests = outputs.tests_described(description)
-        self.points = []   # every DEM point on specimen 1: {"u", "scale", "status", "outputs", "round"}
+        self.runner = Runner(self.problem, self.scene, out, tools, config["budget"],
+                             outputs.tests_described(description), self.curves, quiet)
         self.rounds = []   # what each round decided
         self.verifications = []
-        self.runs = 0
         self.posterior = None  # the Bayesian search's last posterior: its draws and exported point
         self.specimen_variance = 0.0  # of the modelled responses over fresh specimens, once a verification ran
         # Set when the scale factor the scale target wants leaves the bounds: the search then goes on with the
@@ -148,21 +147,8 @@ class Calibration:
             print(f"calibrate: {message}", file=sys.stderr, flush=True)
 
     # -- models and residuals --------------------------------------------------------------------------------------
-    def modelled(self, outputs, scale):
-        return {o: self.problem.to_model(o, outputs[o], scale) for o in self.problem.modelled_outputs()}
-
-    def usable(self):
-        rows = []
-        for p in self.points:
-            if p["status"] != "ok" or any(o not in p["outputs"] for o in self.problem.modelled_outputs()):
-                continue
-            z = self.modelled(p["outputs"], p["scale"])
-            if all(math.isfinite(v) for v in z.values()):
-                rows.append((p["u"], [z[o] for o in self.problem.modelled_outputs()]))
-        return rows
-
     def fit(self, centre, radius):
-        rows = self.usable()
+        rows = self.runner.usable()
         if len(rows) < 2:
             fail(f"{self.out}: fewer than two DEM points ran; see the round folders for the reasons")
         return trust_region.fit_local([r[0] for r in rows], [r[1] for r in rows], np.asarray(centre),
@@ -232,7 +218,7 @@ class Calibration:
     def measured_residuals(self, point):
         if point["status"] != "ok":
             return None
-        return self.residuals_of(self.modelled(point["outputs"], point["scale"]), point["u"])
+        return self.residuals_of(self.runner.modelled(point["outputs"], point["scale"]), point["u"])
 
     def residual_labels(self):
         labels = self.problem.residual_labels()
@@ -242,27 +228,6 @@ class Calibration:
         s = self.problem.scale_for(self.z_of(model, u, offset))
         low, high = self.problem.scale_interval(u)
         return min(max(s, low), high), (low, high), s
-
-    # -- DEM ---------------------------------------------------------------------------------------------------------
-    def run_round(self, label, entries):
-        """entries: (u, scale). Runs them on specimen 1 and records them."""
-        if self.runs + len(entries) * self.tests > self.budget:
-            entries = entries[:max((self.budget - self.runs) // self.tests, 0)]
-        if not entries:
-            return []
-        params = [self.problem.absolute(u, s) for u, s in entries]
-        results = calibrate_runs.run_points(self.tools, self.scene, os.path.join(self.out, "rounds", label), params,
-                                            self.quiet)
-        self.runs += len(entries) * self.tests
-        added = []
-        for (u, s), r in zip(entries, results):
-            measured = dict(r["outputs"], **curve_targets.point_values(r.get("curve"), self.curves))
-            p = {"u": [float(x) for x in u], "scale": float(s), "status": r["status"],
-                 "outputs": outputs.with_ratios(measured, self.problem.targets),
-                 "reason": r["reason"], "round": label}
-            self.points.append(p)
-            added.append(p)
-        return added
 
     def initial_design(self, centre):
         d = len(centre)
@@ -291,25 +256,28 @@ class Calibration:
         self.say(f"{len(p.coordinates)} coordinates ({', '.join(c.name for c in p.coordinates)}), scale parameter "
                  f"{p.scale_parameter or '-'} fitted to {p.scale_target or '-'}; dimensionless targets "
                  + ", ".join(f"{k} {v:.4g}" for k, v in p.dimensionless_targets().items()))
-        first = self.run_round("r00_reference", [(centre, 1.0)])
-        wall = self.point_wall_s("r00_reference")
+        first = self.runner.run_round("r00_reference", [(centre, 1.0)])
+        wall = self.runner.point_wall_s("r00_reference")
         design = self.initial_design(centre)
         search = searches.by_name(self.config.get("strategy", "trust-region"))
         rounds_text, round_points = search.plan(len(centre))
-        planned = (1 + len(design) + round_points) * self.tests
-        each = f" (each point runs {self.tests} tests, each counted)" if self.tests > 1 else ""
+        planned = (1 + len(design) + round_points) * self.runner.tests
+        each = (f" (each point runs {self.runner.tests} tests, each counted)" if self.runner.tests > 1
+                else "")
+        tests, budget = self.runner.tests, self.runner.budget
+        most = min(budget, planned + 2 * MAX_VERIFICATION_SEEDS * tests) / tests  # points, verifications included
         self.say(f"planned DEM points: 1 reference + {len(design)} design + {rounds_text} on specimen 1,"
                  f" then verification on {FIRST_VERIFICATION_SEEDS}-{MAX_VERIFICATION_SEEDS} fresh seeds per round{each};"
-                 f" at most {self.budget} test runs in all. One point alone took {wall:.1f} s: about "
-                 f"{self.estimate_min(min(self.budget, planned + 2 * MAX_VERIFICATION_SEEDS * self.tests) / self.tests, wall):.1f}"
+                 f" at most {budget} test runs in all. One point alone took {wall:.1f} s: about "
+                 f"{self.estimate_min(most, wall):.1f}"
                  f" min at most if each of {self.tools.jobs} job(s) ran as fast (jobs share the cores: measured again"
                  " after the design)")
         if first and first[0]["status"] != "ok":
             self.say(f"the reference point failed: {first[0]['reason']}")
-        self.run_round("r01_design", [(u, 1.0) for u in design])
-        shared_wall = self.point_wall_s("r01_design")
+        self.runner.run_round("r01_design", [(u, 1.0) for u in design])
+        shared_wall = self.runner.point_wall_s("r01_design")
         if shared_wall > 0:
-            left = max(self.budget - self.runs, 0) / self.tests
+            left = max(self.runner.left(), 0) / self.runner.tests
             self.say(f"the design's points took {shared_wall:.1f} s each with {self.tools.jobs} job(s) at once: at most"
                      f" about {self.estimate_min(left, shared_wall):.1f} min more for the {left:.0f} point(s) the"
                      " budget has left")
@@ -337,9 +305,6 @@ class Calibration:
         rest)."""
         allowance = np.minimum(np.asarray(noise, float), NOISE_CAP_FRACTION * self.tolerance)
         return bool(np.all(np.abs(residuals) <= np.maximum(CRN_FRACTION * self.tolerance, allowance)))
-
-    def verification_reserve(self):
-        return min((FIRST_VERIFICATION_SEEDS + 10) * self.tests, self.budget // 3)
 
     def residual_map(self):
         """The residuals are affine in the modelled responses: r = A z + c."""
@@ -371,23 +336,11 @@ class Calibration:
 
     def best_point(self):
         best, value = None, math.inf
-        for q in self.points:
+        for q in self.runner.points:
             r = self.measured_residuals(q)
             if r is not None and np.all(np.isfinite(r)) and float(np.sum(r ** 2)) < value:
                 best, value = q, float(np.sum(r ** 2))
         return best
-
-    def point_wall_s(self, label):
-        """Mean wall time of a round's points (as they ran: alone, or sharing the cores with other jobs), s;
-        0 when none is stored."""
-        folder = os.path.join(self.out, "rounds", label, "responses.h5.points")
-        walls = []
-        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
-            if name.endswith("_seed1.json"):
-                wall = load_json(os.path.join(folder, name), "DEM result").get("wall_s", 0.0)
-                if isinstance(wall, (int, float)) and wall > 0:
-                    walls.append(float(wall))
-        return sum(walls) / len(walls) if walls else 0.0
 
     def estimate_min(self, runs, wall_s):
         return runs * wall_s / max(int(self.tools.jobs), 1) / 60.0
@@ -401,8 +354,8 @@ class Calibration:
         """solution.json (the point verified last, or `point`, or the local model's at `centre`), the final
         verification, and the closing line."""
         p = self.problem
-        solution = {"status": status, "why": why, "exit_code": code, "dem_runs": self.runs,
-                    "budget": self.budget, "wall_s": time.time() - self.started, "targets": p.targets,
+        solution = {"status": status, "why": why, "exit_code": code, "dem_runs": self.runner.runs,
+                    "budget": self.runner.budget, "wall_s": time.time() - self.started, "targets": p.targets,
                     "tolerance": self.tolerance, "problem": dict(p.describe(), residuals=self.residual_labels()),
                     "bounded_scale": self.bounded_scale,
                     "rounds": self.rounds, "verifications": self.verifications, "crn": getattr(self, "crn", None),
@@ -429,7 +382,7 @@ class Calibration:
         if status in ("met", "noisy") and point is not None and self.check_tests:
             solution["checks"] = self.run_checks(point["x"])
             write_target(os.path.join(self.out, "solution.json"), json.dumps(solution, indent=1) + "\n")
-        self.say(f"{status}: {why} ({self.runs} DEM runs, {(time.time() - self.started) / 60:.1f} min)")
+        self.say(f"{status}: {why} ({self.runner.runs} DEM runs, {(time.time() - self.started) / 60:.1f} min)")
         return code
 
     def run_checks(self, x):
@@ -457,7 +410,7 @@ class Calibration:
         """The range of every dimensionless target seen on specimen 1: what the model reaches."""
         out = {}
         names = self.residual_labels()
-        for q in self.points:
+        for q in self.runner.points:
             r = self.measured_residuals(q)
             if r is None:
                 continue

@@ -87,11 +87,11 @@ class Verifier:
         k = 0
         while True:
             k += 1
-            left = cal.budget - cal.runs
+            left = cal.runner.left()
             model = cal.fit(centre, radius)
             point = cal.point_at(model, centre, offset)
-            if left < 2 * cal.tests:
-                return cal.finish("budget", f"the budget of {cal.budget} DEM runs is spent", EXIT_BUDGET,
+            if left < 2 * cal.runner.tests:
+                return cal.finish("budget", f"the budget of {cal.runner.budget} DEM runs is spent", EXIT_BUDGET,
                                    point=verified or point)
             interval, wanted = point["scale_interval"], point["wanted_scale_factor"]
             outside = not (interval[0] * (1 - 1e-9) <= wanted <= interval[1] * (1 + 1e-9))
@@ -130,26 +130,27 @@ class Verifier:
                 return cal.finish("unreachable", f"{p.scale_target} needs a scale factor {wanted:.4g}, outside what "
                                    f"the bounds allow ({interval[0]:.4g} to {interval[1]:.4g}): at that factor "
                                    f"{beyond}", EXIT_UNREACHABLE, point=point)
-            seeds, most = min(FIRST_VERIFICATION_SEEDS, left // cal.tests), min(MAX_VERIFICATION_SEEDS, left // cal.tests)
+            each = left // cal.runner.tests  # seeds of every test the budget holds
+            seeds, most = min(FIRST_VERIFICATION_SEEDS, each), min(MAX_VERIFICATION_SEEDS, each)
             folder = os.path.join(cal.out, "verify", f"v{k:02d}")
             v = calibrate_runs.verify(cal.tools, cal.scene, folder, point["x"], p.targets, point["predicted"],
                                       next_seed, seeds, most, cal.tolerance, cal.quiet,
                                       intervals=point["prediction_interval_95"], curves=cal.curves)
             verified = point
             used = len(v["seeds"])
-            cal.runs += used * cal.tests
+            cal.runner.spend(used)
             next_seed += used
             rows = v["outputs"]
             met = v["passed"] and all(r["half_width_pct"] is not None and r["half_width_pct"] <= 100 * cal.tolerance
                                       for r in rows.values())
             cal.verifications.append({"round": k, "folder": os.path.join("verify", f"v{k:02d}"), "seeds": used,
                                        "first_seed": next_seed - used, "passed": v["passed"], "verdict": v["verdict"],
-                                       "met": met, "scale": point["scale_factor"], "runs": cal.runs,
+                                       "met": met, "scale": point["scale_factor"], "runs": cal.runner.runs,
                                        "errors_pct": {o: r["relative_error_pct"] for o, r in rows.items()},
                                        "half_width_pct": {o: r["half_width_pct"] for o, r in rows.items()}})
             cal.say(f"verification {k} on seeds {next_seed - used}-{next_seed - 1}: " +
                      ", ".join(f"{o} {pct(r['relative_error_pct'], '+.1f')} % (+-{pct(r['half_width_pct'], '.1f')})"
-                               for o, r in rows.items()) + (" - met" if met else "") + f"; {cal.runs} runs")
+                               for o, r in rows.items()) + (" - met" if met else "") + f"; {cal.runner.runs} runs")
             if met and cal.config.get("check_resolution"):
                 # The met point again on finer specimens (the coarse runs are reused): the shift a user will see.
                 v = calibrate_runs.verify(cal.tools, cal.scene, folder, point["x"], p.targets, point["predicted"],

@@ -55,7 +55,7 @@ def predicted_outputs(cal, seeds):
     scene's outputs and the targets' ratios."""
     described = cal.description["outputs"]
     names = set(described) | {o for o in cal.problem.targets if is_output(described, o, "predictive")}
-    ok = [q for q in cal.points if q["status"] == "ok"]
+    ok = [q for q in cal.runner.points if q["status"] == "ok"]
     out = []
     for o in sorted(names):
         if not ok or not all(_finite(q["outputs"].get(o)) for q in ok):
@@ -87,7 +87,7 @@ def predictive(cal, draws, exported):
     keep = np.unique(np.linspace(0, len(draws) - 1, min(DRAWS_SAMPLED, len(draws))).astype(int))
     draws = draws[keep]
     draw_scales = draws[:, d] if scaled_problem else np.ones(len(draws))
-    ok = [q for q in cal.points if q["status"] == "ok"]
+    ok = [q for q in cal.runner.points if q["status"] == "ok"]
     u = np.array([q["u"] for q in ok])
     scales = np.array([q["scale"] for q in ok])
     rng = np.random.default_rng(1)

@@ -88,13 +88,13 @@ class BayesSearch:
             support = scale_support(p)
         lab_r = correlation_in_order(cal.config.get("lab_correlation"), names)
         discrepancy = cal.config.get("model_discrepancy", 0.0)
-        reserve = cal.verification_reserve()
+        reserve = cal.runner.verification_reserve()
         converged, samples, posterior, exported, draws = False, None, None, None, None
         # The emulators must know the whole prior, not only the first design's neighbourhood of the reference point,
         # or the posterior spreads to where nothing was run: a Latin hypercube over the whole coded box first.
-        cal.run_round(f"{label}01_global", [(u, 1.0) for u in global_design(d, global_size(d), seed=7)])
+        cal.runner.run_round(f"{label}01_global", [(u, 1.0) for u in global_design(d, global_size(d), seed=7)])
         for k in range(2, 2 + MAX_ROUNDS):
-            rows = cal.usable()
+            rows = cal.runner.usable()
             x = np.array([r[0] for r in rows])
             z = np.array([r[1] for r in rows])
             # A stress spans decades over a log-coded box: its logarithm is what a Gaussian process follows (with
@@ -123,18 +123,18 @@ class BayesSearch:
             settled = float(np.max(np.median(share, axis=0)))
             exported = draws.theta[int(np.argmax(draws.log_prob))]
             summary = store(cal, f"{label}{k:02d}", posterior, draws, samples, exported, settled)
-            cal.rounds.append({"round": k, "bayes": summary["diagnostics"], "runs": cal.runs,
+            cal.rounds.append({"round": k, "bayes": summary["diagnostics"], "runs": cal.runner.runs,
                                "centre_residuals_pct": None, "accepted": True, "radius": INITIAL_RADIUS,
                                "held_at_bounds": []})
             cal.say(f"round {k}: posterior of {len(rows)} points: emulators' SD {settled:.2f} of the lab's standard "
                     f"error at most (median over the draws), {samples.effective_samples:.0f} effective draws"
                     + ("" if samples.converged else f" (the chain of {samples.steps} steps is shorter than 50 "
                        "autocorrelation times: the intervals are rough)") + ", "
-                    f"{cal.runs} runs")
+                    f"{cal.runner.runs} runs")
             if settled <= SETTLED:
                 converged = True
                 break
-            if cal.runs + 2 * cal.tests > cal.budget - reserve:
+            if not cal.runner.room_for(2, reserve):
                 break
             # Where the emulators know least inside the posterior (three draws, apart from each other), and its
             # densest draw unless a point already ran there.
@@ -145,10 +145,10 @@ class BayesSearch:
                     picks.append(draws.theta[i])
                 if len(picks) == 3:
                     break
-            run_u = np.array([q["u"] for q in cal.points]) if cal.points else np.zeros((0, d))
+            run_u = np.array([q["u"] for q in cal.runner.points]) if cal.runner.points else np.zeros((0, d))
             if not (run_u.size and np.min(np.linalg.norm(run_u - exported[:d], axis=1)) < 0.02):
                 picks.append(exported)
-            cal.run_round(f"{label}{k:02d}", [(t[:d], float(t[d]) if scaled else 1.0) for t in picks])
+            cal.runner.run_round(f"{label}{k:02d}", [(t[:d], float(t[d]) if scaled else 1.0) for t in picks])
         for name in ("posterior.csv", "posterior.json"):  # the last round's, where a user looks first
             src = os.path.join(cal.out, "rounds", f"{label}{k:02d}", name)
             if os.path.exists(src):

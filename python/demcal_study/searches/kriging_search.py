@@ -24,12 +24,12 @@ class KrigingSearch:
         a, c = cal.residual_map()
         misfit = lambda z: ((z @ a.T + c) ** 2).sum(axis=-1)  # noqa: E731
         converged, blocked = False, False
-        reserve = cal.verification_reserve()
+        reserve = cal.runner.verification_reserve()
         half = 2 * INITIAL_RADIUS
         d = len(centre)
         stale = 0
         for k in range(2, 2 + MAX_ROUNDS):
-            rows = cal.usable()
+            rows = cal.runner.usable()
             x = np.array([r[0] for r in rows])
             z = np.array([r[1] for r in rows])
             current = cal.measured_residuals(best)
@@ -38,7 +38,7 @@ class KrigingSearch:
             if cal.close_enough(current, noise):
                 converged = True
                 break
-            if cal.runs + 2 * cal.tests > cal.budget - reserve:
+            if not cal.runner.room_for(2, reserve):
                 break
             if stale >= 2 and nowhere_within_tolerance(cal, gps, d) and np.any(np.abs(centre) >= 0.98):
                 blocked = True  # two rounds without a better point, and the GPs see nothing better anywhere
@@ -67,7 +67,7 @@ class KrigingSearch:
                 s = p.scale_for(zu)
                 lo, hi = p.scale_interval(u)
                 entries.append((u, min(max(s, lo), hi)))
-            added = cal.run_round(f"r{k:02d}", entries)
+            added = cal.runner.run_round(f"r{k:02d}", entries)
             improved = False
             for q in added:
                 r = cal.measured_residuals(q)
@@ -79,10 +79,10 @@ class KrigingSearch:
                                 "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
                                 "predicted_residuals_pct": (100 * (mean[first] @ a.T + c)).tolist(),
                                 "accepted": improved, "radius": half, "held_at_bounds": [],
-                                "expected_improvement": float(ei[first]), "scale": entries[0][1], "runs": cal.runs})
+                                "expected_improvement": float(ei[first]), "scale": entries[0][1], "runs": cal.runner.runs})
             cal.say(f"round {k}: EI points " + cal.format_residuals(measured) +
                      f" ({'improved' if improved else 'no better'}), best " +
-                     cal.format_residuals(cal.measured_residuals(best)) + f", {cal.runs} runs")
+                     cal.format_residuals(cal.measured_residuals(best)) + f", {cal.runner.runs} runs")
         return centre, INITIAL_RADIUS, best, converged, blocked
 
 

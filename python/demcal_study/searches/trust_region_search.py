@@ -23,7 +23,7 @@ class TrustRegionSearch:
         p = cal.problem
         converged, blocked = False, False
         radius = INITIAL_RADIUS
-        reserve = cal.verification_reserve()
+        reserve = cal.runner.verification_reserve()
         rejected = 0
         for k in range(2, 2 + MAX_ROUNDS):
             current = cal.measured_residuals(best)
@@ -32,7 +32,7 @@ class TrustRegionSearch:
                     rejected >= 2 and np.max(np.abs(current)) <= cal.tolerance):
                 converged = True
                 break
-            if cal.runs + 2 * cal.tests > cal.budget - reserve:
+            if not cal.runner.room_for(2, reserve):
                 blocked = False  # stopped by the budget, not by the bounds
                 break
             offset = np.zeros(len(p.modelled_outputs()))
@@ -46,9 +46,9 @@ class TrustRegionSearch:
                 break
             s, _, _ = cal.scale_at(model, candidate, offset)
             poise = np.clip(candidate + radius * trust_region.poising_direction(
-                [q["u"] for q in cal.points], candidate, radius), -1, 1)
+                [q["u"] for q in cal.runner.points], candidate, radius), -1, 1)
             sp, _, _ = cal.scale_at(model, poise, offset)
-            added = cal.run_round(f"{label}{k:02d}", [(candidate, s), (poise, sp)])
+            added = cal.runner.run_round(f"{label}{k:02d}", [(candidate, s), (poise, sp)])
             measured = cal.measured_residuals(added[0])
             phi_now = float(np.sum(current ** 2))
             phi_new = float(np.sum(measured ** 2)) if measured is not None else math.inf
@@ -63,9 +63,9 @@ class TrustRegionSearch:
                                 "candidate_residuals_pct": None if measured is None else (100 * measured).tolist(),
                                 "predicted_residuals_pct": (100 * np.asarray(predicted)).tolist(),
                                 "accepted": accepted, "radius": radius, "held_at_bounds": at_bounds,
-                                "scale": s, "runs": cal.runs, "bounded_scale": cal.bounded_scale})
+                                "scale": s, "runs": cal.runner.runs, "bounded_scale": cal.bounded_scale})
             cal.say(f"round {k}: candidate " + cal.format_residuals(measured) +
-                     f" ({'accepted' if accepted else 'rejected'}), radius {radius:.3g}, {cal.runs} runs")
+                     f" ({'accepted' if accepted else 'rejected'}), radius {radius:.3g}, {cal.runner.runs} runs")
             blocked = bool(at_bounds) and np.max(np.abs(predicted)) > cal.tolerance
             if radius <= SMALLEST_RADIUS and not accepted:
                 break
