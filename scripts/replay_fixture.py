@@ -15,6 +15,9 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from demcal_study.calibrate_runs import outputs_of_row  # noqa: E402
+
 # What the replay compares: the decisions, not the wall times or the paths of the machine that made them.
 DECISIONS = ("status", "exit_code", "dem_runs", "x", "scale_factor", "coordinates", "ratios", "predicted",
              "prediction_interval_95", "offset", "rounds", "verifications", "crn", "bounded_scale", "reachable")
@@ -43,16 +46,8 @@ def main():
     for table in sorted(glob.glob(os.path.join(a.calibration, "rounds", "*", "responses.csv"))):
         names = rows_of(os.path.join(os.path.dirname(table), "design.csv"))[0].keys() - {"run"}
         for row in rows_of(table):
-            outputs = {}
-            for key, value in row.items():
-                if key in names or key in ("run", "seed", "status") or value in ("", None):
-                    continue
-                try:
-                    outputs[key] = float(value)
-                except ValueError:
-                    pass
             points.append({"parameters": {n: float(row[n]) for n in sorted(names)}, "status": row["status"],
-                           "outputs": outputs if row["status"] == "ok" else {}})
+                           "outputs": outputs_of_row(row, names)})
     verifications = []
     for folder in sorted(glob.glob(os.path.join(a.calibration, "verify", "v*"))):
         with open(os.path.join(folder, "solution.json")) as f:

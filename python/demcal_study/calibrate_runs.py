@@ -54,19 +54,27 @@ def run_points(tools, scene, folder, points, quiet):
     results = {}
     with open(table) as f:
         for row in csv.DictReader(f):
-            outputs = {}
-            for key, value in row.items():
-                if key in names or key in ("run", "seed", "status") or value in ("", None):
-                    continue
-                try:
-                    outputs[key] = float(value)
-                except ValueError:
-                    pass
-            results[int(row["run"])] = {"status": row["status"], "outputs": outputs if row["status"] == "ok" else {}}
+            results[int(row["run"])] = {"status": row["status"], "outputs": outputs_of_row(row, names)}
     missing = [k + 1 for k in range(len(points)) if k + 1 not in results]
     if missing:
         fail(f"{table}: no result for run(s) {missing}")
     return [dict(results[k + 1], **point_file(out, k + 1)) for k in range(len(points))]
+
+
+def outputs_of_row(row, names):
+    """A batch table's row (csv.DictReader) as {output: number}: every column but the design's (`names`), the run,
+    the seed and the status; empty for a point that failed."""
+    if row["status"] != "ok":
+        return {}
+    outputs = {}
+    for key, value in row.items():
+        if key in names or key in ("run", "seed", "status") or value in ("", None):
+            continue
+        try:
+            outputs[key] = float(value)
+        except ValueError:
+            pass
+    return outputs
 
 
 def point_file(out, run):

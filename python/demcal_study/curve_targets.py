@@ -191,7 +191,9 @@ def point_values(curve, curves):
         stress = curve.get(prefix + "stress_MPa") if curve else None
         if not strain or not stress or len(strain) != len(stress):
             continue
-        strain, stress = np.asarray(strain, float), np.asarray(stress, float)
+        # A strain-controlled test's strain only grows; should a recorded strain step back, the largest reached so
+        # far stands, so that interpolation reads the curve in the order it was loaded.
+        strain, stress = np.maximum.accumulate(np.asarray(strain, float)), np.asarray(stress, float)
         lateral = curve.get(prefix + "lateral_strain")
         for q in c["points"]:
             if q["kind"] == "stress":

@@ -24,6 +24,15 @@ def bin_dir():
     return path
 
 
+def load_script(name):
+    """scripts/NAME.py as a module, for the functions a script keeps (its command line is tested by running it)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(name, os.path.join(REPO, "scripts", f"{name}.py"))
+    m = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(m)
+    return m
+
+
 def run_study_layer(args, bin_dir="", cwd=REPO):
     """python -m demcal_study ARGS from the source tree, as plan.mk and run_study.sh run it."""
     env = dict(os.environ, PYTHONPATH=PYTHON_DIR, BIN=bin_dir or os.path.join(REPO, "no-executables-needed"))

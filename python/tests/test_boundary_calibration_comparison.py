@@ -1,20 +1,16 @@
 """scripts/boundary_calibration_comparison.py: the runs an optimiser took to come within 5 % of its own best, and bad
 arguments as one-line errors (the DEM runs themselves are `make boundary-calibration`'s)."""
-import importlib.util
 import os
 import subprocess
 import sys
 
-from conftest import REPO
+from conftest import REPO, load_script
 
 SCRIPT = os.path.join(REPO, "scripts", "boundary_calibration_comparison.py")
 
 
 def module():
-    spec = importlib.util.spec_from_file_location("boundary_calibration_comparison", SCRIPT)
-    m = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(m)
-    return m
+    return load_script("boundary_calibration_comparison")
 
 
 def test_runs_to_within_a_share_of_the_final_best():

@@ -129,11 +129,13 @@ def fake(monkeypatch, tmp_path):
     return calls
 
 
-def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None, check_resolution=None, check_tests=None):
+def run_calibration(tmp_path, bin_dir, targets, budget=60, strategy=None, check_resolution=None, check_tests=None,
+                    **more):
+    """The calibration of the fake DEM on `targets`; `more`: further settings (curves, target_uncertainty)."""
     out = str(tmp_path / "cal")
     os.makedirs(out, exist_ok=True)
-    config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05,
-              "budget": budget, "scale_parameter": None}
+    config = dict({"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05,
+                   "budget": budget, "scale_parameter": None}, **more)
     if strategy:
         config["strategy"] = strategy
     if check_resolution:
@@ -661,16 +663,8 @@ def test_the_bayesian_search_gives_a_posterior_and_a_verified_point(fake, tmp_pa
     # The lab's means at a reachable point, with a 3 % SD over 5 specimens (SE 1.3 %): the exported point must still
     # meet every target within 5 % on fresh seeds, and the posterior must say what the data pin down.
     targets = {"E_GPa": 6.5, "sigma_u_MPa": 48.0, "nu": 0.2}
-    out = str(tmp_path / "cal")
-    os.makedirs(out, exist_ok=True)
-    config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05, "budget": 60,
-              "scale_parameter": None, "strategy": "bayes",
-              "target_uncertainty": {o: {"sd": 0.03 * v, "n": 5} for o, v in targets.items()}}
-    with open(os.path.join(out, "calibration.json"), "w") as f:
-        json.dump(config, f)
-    tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
-    code = calibrate.Calibration(config, out, tools, quiet=True).run()
-    solution = json.load(open(os.path.join(out, "solution.json")))
+    code, solution, out = run_calibration(tmp_path, bin_dir, targets, strategy="bayes", target_uncertainty={
+        o: {"sd": 0.03 * v, "n": 5} for o, v in targets.items()})
     assert code == calibrate.EXIT_MET, solution["why"]
     assert solution["dem_runs"] <= 60
     mean = {o: np.mean([fake_dem(solution["x"], s)[o] for s in range(100, 400)]) for o in targets}
@@ -748,15 +742,7 @@ def test_a_measured_curve_is_met_point_by_point_and_verified(fake, tmp_path, bin
     curves = calibrate.measured_curves(args, targets, uncertainty, with_axes, "trust-region", problems)
     problems.raise_if_any()
     assert len(targets) == 1 + 16 and not uncertainty
-    out = str(tmp_path / "cal")
-    os.makedirs(out)
-    config = {"scene": "fake.json", "space": None, "targets": targets, "fixed": {}, "tolerance": 0.05, "budget": 80,
-              "scale_parameter": None, "curves": curves}
-    with open(os.path.join(out, "calibration.json"), "w") as f:
-        json.dump(config, f)
-    tools = commands.Tools(bin=bin_dir, jobs="2", cache=str(tmp_path / "cache"), python="")
-    code = calibrate.Calibration(config, out, tools, quiet=True).run()
-    solution = json.load(open(os.path.join(out, "solution.json")))
+    code, solution, out = run_calibration(tmp_path, bin_dir, targets, budget=80, curves=curves)
     assert code == calibrate.EXIT_MET, solution["why"]
     assert solution["dem_runs"] <= 80
     rows = json.load(open(os.path.join(out, "verification.json")))["outputs"]

@@ -1,24 +1,19 @@
 """scripts/uncertainty_benchmark.py without the DEM: the truths are a Latin hypercube of the prior, and the summary
 counts what simulation-based calibration counts (the DEM runs themselves are `make uncertainty-benchmark`'s)."""
-import importlib.util
 import json
 import os
 
 import numpy as np
 import pytest
 
-from conftest import REPO
+from conftest import REPO, load_script
 from demcal_study.calibration_problem import Problem
 from test_calibrate import DESCRIPTION
 
-SCRIPT = os.path.join(REPO, "scripts", "uncertainty_benchmark.py")
 
 
 def module():
-    spec = importlib.util.spec_from_file_location("uncertainty_benchmark", SCRIPT)
-    m = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(m)
-    return m
+    return load_script("uncertainty_benchmark")
 
 
 def test_the_space_keeps_the_four_searched_and_holds_the_rest_with_the_smallest_specimen():
