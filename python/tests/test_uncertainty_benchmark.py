@@ -11,7 +11,6 @@ from demcal_study.calibration_problem import Problem
 from test_calibrate import DESCRIPTION
 
 
-
 def module():
     return load_script("uncertainty_benchmark")
 
