@@ -152,21 +152,27 @@ def verify(tools, scene, folder, parameters, targets, predicted, first_seed, see
     if not (os.path.exists(solution) and open(solution).read() == text):
         write_target(solution, text)
     out = os.path.join(folder, "verification.json")
-    cmd = [tools.program("demcal-verify"), "--solution", solution, "--scene", scene, "--seeds", str(seeds),
-           "--max-seeds", str(max_seeds), "--first-seed", str(first_seed), "--tolerance", repr(tolerance),
-           "--jobs", tools.jobs, "--cache", tools.cache, "--work", os.path.join(folder, "runs"),
-           "--md", os.path.join(folder, "verification.md"), "--out", out]
-    if scale_resolution:
-        cmd += ["--scale-resolution", repr(scale_resolution)]
-    if quiet:
-        cmd.append("--quiet")
-    done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
-    if done.returncode != 0:
-        fail(f"{folder}: demcal-verify failed (exit {done.returncode})")
-    v = load_json(out, "verification")
-    if curves:
+    while True:
+        cmd = [tools.program("demcal-verify"), "--solution", solution, "--scene", scene, "--seeds", str(seeds),
+               "--max-seeds", str(max_seeds), "--first-seed", str(first_seed), "--tolerance", repr(tolerance),
+               "--jobs", tools.jobs, "--cache", tools.cache, "--work", os.path.join(folder, "runs"),
+               "--md", os.path.join(folder, "verification.md"), "--out", out]
+        if scale_resolution:
+            cmd += ["--scale-resolution", repr(scale_resolution)]
+        if quiet:
+            cmd.append("--quiet")
+        done = subprocess.run(cmd, stdout=subprocess.DEVNULL)
+        if done.returncode != 0:
+            fail(f"{folder}: demcal-verify failed (exit {done.returncode})")
+        v = load_json(out, "verification")
+        if not curves:
+            return v
         seed_curves = curve_targets.read_seed_curves(os.path.join(folder, "runs"), [s["seed"] for s in v["seeds"]])
         v = curve_targets.add_to_verification(v, seed_curves, curves, all_targets, all_predicted or {}, all_intervals,
                                               tolerance)
         write_target(out, json.dumps(v, indent=1) + "\n")
-    return v
+        # demcal-verify chose its seeds by the scalar targets: the curve's points may want more (it resumes).
+        more = curve_targets.seeds_wanted(v, curves, tolerance, max_seeds)
+        if more is None or scale_resolution:
+            return v
+        seeds = more

@@ -248,6 +248,29 @@ def add_to_verification(v, seed_curves, curves, targets, predicted, intervals, t
     return v
 
 
+def seeds_wanted(v, curves, tolerance, max_seeds):
+    """The seeds a verification should run so that every curve point's 95 % half-width can come within the
+    tolerance (by its SD so far, the rule demcal-verify applies to the scalar targets), or None when they already do
+    or max_seeds are run."""
+    from .trust_region import t975
+    run = len(v["seeds"])
+    failed = sum(1 for s in v["seeds"] if s.get("status") != "ok")
+    wanted = 0
+    for name in names(curves):
+        r = v["outputs"].get(name, {})
+        if r.get("half_width_pct") is not None and r["half_width_pct"] <= 100.0 * tolerance:
+            continue
+        n, sd = r.get("runs", 0), r.get("sd")
+        if n < 2 or sd is None:
+            wanted = max(wanted, run + 1)
+            continue
+        needed = math.ceil((t975(n - 1) * sd / (tolerance * abs(r["target"]))) ** 2)
+        wanted = max(wanted, needed + failed, run + 1)
+    if wanted == 0 or run >= max_seeds:
+        return None
+    return min(wanted, max_seeds)
+
+
 def _number(x):
     """As demcal-verify writes a number: null when it is not finite."""
     return float(x) if math.isfinite(x) else None

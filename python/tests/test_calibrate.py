@@ -94,8 +94,7 @@ def fake(monkeypatch, tmp_path):
         os.makedirs(folder, exist_ok=True)
         all_targets = targets
         targets = {o: t for o, t in targets.items() if o not in set(curve_targets.names(curves or []))}
-        n = seeds
-        while True:
+        def scalar_rows(n):
             runs = [outputs.with_ratios(fake_dem(parameters, s), targets) for s in range(first_seed, first_seed + n)]
             rows, passed = {}, True
             for o, t in targets.items():
@@ -106,17 +105,30 @@ def fake(monkeypatch, tmp_path):
                 rows[o] = {"mean": mean, "relative_error_pct": err, "half_width_pct": 100 * hw / abs(t),
                            "passed": bool(abs(err) <= 100 * tolerance)}
                 passed = passed and rows[o]["passed"]
+            return runs, rows, passed
+
+        n = seeds
+        while True:
+            runs, rows, passed = scalar_rows(n)
             if n >= max_seeds or all(r["half_width_pct"] <= 100 * tolerance for r in rows.values()):
                 break
             n += 1
+        while True:
+            v = {"passed": passed, "verdict": "mean_inside_band" if passed else "outside", "outputs": rows,
+                 "seeds": [{"seed": s, "status": "ok", "macro": {k: float(x) for k, x in r.items()}}
+                           for s, r in zip(range(first_seed, first_seed + n), runs)]}
+            if not curves:
+                break
+            v = curve_targets.add_to_verification(v, {s: fake_curve(parameters, s) for s in range(first_seed, first_seed + n)},
+                                                  curves, all_targets, predicted or {}, intervals, tolerance)
+            more = curve_targets.seeds_wanted(v, curves, tolerance, max_seeds)
+            if more is None:
+                break
+            n = more
+            runs, rows, passed = scalar_rows(n)
         calls["seeds"] += n
         with open(os.path.join(folder, "solution.json"), "w") as f:
             json.dump({"x": parameters, "predicted": predicted, "prediction_interval_95": intervals}, f)
-        v = {"passed": passed, "verdict": "mean_inside_band" if passed else "outside", "outputs": rows,
-             "seeds": [{"seed": s, "status": "ok", "macro": {k: float(x) for k, x in r.items()}} for s, r in zip(range(first_seed, first_seed + n), runs)]}
-        if curves:
-            v = curve_targets.add_to_verification(v, {s: fake_curve(parameters, s) for s in range(first_seed, first_seed + n)},
-                                                  curves, all_targets, predicted or {}, intervals, tolerance)
         if scale_resolution:
             v["finer"] = {"factor": scale_resolution, "seeds": v["seeds"][:2], "shift_pct": {o: 0.0 for o in targets}}
         with open(os.path.join(folder, "verification.json"), "w") as f:
@@ -758,3 +770,24 @@ def test_a_measured_curve_is_met_point_by_point_and_verified(fake, tmp_path, bin
         assert abs(mean / q["value"] - 1) < 0.05, (q["name"], mean, q["value"])
     report(out)
     assert "| curve_MPa@" in open(os.path.join(out, "report.md")).read()
+
+
+def test_a_curve_point_too_scattered_for_its_seeds_asks_for_as_many_as_its_sd_needs():
+    # demcal-verify chooses its seeds by the scalar targets; a curve point whose half-width is still too wide asks
+    # for the seeds its SD needs ((t sd / (tol target))^2), at least one more, at most max_seeds.
+    curves = [{"label": None, "points": [{"name": "curve_MPa@0.001", "kind": "stress"},
+                                         {"name": "curve_MPa@0.002", "kind": "stress"}]}]
+    seeds = [{"seed": s, "status": "ok"} for s in range(2, 7)]
+
+    def v(sd, half):
+        return {"seeds": seeds, "outputs": {"curve_MPa@0.001": {"runs": 5, "sd": 0.1, "target": 10.0,
+                                                                "half_width_pct": 1.0},
+                                            "curve_MPa@0.002": {"runs": 5, "sd": sd, "target": 20.0,
+                                                                "half_width_pct": half}}}
+    assert curve_targets.seeds_wanted(v(0.5, 3.1), curves, 0.05, 20) is None
+    # SD 1.5 of 20 at 5 % needs (2.776 * 1.5 / 1)^2 = 17.3 -> 18 seeds.
+    assert curve_targets.seeds_wanted(v(1.5, 9.3), curves, 0.05, 20) == 18
+    assert curve_targets.seeds_wanted(v(3.0, 18.6), curves, 0.05, 20) == 20
+    assert curve_targets.seeds_wanted(v(0.75, 5.2), curves, 0.05, 20) == 6  # (2.776 * 0.75)^2 = 4.3: one more
+    seeds.extend({"seed": s, "status": "ok"} for s in range(7, 22))
+    assert curve_targets.seeds_wanted(v(3.0, 7.0), curves, 0.05, 20) is None  # 20 run: no more
