@@ -12,10 +12,14 @@ import argparse
 import csv
 import json
 import os
-import subprocess
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from demcal_study.calibrate_runs import one_point_batch  # noqa: E402
+from demcal_study.commands import Tools  # noqa: E402
+from demcal_study.errors import StudyError  # noqa: E402
 
 ROWS = 60            # strains the mean curve is written at
 SPAN_OF_PEAK = 1.25  # up to this multiple of the mean peak strain
@@ -42,18 +46,11 @@ def main():
     if a.seeds < 2:
         sys.exit("synthetic_curve: --seeds must be at least 2 (the curve's SD)")
     work = os.path.splitext(a.out)[0] + "_runs"
-    os.makedirs(work, exist_ok=True)
-    design = os.path.join(work, "design.csv")
-    with open(design, "w") as f:
-        f.write(",".join(["run"] + sorted(values)) + "\n" + ",".join(["1"] + [repr(values[n]) for n in sorted(values)])
-                + "\n")
-    out = os.path.join(work, "runs.h5")
-    cmd = [os.path.join(a.build, "bin", "demcal-dem"), "batch", "--scene", a.scene, "--design", design, "--out", out,
-           "--seeds", str(a.seeds), "--first-seed", str(a.first_seed), "--jobs", a.jobs,
-           "--cache", os.path.join(a.build, "cache")]
-    done = subprocess.run(cmd)
-    if done.returncode != 0:
-        sys.exit(f"synthetic_curve: demcal-dem batch failed (exit {done.returncode}); rerun to resume")
+    tools = Tools(bin=os.path.join(a.build, "bin"), jobs=a.jobs, cache=os.path.join(a.build, "cache"), python="")
+    try:
+        out, _ = one_point_batch(tools, a.scene, work, values, a.first_seed, a.seeds, quiet=False)
+    except StudyError as e:
+        sys.exit(f"synthetic_curve: {e}; rerun to resume")
     curves, macros = [], []
     for s in range(a.first_seed, a.first_seed + a.seeds):
         with open(f"{out}.points/run1_seed{s}.json") as f:

@@ -22,7 +22,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "python"))
 
+from demcal_study.calibrate_runs import one_point_batch  # noqa: E402
 from demcal_study.calibration_problem import Problem  # noqa: E402
+from demcal_study.commands import Tools  # noqa: E402
+from demcal_study.errors import StudyError  # noqa: E402
+from demcal_study.searches.bayes_search import global_design  # noqa: E402
 
 TARGETS = ("E_GPa", "nu", "sigma_u_MPa")
 TRUTH_SEEDS = (1001, 8)    # first seed, count: the lab's specimens at the truth
@@ -54,30 +58,18 @@ def benchmark_space(shipped):
 
 def truths(problem, rocks, seed):
     """`rocks` parameter sets from a Latin hypercube over the coded box (the prior), decoded: [{name: value}]."""
-    rng = np.random.default_rng(seed)
-    d = len(problem.coordinates)
-    cells = np.array([rng.permutation(rocks) for _ in range(d)]).T
-    u = -1.0 + 2.0 * (cells + rng.uniform(size=(rocks, d))) / rocks
+    u = global_design(len(problem.coordinates), rocks, seed)
     return [{c.name: float(c.decode(x)) for c, x in zip(problem.coordinates, row)} for row in u]
 
 
 def run_truth(build, scene, values, fixed, first_seed, count, folder, jobs):
     """The scene at `values` (with `fixed`) on seeds first_seed.., a resumable demcal-dem batch: the macro
     outputs of each seed that ran."""
-    os.makedirs(folder, exist_ok=True)
-    point = dict(fixed, **values)
-    names = sorted(point)
-    design = os.path.join(folder, "design.csv")
-    text = ",".join(["run"] + names) + "\n" + ",".join(["1"] + [repr(float(point[n])) for n in names]) + "\n"
-    if not (os.path.exists(design) and open(design).read() == text):
-        with open(design, "w") as f:
-            f.write(text)
-    out = os.path.join(folder, "runs.h5")
-    done = subprocess.run([os.path.join(build, "bin", "demcal-dem"), "batch", "--scene", scene, "--design", design,
-                           "--out", out, "--seeds", str(count), "--first-seed", str(first_seed), "--jobs", str(jobs),
-                           "--cache", os.path.join(build, "cache"), "--quiet"])
-    if done.returncode not in (0, 4):
-        sys.exit(f"uncertainty_benchmark: {folder}: demcal-dem batch failed (exit {done.returncode})")
+    tools = Tools(bin=os.path.join(build, "bin"), jobs=str(jobs), cache=os.path.join(build, "cache"), python="")
+    try:
+        out, _ = one_point_batch(tools, scene, folder, dict(fixed, **values), first_seed, count, quiet=True)
+    except StudyError as e:
+        sys.exit(f"uncertainty_benchmark: {e}")
     macros = []
     for s in range(first_seed, first_seed + count):
         with open(f"{out}.points/run1_seed{s}.json") as f:

@@ -678,11 +678,8 @@ def measured_curves(args, targets, uncertainty, description, strategy, problems)
         problems.add("--curve-window: give the curve it applies to (--curve CURVE.csv)")
     if not specs:
         return []
-    window = curve_targets.parse_window(window_text if window_text is not None else "%g:%g" % curve_targets.DEFAULT_WINDOW,
-                                        "--curve-window", problems)
-    curves = [c for c in (curve_targets.curve_target(spec, window, "--curve", problems) for spec in specs) if c]
-    if description:
-        curve_targets.check_against_scene(curves, description, "--curve", problems)
+    curves = curve_targets.read_curves(specs, window_text, problems, "--curve", "--curve-window",
+                                       description=description)
     if len(curves) == len(specs) and not targets:
         problems.add("--curve: give at least one NAME=VALUE target beside the curve (the verification decides how "
                      "many fresh seeds to run by those)")
@@ -694,7 +691,7 @@ def measured_curves(args, targets, uncertainty, description, strategy, problems)
             targets[q["name"]] = q["value"]
             if q["sd"] is not None:
                 uncertainty[q["name"]] = {"sd": q["sd"], "n": 1}
-        if strategy == "bayes" and any(q["sd"] is None for q in c["points"]):
+        if strategy == "bayes" and curve_targets.without_scatter(c):
             problems.add(f"--curve {c['spec']}: the Bayesian search weighs each point by the lab's scatter: give the "
                          "curve an sd_MPa column" + (" and no lateral_strain column (it has no scatter column)"
                                                      if any(q["kind"] == "lateral" for q in c["points"]) else ""))

@@ -88,10 +88,9 @@ def point_file(out, run):
         return {"reason": "", "curve": None}
 
 
-def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
-    """Another test at the calibrated parameters, not calibrated on (a prediction): a batch of one point over
-    `seeds` fresh seeds. Returns {"runs", "ok", "outputs": {name: {"mean", "sd", "n"}}} and leaves responses.csv and
-    responses.h5 in `folder` for the report's curves and Mohr circles."""
+def one_point_batch(tools, scene, folder, parameters, first_seed, seeds, quiet):
+    """demcal-dem batch of one point, `parameters`, on seeds first_seed.. (resumable): folder/design.csv, and the
+    (responses.h5, responses.csv) paths it wrote; each seed's result is in responses.h5.points/run1_seedS.json."""
     os.makedirs(folder, exist_ok=True)
     names = sorted(parameters)
     design = os.path.join(folder, "design.csv")
@@ -103,20 +102,21 @@ def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL if quiet else None)
     if done.returncode not in (0, 4):
         fail(f"{folder}: demcal-dem batch failed (exit {done.returncode})")
+    return out, table
+
+
+def check(tools, scene, folder, parameters, first_seed, seeds, quiet):
+    """Another test at the calibrated parameters, not calibrated on (a prediction): a batch of one point over
+    `seeds` fresh seeds. Returns {"runs", "ok", "outputs": {name: {"mean", "sd", "n"}}} and leaves responses.csv and
+    responses.h5 in `folder` for the report's curves and Mohr circles."""
+    _, table = one_point_batch(tools, scene, folder, parameters, first_seed, seeds, quiet)
     values, runs, ok = {}, 0, 0
     with open(table) as f:
         for row in csv.DictReader(f):
             runs += 1
-            if row["status"] != "ok":
-                continue
-            ok += 1
-            for key, value in row.items():
-                if key in names or key in ("run", "seed", "status") or value in ("", None):
-                    continue
-                try:
-                    values.setdefault(key, []).append(float(value))
-                except ValueError:
-                    pass
+            ok += row["status"] == "ok"
+            for key, value in outputs_of_row(row, set(parameters)).items():
+                values.setdefault(key, []).append(value)
     summary = {}
     for key, xs in values.items():
         mean = sum(xs) / len(xs)

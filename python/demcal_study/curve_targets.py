@@ -143,6 +143,25 @@ def curve_target(spec, window, where, problems):
             "points": points}
 
 
+def read_curves(specs, window_text, problems, where, window_where, each_where=None, description=None):
+    """The curves of `specs` over the window `window_text` (None: the default), each read as curve_target does
+    (named by each_where(k), else `where`), checked against the scene's description when one is given; every
+    defect a problem."""
+    text = window_text if window_text is not None else "%g:%g" % DEFAULT_WINDOW
+    window = parse_window(text, window_where, problems)
+    curves = [c for c in (curve_target(spec, window, each_where(k) if each_where else where, problems)
+                          for k, spec in enumerate(specs)) if c]
+    if description:
+        check_against_scene(curves, description, where, problems)
+    return curves
+
+
+def without_scatter(curve):
+    """Whether a point of the curve has no SD from the lab (no sd_MPa column, or a lateral strain: none has one),
+    which the Bayesian search cannot weigh."""
+    return any(q["sd"] is None for q in curve["points"])
+
+
 def check_against_scene(curves, description, where, problems):
     """A curve must name a test of a list by its label (and a single test takes none), and that test's curve must
     be an axial stress against axial strain; a confined test's curve is not supported yet."""

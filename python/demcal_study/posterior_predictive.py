@@ -17,6 +17,7 @@ from . import kriging
 from .errors import load_json
 from .files import write_target
 from .outputs import is_output, output_info
+from .searches.bayes_search import ScaleFreeEmulator
 
 SEEDS_IN_MEAN = 5
 Z95 = 1.959963984540054
@@ -24,28 +25,23 @@ DRAWS_SAMPLED = 400   # posterior draws the predictive over the posterior is sam
 
 
 class _Emulator:
-    """A Gaussian process of one output over the points run on specimen 1: of log(value / scale) for a positive
-    output that scales with the stress-like parameters, value / scale for one that may be negative, log(value) for
-    another positive stress-like output, the value itself otherwise. predict(u, scale) -> (mean, SD) in the
-    output's own unit (first-order SD through the exponential)."""
+    """One output over the points run on specimen 1: the Bayesian search's emulator (a Gaussian process, of the
+    logarithm for a positive stress-like output) of value / scale for an output that scales with the stress-like
+    parameters, of the value otherwise. predict(u, scale) -> (mean, SD) in the output's own unit."""
 
     def __init__(self, u, values, scales, scaled, logged, seed):
         y = np.asarray(values, float) / (np.asarray(scales, float) if scaled else 1.0)
-        self.scaled, self.logged = scaled, logged
-        if logged:
-            y = np.log(y)
-        self.constant = float(y[0]) if np.ptp(y) == 0 else None
-        self.gp = None if self.constant is not None else kriging.fit(np.asarray(u, float), y, seed=seed)
+        self.scaled = scaled
+        self.constant = float(y[0]) if np.ptp(y) == 0 else None  # a count that never moved: no process to fit
+        self.emulator = None if self.constant is not None else ScaleFreeEmulator(
+            kriging.fit(np.asarray(u, float), np.log(y) if logged else y, seed=seed), logged)
 
     def predict(self, u, scale):
         u = np.atleast_2d(u)
-        if self.gp is None:
+        if self.emulator is None:
             mean, sd = np.full(len(u), self.constant), np.zeros(len(u))
         else:
-            mean, sd = self.gp.predict(u)
-        if self.logged:
-            mean = np.exp(mean)
-            sd = mean * sd
+            mean, sd = self.emulator.predict(u)
         factor = np.asarray(scale, float) if self.scaled else 1.0
         return mean * factor, sd * np.abs(factor)
 

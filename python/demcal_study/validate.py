@@ -128,14 +128,11 @@ def check_curves(study, where, scene):
     if "curves" not in study:
         return
     problems = Problems()
-    window = curve_targets.parse_window(study.get("curve_window", "%g:%g" % curve_targets.DEFAULT_WINDOW),
-                                        "curve_window", problems)
-    curves = [c for c in (curve_targets.curve_target(spec, window, f"curves[{k}]", problems)
-                          for k, spec in enumerate(study["curves"])) if c]
-    curve_targets.check_against_scene(curves, scene, "curves", problems)
+    curves = curve_targets.read_curves(study["curves"], study.get("curve_window"), problems, "curves", "curve_window",
+                                       each_where=lambda k: f"curves[{k}]", description=scene)
     if study.get("search") == "bayes":
         for c in curves:
-            if any(q["sd"] is None for q in c["points"]):
+            if curve_targets.without_scatter(c):
                 problems.add(f"curves: {c['spec']}: the bayes search weighs each point by the lab's scatter: give it "
                              "an sd_MPa column and no lateral_strain column")
     if problems:
