@@ -29,7 +29,8 @@ HertzBase::HertzBase(const nlohmann::json& p, const std::string& where) {
 std::vector<std::string> HertzBase::state_columns() const {
   return {"radius_eff_m",         "mass_eff_kg",          "shear_force_x_n",        "shear_force_y_n",
           "shear_force_z_n",      "max_contact_radius_m", "rolling_inertia_kg_m2",  "rolling_moment_x_nm",
-          "rolling_moment_y_nm",  "rolling_moment_z_nm",  "contact_radius_m"};
+          "rolling_moment_y_nm",  "rolling_moment_z_nm",  "contact_radius_m",
+          "normal_velocity_m_s"};
 }
 
 void HertzBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair) const {
@@ -41,7 +42,8 @@ void HertzBase::initialise(PairBlock& c, std::size_t k, const PairInfo& pair) co
 }
 
 void HertzBase::release(PairBlock& c, std::size_t k, const PairForces& out) {
-  for (std::size_t column : {kShearX, kShearY, kShearZ, kRollingX, kRollingY, kRollingZ, kContactRadius})
+  for (std::size_t column :
+       {kShearX, kShearY, kShearZ, kRollingX, kRollingY, kRollingZ, kContactRadius, kNormalVelocity})
     c.column[column][k] = 0;
   c.flags[k] &= ~static_cast<dem::PairFlags>(dem::kTouching);
   out.set(k, {}, {}, {});
@@ -57,8 +59,17 @@ void HertzBase::hertz_touch(PairBlock& c, std::size_t k, const PairForces& out, 
   c.column[kMaxContactRadius][k] = std::max(c.column[kMaxContactRadius][k], a);
   c.column[kContactRadius][k] = a;
   const double vn = dot(relative_velocity, n);  // < 0 approaching
+  // The velocities are half a step behind the positions (leapfrog). A dashpot
+  // fed them lags the overlap and returns too low a restitution at a strong
+  // damping (e 0.1 came back 9 % low at 8 % of the Rayleigh step); the normal
+  // one is fed the velocity at the step's own time, extrapolated from the last
+  // two half steps (free flight before the touch: no change). Its stability
+  // limit stays above the step max_damping_ratio() sets.
+  const double vn_before = c.flags[k] & dem::kTouching ? c.column[kNormalVelocity][k] : vn;
+  c.column[kNormalVelocity][k] = vn;
+  const double vn_now = 1.5 * vn - 0.5 * vn_before;
   // The dashpot may pull at the end of an impact: clipping it would change e.
-  const double normal = f.total_n - damping_ * std::sqrt(sn * mass) * vn;
+  const double normal = f.total_n - damping_ * std::sqrt(sn * mass) * vn_now;
   const Vec3 vt = relative_velocity - vn * n;
   // The stored shear spring, turned with the contact plane, incremented, capped.
   Vec3 spring = turned_shear({c.column[kShearX][k], c.column[kShearY][k], c.column[kShearZ][k]}, n, plane_spin, dt);

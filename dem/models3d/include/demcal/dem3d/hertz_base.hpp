@@ -56,6 +56,7 @@ enum HertzColumn : std::size_t {
   kRollingY,
   kRollingZ,
   kContactRadius,     // a now, m (0 when apart)
+  kNormalVelocity,    // the normal relative velocity the last step saw (half a step behind), m/s
   kHertzColumns
 };
 
