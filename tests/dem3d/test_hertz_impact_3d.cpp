@@ -1,7 +1,8 @@
 // Hertz-Mindlin in 3D, head-on impacts of two equal spheres and of a sphere on
 // a plane: Hertz's collision time without damping; the set restitution
 // returned within 3 % at the powder scenes' step (8 % of the Rayleigh step)
-// at any impact speed (the model's restitution does not depend on it); and a
+// at 0.3-3 m/s (the model's restitution does not depend on the speed), on a
+// wall of the same material and, up to the scenes' speeds, of steel; and a
 // pressed sphere at a restitution near zero coming to rest at the engine's
 // own step.
 #include <gtest/gtest.h>
@@ -33,16 +34,20 @@ struct Impact {
 };
 
 // Two spheres meeting at `speed_m_s` (or one on a plane); the step `fixed_dt_s`.
-Impact impact(const Material& m, double restitution, bool wall, double speed_m_s, double fixed_dt_s) {
+// `steel_wall`: the plane is the powder scenes' steel (G 7.9e10 Pa, nu 0.3).
+Impact impact(const Material& m, double restitution, bool wall, double speed_m_s, double fixed_dt_s,
+              bool steel_wall = false) {
   WorldSettings settings;
   settings.damping = 0.0;
   settings.fixed_dt_s = fixed_dt_s;
   World world(settings);
   const nlohmann::json p = {{"shear_modulus_pa", m.shear_modulus_pa}, {"poisson", m.poisson},
                             {"restitution", restitution}, {"friction", 0.5}};
-  const auto model = world.add_model(ContactModelRegistry::instance().create("hertz_mindlin", p, "test"));
-  world.assign(0, 0, model);
-  world.assign(0, 1, model);
+  nlohmann::json q = p;
+  if (steel_wall) q["shear_modulus_2_pa"] = 7.9e10, q["poisson_2"] = 0.3;
+  auto& registry = ContactModelRegistry::instance();
+  world.assign(0, 0, world.add_model(registry.create("hertz_mindlin", p, "test")));
+  world.assign(0, 1, world.add_model(registry.create("hertz_mindlin", q, "test")));
   const double r = m.radius_m, gap = 0.01 * r;
   world.spheres.add_sphere({0, 0, 0}, r, m.density_kg_m3, 0);
   if (wall) {
@@ -94,6 +99,12 @@ TEST(HertzImpact3D, ImpactsReturnTheSetRestitutionWithinThreePercentAtThePowderS
       for (bool wall : {false, true}) {
         const double returned = impact(kPowder, e, wall, speed, 0.08 * kPowder.rayleigh_step_s()).restitution;
         EXPECT_NEAR(returned / e, 1.0, 0.03) << "e " << e << ", " << speed << " m/s, " << (wall ? "wall" : "pair");
+        // On steel the contact is stiffer and shorter (about 19 steps at 3 m/s): e 0.1 returns 0.963 there, so
+        // steel is held to 3 % up to the speeds the scenes reach (a drop from the funnel's 80 mm: 1.25 m/s).
+        if (wall && speed <= 1.25) {
+          const double steel = impact(kPowder, e, true, speed, 0.08 * kPowder.rayleigh_step_s(), true).restitution;
+          EXPECT_NEAR(steel / e, 1.0, 0.03) << "e " << e << ", " << speed << " m/s, steel wall";
+        }
       }
 }
 
