@@ -220,3 +220,50 @@ TEST(HeapTest3d, ARayleighFractionFixesTheStep) {
 }
 
 }  // namespace
+
+namespace {
+
+dem::TestResult run_small(const nlohmann::json& s, const std::string& name) {
+  const std::string path = test::scratch_path(name);
+  std::ofstream(path) << s.dump();
+  const dem::Scene scene = dem::Scene::load(path);
+  return dem::run_test(scene, scene.resolve({}), dem::RunOptions{});
+}
+
+// The brush: its blades' places are left out of the fill (the same fill as
+// without a brush, less those), it turns at its rpm from the gate's opening
+// until the funnel has discharged and then stands still while the heap
+// settles (it settled 0.3 s after the discharge here; a brush still turning
+// would have made twice the turns).
+TEST(HeapTest3d, TheBrushTurnsWhileTheFunnelDischargesOnly) {
+  nlohmann::json s = small_heap();
+  s["run"]["discharged_fraction"] = 0.6;
+  s["run"]["settle_kinetic_ratio"] = 1e-2;
+  nlohmann::json unbrushed = s;
+  unbrushed["run"]["max_time_s"] = 0.02;  // the fill is all this needs
+  const dem::TestResult without = run_small(unbrushed, "heap_3d_no_brush.json");
+  s["brush"] = {{"rpm", 120}};
+  const dem::TestResult with = run_small(s, "heap_3d_brush.json");
+  ASSERT_TRUE(with.ok) << with.reason;
+  const double left_out = with.specimen_info.at("left_out_for_brush");
+  EXPECT_GT(left_out, 0.0);
+  EXPECT_EQ(with.specimen_info.at("particles") + left_out, without.specimen_info.at("particles"));
+  const double check_s = s["run"]["check_every_s"].get<double>();
+  const double turns = with.specimen_info.at("brush_turns"), flow_s = with.macro.at("flow_time_s");
+  EXPECT_NEAR(turns, 2.0 * flow_s, 2.0 * check_s);
+  EXPECT_GT(with.specimen_info.at("settled_at_s") - 0.01 - flow_s, 0.1);  // it stood still that long
+}
+
+TEST(HeapTest3d, BadBrushesNameTheField) {
+  nlohmann::json s = small_heap();
+  s["brush"] = {{"rpm", 0}};
+  EXPECT_NE(scene_error(s).find("heap_3d_bad.json: brush.rpm must be positive"), std::string::npos) << scene_error(s);
+  s["brush"] = {{"rpm", 60}, {"blades", 2.5}};
+  EXPECT_NE(scene_error(s).find("brush.blades must be a whole number"), std::string::npos) << scene_error(s);
+  s["brush"] = {{"rpm", 60}, {"clearance_m", 0.01}};
+  EXPECT_NE(scene_error(s).find("brush.clearance_m must lie in"), std::string::npos) << scene_error(s);
+  s["brush"] = {{"rpm", 60}, {"speed", 1}};
+  EXPECT_NE(scene_error(s).find("speed"), std::string::npos) << scene_error(s);
+}
+
+}  // namespace

@@ -1,6 +1,7 @@
-// The funnel heap in 3D (He et al. 2019's flow meter, without its brush): a
-// conical funnel filled with a powder of spheres or two-sphere clumps opens
-// onto a round platform; what runs off the platform falls past its pedestal
+// The funnel heap in 3D (He et al. 2019's flow meter): a conical funnel
+// filled with a powder of spheres or two-sphere clumps opens onto a round
+// platform, stirred while it discharges by an optional brush of flat blades
+// turning about its axis; what runs off the platform falls past its pedestal
 // to a catch floor inside a cylindrical domain; once the heap has settled
 // (kinetic energy below a set share of the potential), its angle of repose is
 // fitted over vertical sections through the platform's axis
@@ -13,11 +14,14 @@
 //                 "outlet_height_m" (above the platform), "fill_height_m" (default 0.8 x height),
 //                 "solids_fraction" (default 0.25), "platform_diameter_m", "domain_diameter_m" (default 3 x platform),
 //                 "facets" (around the funnel and the platform, default 48)},
+//   "brush":     optional: {"rpm", "blades" (default 2), "clearance_m" (from the cone, default one particle
+//                 length), "height_m" (its top above the outlet, default the fill height)},
 //   "run":       {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
 //                 "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
 //                 "safety_factor", "rayleigh_fraction" (a fixed step as this fraction of the Rayleigh step)}
 //
-// Contact roles: "particle-particle" and "particle-wall" (funnel, gate, platform, pedestal, catch floor, domain).
+// Contact roles: "particle-particle" and "particle-wall" (funnel, gate, brush, platform, pedestal, catch floor,
+// domain).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,7 +43,18 @@ namespace demcal::dem3d {
 namespace {
 
 constexpr std::uint8_t kWallGroup = kPowderWallGroup;
-constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2;
+constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2, kBrushMesh = 3;
+
+// He's funnel had a brush turning at 60 rpm; its shape is not published. This
+// one: flat blades in vertical planes through the axis, each reaching from
+// the axis to `clearance_m` short of the cone, from the outlet up to
+// `height_m`; it turns from the gate's opening until the funnel has
+// discharged, then stops where it is (a turning blade would keep the powder
+// caught on it moving and the heap from settling).
+struct Brush {
+  bool present = false;
+  double rpm = 0, blades = 2, clearance_m = 0, height_m = 0;
+};
 
 struct HeapSpec3d {
   PowderSpec3d powder;
@@ -48,6 +63,12 @@ struct HeapSpec3d {
   dem::FunnelRun run;  // the stages' keys of "run" (funnel_discharge.hpp)
   double bin_width_diameters = 1.5, sections = 8;
   PowderStepping stepping;
+  Brush brush;
+
+  // The cone's radius at height z above the platform.
+  double cone_radius_m(double z) const {
+    return 0.5 * outlet_diameter_m + (z - outlet_height_m) / std::tan(wall_angle_deg * M_PI / 180);
+  }
 
   double top_radius_m() const {
     return 0.5 * outlet_diameter_m + funnel_height_m / std::tan(wall_angle_deg * M_PI / 180);
@@ -94,6 +115,18 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
   number("funnel", f, "domain_diameter_m", s.domain_diameter_m, false);
   number("funnel", f, "facets", s.facets, false);
 
+  if (scene.has_section("brush")) {
+    const nlohmann::json& b = scene.section("brush");
+    require_known_fields(b, {"rpm", "blades", "clearance_m", "height_m", "note"}, origin + ": brush");
+    s.brush.present = true;
+    s.brush.clearance_m = s.powder.longest_m();
+    s.brush.height_m = s.fill_height_m;
+    number("brush", b, "rpm", s.brush.rpm, true);
+    number("brush", b, "blades", s.brush.blades, false);
+    number("brush", b, "clearance_m", s.brush.clearance_m, false);
+    number("brush", b, "height_m", s.brush.height_m, false);
+  }
+
   const nlohmann::json& r = scene.section("run");
   std::vector<std::string> run_keys = dem::FunnelRun::keys();
   run_keys.insert(run_keys.end(), PowderStepping::keys().begin(), PowderStepping::keys().end());
@@ -126,6 +159,17 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
                 "domain (domain_diameter_m " + format_double(s.domain_diameter_m) + " m)");
   if (!(s.facets >= 12 && s.facets <= 720 && s.facets == std::floor(s.facets)))
     throw Error(fw + ".facets must be a whole number in [12, 720]");
+  if (s.brush.present) {
+    const std::string bw = origin + ": brush";
+    if (!(s.brush.rpm > 0)) throw Error(bw + ".rpm must be positive");
+    if (!(s.brush.blades >= 1 && s.brush.blades <= 12 && s.brush.blades == std::floor(s.brush.blades)))
+      throw Error(bw + ".blades must be a whole number in [1, 12]");
+    if (!(s.brush.height_m > 0 && s.brush.height_m <= s.funnel_height_m))
+      throw Error(bw + ".height_m must lie in (0, funnel.height_m]");
+    if (!(s.brush.clearance_m >= 0 && s.brush.clearance_m < 0.5 * s.outlet_diameter_m))
+      throw Error(bw + ".clearance_m must lie in [0, half the outlet's diameter): the blades would not reach into "
+                       "the outlet");
+  }
   const std::string rw = origin + ": run";
   s.run.validate(rw);
   if (!(s.bin_width_diameters > 0)) throw Error(rw + ".bin_width_diameters must be positive");
@@ -154,6 +198,37 @@ void add_cone(std::vector<Wall>& walls, double z0, double r0, double z1, double 
     walls.push_back(make_triangle(a0, b0, b1, kFunnelMesh, pivot, kWallGroup));
     walls.push_back(make_triangle(a0, b1, a1, kFunnelMesh, pivot, kWallGroup));
   }
+}
+
+// The brush's blades (two triangles each), from the outlet up to its height, about the funnel's axis.
+void add_brush(std::vector<Wall>& walls, const HeapSpec3d& s) {
+  const double z0 = s.outlet_height_m, z1 = z0 + s.brush.height_m, c = s.brush.clearance_m;
+  const double r0 = s.cone_radius_m(z0) - c, r1 = s.cone_radius_m(z1) - c;
+  const auto blades = static_cast<int>(s.brush.blades);
+  for (int k = 0; k < blades; ++k) {
+    const double a = 2 * M_PI * k / blades;
+    const Vec3 out{std::cos(a), std::sin(a), 0};
+    const Vec3 axis0{0, 0, z0}, axis1{0, 0, z1};
+    walls.push_back(make_triangle(axis0, axis0 + r0 * out, axis1 + r1 * out, kBrushMesh, axis0, kWallGroup));
+    walls.push_back(make_triangle(axis0, axis1 + r1 * out, axis1, kBrushMesh, axis0, kWallGroup));
+  }
+}
+
+// Whether a particle's spheres keep clear of the brush's blades (by their radius).
+bool clear_of_brush(const PowderParticle3d& p, const HeapSpec3d& s) {
+  if (!s.brush.present) return true;
+  const auto blades = static_cast<int>(s.brush.blades);
+  for (const Vec3& x : member_centres(p, s.powder.clump_aspect_ratio)) {
+    if (x.z > s.outlet_height_m + s.brush.height_m + p.radius_m) continue;
+    for (int k = 0; k < blades; ++k) {
+      const double a = 2 * M_PI * k / blades;
+      // Distance from the blade's half-plane: across it where the centre lies on its side, else to its axis edge.
+      const double along = x.x * std::cos(a) + x.y * std::sin(a), across = -x.x * std::sin(a) + x.y * std::cos(a);
+      const double distance = along >= 0 ? std::abs(across) : std::hypot(along, across);
+      if (distance < p.radius_m) return false;
+    }
+  }
+  return true;
 }
 
 // Spheres whose centre is still above the outlet, less a radius (a clump counts by each member).
@@ -193,13 +268,32 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   const std::size_t gate_begin = world.walls.size();
   add_disk(world.walls, ho, 0.5 * s.outlet_diameter_m, facets, kGateMesh);
   const std::size_t gate_end = world.walls.size();
+  if (s.brush.present) add_brush(world.walls, s);
+  const std::size_t brush_end = world.walls.size();
+  const auto turn_brush = [&](double rad_s) {
+    for (std::size_t w = gate_end; w < brush_end; ++w) world.walls[w].spin_rad_s = {0, 0, rad_s};
+  };
+  // The turns the brush made, from its first blade's outer corner (each check's angle unwrapped).
+  double brush_turns = 0, brush_angle = 0;
+  const auto count_brush_turns = [&] {
+    if (!s.brush.present) return;
+    const Vec3 corner = world.walls[gate_end].vertices[1];
+    const double angle = std::atan2(corner.y, corner.x);
+    brush_turns += std::remainder(angle - brush_angle, 2 * M_PI) / (2 * M_PI);
+    brush_angle = angle;
+  };
   add_disk(world.walls, 0.0, r_platform, facets, kPlatformMesh);
   world.walls.push_back(make_cylinder({0, 0, floor_z}, {0, 0, 1}, r_platform, -floor_z, false, kWallGroup));  // pedestal
   world.walls.push_back(make_plane({0, 0, floor_z}, {0, 0, 1}, kWallGroup));                                  // catch floor
   world.walls.push_back(make_cylinder({0, 0, floor_z}, {0, 0, 1}, r_domain, funnel_top - floor_z, true, kWallGroup));
 
-  const std::vector<PowderParticle3d> particles =
+  std::vector<PowderParticle3d> particles =
       place_powder_3d(s.powder, s.fill_region(), options.seed, scene.origin() + ": funnel (the fill)");
+  // The fill leaves the blades' places empty (a sphere placed across a blade would be thrown off it).
+  const std::size_t placed = particles.size();
+  particles.erase(std::remove_if(particles.begin(), particles.end(),
+                                 [&](const PowderParticle3d& p) { return !clear_of_brush(p, s); }),
+                  particles.end());
   add_powder_3d(world, particles, s.powder, kPowderGroup, options.particle_order_seed);
   world.refresh();
 
@@ -208,6 +302,7 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   result.specimen_info["particles"] = static_cast<double>(particles.size());
   result.specimen_info["clumps"] = static_cast<double>(world.clumps().size());
   result.specimen_info["catch_depth_m"] = -floor_z;
+  if (s.brush.present) result.specimen_info["left_out_for_brush"] = static_cast<double>(placed - particles.size());
   const auto loading_start = std::chrono::steady_clock::now();
   const auto steps_per_check =
       std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(s.run.check_every_s / world.dt_s())));
@@ -218,15 +313,19 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   stages.run(
       result,
       [&] {
+        if (s.brush.present && stages.flow_time_s() >= 0) turn_brush(0.0);  // discharged: the brush stops
         world.run(steps_per_check);
+        count_brush_turns();
         return world.time_s();
       },
       [&] { return escaped(world, s, floor_z, funnel_top); },
       [&] {
         for (std::size_t w = gate_begin; w < gate_end; ++w) world.walls[w].active = false;
+        if (s.brush.present) turn_brush(s.brush.rpm * 2 * M_PI / 60);
         world.refresh();
       },
       in_funnel_now, energies);
+  if (s.brush.present) result.specimen_info["brush_turns"] = brush_turns;
   finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
   if (!result.ok) return result;
 
@@ -289,12 +388,13 @@ class HeapTest3d : public PowderTest3d {
            "repose over vertical sections, and its height-based angle";
   }
   std::vector<dem::BoundaryRole> boundary_roles() const override {
-    return {{"particle-wall", kWallGroup, "particles against the funnel, its gate, the platform and the catch floor"}};
+    return {{"particle-wall", kWallGroup, "particles against the funnel, its gate and brush, the platform and the catch floor"}};
   }
   // The heap makes its particles in the funnel as it runs: no packed specimen, no loading.
   std::vector<dem::SceneSection> sections() const override {
     return {particles_section(),
             {"funnel", "the funnel, the platform and the domain", false},
+            {"brush", "the funnel's stirring brush (optional: none without it)", false},
             {"run", "time limits, the settling criterion, the angle's bins and sections", false}};
   }
   void check_scene(const Scene& scene) const override { HeapSpec3d::from_scene(scene, scene.resolve({})); }
