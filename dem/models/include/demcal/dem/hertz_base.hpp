@@ -45,6 +45,7 @@ enum HertzColumn : std::size_t {
   kRollingMoment,      // elastic rolling couple on j (epsd), N m
   kContactRadius,      // a now, m (0 when apart)
   kMaxContactRadius,   // the largest a this pair reached, m (time step)
+  kNormalVelocity,     // the normal relative velocity the last step saw (half a step behind), m/s
   kHertzColumns
 };
 
