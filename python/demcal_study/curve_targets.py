@@ -295,13 +295,30 @@ def _number(x):
     return float(x) if math.isfinite(x) else None
 
 
-def read_seed_curves(runs_folder, seeds):
-    """{seed: the `curve` of runs_folder/runs.h5.points/run1_seedS.json} for the seeds whose file is there (the
-    folder demcal-verify ran them in)."""
+def add_finer_shifts(v, finer_curves, curves):
+    """demcal-verify's result `v` at a finer resolution (its `finer` block, the curve rows already added to
+    `outputs`) with each curve point's shift, as demcal-verify gives the scalar targets': 100 (finer mean - mean) /
+    |mean|, the finer mean over the finer seeds' curves ({seed: curve}); None when no finer seed gave the point.
+    Returns v."""
+    if "finer" not in v:
+        return v
+    finer = [point_values(c, curves) for c in finer_curves.values() if c]
+    shifts = v["finer"].setdefault("shift_pct", {})
+    for name in names(curves):
+        x = [f[name] for f in finer if name in f and math.isfinite(f[name])]
+        mean = v["outputs"].get(name, {}).get("mean")
+        shifts[name] = (100.0 * (float(np.mean(x)) - mean) / abs(mean)
+                        if x and isinstance(mean, (int, float)) and mean != 0 else None)
+    return v
+
+
+def read_seed_curves(runs_folder, seeds, batch="runs.h5"):
+    """{seed: the `curve` of runs_folder/BATCH.points/run1_seedS.json} for the seeds whose file is there (the
+    folder demcal-verify ran them in: runs.h5, or finer_runs.h5 for its finer resolution)."""
     import json
     out = {}
     for s in seeds:
-        path = os.path.join(runs_folder, "runs.h5.points", f"run1_seed{s}.json")
+        path = os.path.join(runs_folder, f"{batch}.points", f"run1_seed{s}.json")
         try:
             with open(path) as f:
                 out[s] = json.load(f).get("curve")

@@ -791,3 +791,46 @@ def test_a_curve_point_too_scattered_for_its_seeds_asks_for_as_many_as_its_sd_ne
     assert curve_targets.seeds_wanted(v(0.75, 5.2), curves, 0.05, 20) == 6  # (2.776 * 0.75)^2 = 4.3: one more
     seeds.extend({"seed": s, "status": "ok"} for s in range(7, 22))
     assert curve_targets.seeds_wanted(v(3.0, 7.0), curves, 0.05, 20) is None  # 20 run: no more
+
+
+def test_a_finer_resolution_check_gives_every_curve_point_its_shift(tmp_path, monkeypatch):
+    # demcal-verify runs the scalar target on both resolutions and gives its shift; the curve's points are read
+    # from the seeds' curves of each: here the finer specimens' curves are 10 % softer at every strain.
+    class Tools:
+        jobs, cache = "1", str(tmp_path / "cache")
+
+        def program(self, name):
+            return name
+
+    curves = [{"label": None, "points": [{"name": "curve_MPa@0.001", "kind": "stress", "strain": 0.001, "value": 10.0},
+                                         {"name": "curve_MPa@0.002", "kind": "stress", "strain": 0.002, "value": 20.0}]}]
+    folder = tmp_path / "v01"
+
+    def curve(seed, factor):
+        return {"axial_strain": [0.0, 0.003], "stress_MPa": [0.0, factor * (30.0 + 0.1 * seed)]}
+
+    def fake_run(cmd, stdout=None):
+        for batch, seeds, factor in (("runs.h5", range(2, 7), 1.0), ("finer_runs.h5", range(2, 4), 0.9)):
+            points = folder / "runs" / f"{batch}.points"
+            points.mkdir(parents=True, exist_ok=True)
+            for s in seeds:
+                (points / f"run1_seed{s}.json").write_text(json.dumps({"curve": curve(s, factor)}))
+        v = {"passed": True, "verdict": "mean_inside_band",
+             "outputs": {"y": {"mean": 1.0, "relative_error_pct": 0.0, "half_width_pct": 1.0, "passed": True}},
+             "seeds": [{"seed": s, "status": "ok", "macro": {"y": 1.0}} for s in range(2, 7)],
+             "finer": {"factor": 2.0, "seeds": [{"seed": s} for s in (2, 3)], "shift_pct": {"y": -1.5}}}
+        with open(cmd[cmd.index("--out") + 1], "w") as f:
+            json.dump(v, f)
+        return type("Done", (), {"returncode": 0})()
+
+    monkeypatch.setattr(calibrate_runs.subprocess, "run", fake_run)
+    targets = {"y": 1.0, "curve_MPa@0.001": 10.0, "curve_MPa@0.002": 20.0}
+    v = calibrate_runs.verify(Tools(), "scene.json", str(folder), {"a_Pa": 1e8}, targets, dict(targets), 2, 5, 20, 0.05,
+                              True, scale_resolution=2.0, curves=curves)
+    shifts = v["finer"]["shift_pct"]
+    assert shifts["y"] == -1.5  # demcal-verify's own, kept
+    # Coarse seeds 2-6 against finer seeds 2-3, each curve linear in strain: the mean stresses' ratio at any strain.
+    expected = 100 * (0.9 * np.mean([30 + 0.1 * s for s in (2, 3)]) / np.mean([30 + 0.1 * s for s in range(2, 7)]) - 1)
+    assert shifts["curve_MPa@0.001"] == pytest.approx(expected, rel=1e-12)
+    assert shifts["curve_MPa@0.002"] == pytest.approx(expected, rel=1e-12)
+    assert json.load(open(folder / "verification.json"))["finer"]["shift_pct"] == shifts  # stored as returned
