@@ -5,8 +5,11 @@ The emulators are of specimen 1 (common random numbers), so the prediction of a 
 the emulator's own SD two terms of the specimens' scatter sigma, measured on the first verification's seeds:
 specimen 1's own deviation from the population (sigma^2: the posterior does not know it) and the n-specimen mean's
 (sigma^2 / n). A stress-like output scatters in proportion to the scale factor, so its sigma is carried as a
-coefficient of variation. The check a user reads: does the 95 % interval at the exported point hold the mean of the
-first n verified specimens there?"""
+coefficient of variation. sigma is estimated from few seeds (5 at the least), so the interval is Student's, not the
+normal one: with the emulator's variance a (known) and the specimens' term b (m - 1 degrees of freedom from m seeds),
+Welch-Satterthwaite's (a + b)^2 (m - 1) / b^2 degrees of freedom; draws over the posterior take a Student-t
+deviate for the specimens' term. The check a user reads: does the 95 % interval at the exported point hold the mean
+of the first n verified specimens there?"""
 import json
 import math
 import os
@@ -18,9 +21,9 @@ from .errors import load_json
 from .files import write_target
 from .outputs import is_output, output_info
 from .searches.bayes_search import ScaleFreeEmulator
+from .trust_region import t975
 
 SEEDS_IN_MEAN = 5
-Z95 = 1.959963984540054
 DRAWS_SAMPLED = 400   # posterior draws the predictive over the posterior is sampled at (evenly thinned)
 
 
@@ -44,6 +47,14 @@ class _Emulator:
             mean, sd = self.emulator.predict(u)
         factor = np.asarray(scale, float) if self.scaled else 1.0
         return mean * factor, sd * np.abs(factor)
+
+
+def half_width_95(emulator_sd, specimen_sd, freedom):
+    """(half-width, degrees of freedom) of the 95 % interval of emulator error (SD known) plus the specimens' term
+    (SD estimated with `freedom` degrees of freedom): Student's, by Welch-Satterthwaite."""
+    a, b = emulator_sd ** 2, specimen_sd ** 2
+    effective = (a + b) ** 2 * freedom / b ** 2 if b > 0 else math.inf
+    return t975(effective) * math.sqrt(a + b), effective
 
 
 def predicted_outputs(cal, seeds):
@@ -100,10 +111,12 @@ def predictive(cal, draws, exported):
         def seed_sd(s):
             return sd_seed * (np.asarray(s, float) / at_scale if scaled else 1.0)
         spread = math.sqrt(1.0 + 1.0 / SEEDS_IN_MEAN)
+        freedom = len(measured) - 1  # of the specimens' SD
         mean_e, sd_e = emulator.predict(exported[:d], at_scale)
-        half = Z95 * math.sqrt(float(sd_e[0]) ** 2 + (spread * float(seed_sd(at_scale))) ** 2)
+        half, effective = half_width_95(float(sd_e[0]), spread * float(seed_sd(at_scale)), freedom)
         mean_d, sd_d = emulator.predict(draws[:, :d], draw_scales)
-        sampled = mean_d + np.hypot(sd_d, spread * seed_sd(draw_scales)) * rng.standard_normal(len(draws))
+        sampled = (mean_d + sd_d * rng.standard_normal(len(draws))
+                   + spread * seed_sd(draw_scales) * rng.standard_t(freedom, len(draws)))
         verified = measured[:SEEDS_IN_MEAN]
         verified_mean = float(verified.mean()) if len(verified) == SEEDS_IN_MEAN else None
         interval = [float(mean_e[0]) - half, float(mean_e[0]) + half]
@@ -111,14 +124,17 @@ def predictive(cal, draws, exported):
                    "exported": {"mean": float(mean_e[0]), "interval_95": interval},
                    "posterior": {"median": float(np.median(sampled)),
                                  "interval_95": [float(x) for x in np.percentile(sampled, [2.5, 97.5])]},
-                   "specimen_sd": float(seed_sd(at_scale)), "emulator_sd": float(sd_e[0]),
+                   "specimen_sd": float(seed_sd(at_scale)), "specimen_sd_seeds": len(measured),
+                   "emulator_sd": float(sd_e[0]),
+                   "degrees_of_freedom": effective if math.isfinite(effective) else None,
                    "verified_mean": verified_mean,
                    "inside": None if verified_mean is None else bool(interval[0] <= verified_mean <= interval[1])}
     content = {"seeds_in_mean": SEEDS_IN_MEAN,
                "verification": first["folder"], "verified_seeds": len(seeds),
                "how": f"a mean of {SEEDS_IN_MEAN} fresh specimens: specimen 1's emulator, its SD, specimen 1's own "
                       f"deviation from the population (the specimens' SD) and the mean's (that SD over "
-                      f"sqrt({SEEDS_IN_MEAN})), in quadrature; the specimens' SD from the first verification's seeds",
+                      f"sqrt({SEEDS_IN_MEAN})), in quadrature; the specimens' SD from the first verification's seeds, "
+                      "so Student's interval (Welch-Satterthwaite's degrees of freedom)",
                "outputs": rows}
     write_target(os.path.join(cal.out, "predictive.json"), json.dumps(content, indent=1) + "\n")
     return content

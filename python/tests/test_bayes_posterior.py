@@ -119,3 +119,16 @@ def test_a_stated_model_discrepancy_widens_the_posterior_by_its_share_of_the_tar
     assert np.std(with_misfit.theta[:, 0]) == pytest.approx(0.10, rel=0.1)
     with pytest.raises(ValueError):
         Posterior([Linear(3.0, [1.0])], targets, [False], dimensions=1, discrepancy=1.0)
+
+
+def test_the_predictive_interval_is_students_when_the_specimens_sd_comes_from_few_seeds():
+    from demcal_study.posterior_predictive import half_width_95
+    # The specimens' term alone, SD from 5 seeds: t(0.975, 4) = 2.776.
+    half, dof = half_width_95(0.0, 1.0, 4)
+    assert dof == pytest.approx(4) and half == pytest.approx(2.776, abs=1e-3)
+    # The emulator's term alone (no specimen scatter): the normal 1.96.
+    half, dof = half_width_95(1.0, 0.0, 4)
+    assert dof == float("inf") and half == pytest.approx(1.960, abs=1e-3)
+    # Equal variances: Welch-Satterthwaite's (a + b)^2 (m - 1) / b^2 = 4 x 4 = 16 degrees of freedom, t = 2.120.
+    half, dof = half_width_95(1.0, 1.0, 4)
+    assert dof == pytest.approx(16) and half == pytest.approx(2.120 * 2 ** 0.5, abs=2e-3)
