@@ -67,16 +67,37 @@ def run_truth(build, scene, values, fixed, first_seed, count, folder, jobs):
     outputs of each seed that ran."""
     tools = Tools(bin=os.path.join(build, "bin"), jobs=str(jobs), cache=os.path.join(build, "cache"), python="")
     try:
-        out, _ = one_point_batch(tools, scene, folder, dict(fixed, **values), first_seed, count, quiet=True)
+        one_point_batch(tools, scene, folder, dict(fixed, **values), first_seed, count, quiet=True)
     except StudyError as e:
         sys.exit(f"uncertainty_benchmark: {e}")
+    return read_macros(folder, first_seed, count)
+
+
+def read_macros(folder, first_seed, count):
+    """The macro outputs of the seeds of a stored batch (one_point_batch's folder) that ran."""
     macros = []
-    for s in range(first_seed, first_seed + count):
-        with open(f"{out}.points/run1_seed{s}.json") as f:
-            r = json.load(f)
+    for seed in range(first_seed, first_seed + count):
+        try:
+            with open(os.path.join(folder, "responses.h5.points", f"run1_seed{seed}.json")) as f:
+                r = json.load(f)
+        except (OSError, ValueError):
+            continue
         if r.get("status") == "ok":
             macros.append(r["macro"])
     return macros
+
+
+def calibration_files(cal):
+    """(posterior, predictive or None, solution) of a finished calibration's folder."""
+    with open(os.path.join(cal, "solution.json")) as f:
+        solution = json.load(f)
+    with open(os.path.join(cal, "posterior.json")) as f:
+        posterior = json.load(f)
+    predictive = None
+    if os.path.exists(os.path.join(cal, "predictive.json")):
+        with open(os.path.join(cal, "predictive.json")) as f:
+            predictive = json.load(f)
+    return posterior, predictive, solution
 
 
 def lab_targets(macros):
@@ -92,9 +113,15 @@ def lab_targets(macros):
 
 def rock_result(truth, posterior, predictive, solution, fresh):
     """One rock's row: per parameter whether its 90 % interval holds the truth (identified ones count), the coded
-    width against the prior's 2, and per target whether the predictive's interval over the posterior holds the
-    fresh seeds' mean."""
-    row = {"status": solution["status"], "dem_runs": solution["dem_runs"], "parameters": {}, "predictive": {}}
+    width against the prior's 2; per target whether the predictive's interval over the posterior holds the fresh
+    seeds' mean at the truth; and per output of every test whether the interval at the exported point holds the
+    first verification's mean there (the calibration's own check, `inside` in predictive.json)."""
+    row = {"status": solution["status"], "dem_runs": solution["dem_runs"], "parameters": {}, "predictive": {},
+           "exported": {}}
+    for name, r in (predictive or {}).get("outputs", {}).items():
+        if isinstance(r.get("inside"), bool):
+            row["exported"][name] = {"verified_mean": r.get("verified_mean"), "interval_95": r["exported"]["interval_95"],
+                                     "inside": r["inside"], "targeted": r.get("target") is not None}
     for name, value in truth.items():
         p = posterior["parameters"][name]
         lo, hi = p["credible_90"]
@@ -123,6 +150,8 @@ def summary(rows):
                 e["identified"] += 1
                 e["inside"] += int(p["inside"])
     predictive = [q["inside"] for r in rows for q in r["predictive"].values()]
+    exported = [q for r in rows for q in r.get("exported", {}).values()]
+    exported_targets = [q["inside"] for q in exported if q["targeted"]]
     runs = [r["dem_runs"] for r in rows]
     return {"rocks": len(rows),
             "coverage_identified": float(np.mean(held)) if held else None, "identified_intervals": len(held),
@@ -131,6 +160,10 @@ def summary(rows):
             "dem_runs_median": float(np.median(runs)) if runs else None, "dem_runs_max": max(runs) if runs else None,
             "predictive_inside": float(np.mean(predictive)) if predictive else None,
             "predictive_checks": len(predictive),
+            "exported_targets_inside": float(np.mean(exported_targets)) if exported_targets else None,
+            "exported_target_checks": len(exported_targets),
+            "exported_all_inside": float(np.mean([q["inside"] for q in exported])) if exported else None,
+            "exported_all_checks": len(exported),
             "met": sum(r["status"] == "met" for r in rows)}
 
 
@@ -146,7 +179,12 @@ def write_summary(out, s, rows, header):
              + " (goal at most 100). Predictive 95 % intervals (over the posterior) holding the mean of 5 fresh seeds "
                "at the truth: "
              + ("-" if s["predictive_inside"] is None else f"{100 * s['predictive_inside']:.0f} % of "
-                f"{s['predictive_checks']}") + ".", "",
+                f"{s['predictive_checks']}") + ". At the exported point, the predictive's 95 % interval of a 5-specimen "
+               "mean holding the first verification's 5-seed mean: "
+             + ("-" if s["exported_targets_inside"] is None else
+                f"{100 * s['exported_targets_inside']:.0f} % of {s['exported_target_checks']} targets, "
+                f"{100 * s['exported_all_inside']:.0f} % of {s['exported_all_checks']} outputs of the test, "
+                "targeted or not") + ".", "",
              "| parameter | identified (rocks) | truth inside, of those | median 90 % width / prior's |",
              "|---|---|---|---|"]
     for name, e in sorted(s["per_parameter"].items()):
@@ -165,6 +203,8 @@ def main():
     ap.add_argument("--seed", type=int, default=1, help="the truths' Latin hypercube")
     ap.add_argument("--jobs", default="2")
     ap.add_argument("--out", default="build/uncertainty_benchmark")
+    ap.add_argument("--summary-only", action="store_true",
+                    help="write the summary of the rocks finished so far (while a run goes on), running nothing")
     a = ap.parse_args()
     if a.rocks < 1 or a.budget < 30:
         sys.exit("uncertainty_benchmark: --rocks must be at least 1 and --budget at least 30")
@@ -184,8 +224,17 @@ def main():
                JOBS=str(a.jobs), CACHE=os.path.join(a.build, "cache"))
     for k, truth in enumerate(truths(problem, a.rocks, a.seed), start=1):
         name = f"rock{k:02d}"
-        print(f"uncertainty_benchmark: {name} ({k}/{a.rocks}): " + ", ".join(f"{n} {v:.4g}" for n, v in truth.items()),
-              file=sys.stderr, flush=True)
+        if not a.summary_only:
+            print(f"uncertainty_benchmark: {name} ({k}/{a.rocks}): " + ", ".join(f"{n} {v:.4g}" for n, v in truth.items()),
+                  file=sys.stderr, flush=True)
+        cal = os.path.join(a.out, "calibrations", name)
+        if a.summary_only:
+            fresh_points = os.path.join(a.out, name, "fresh", "responses.h5.points")
+            finished = all(os.path.exists(os.path.join(cal, f)) for f in ("solution.json", "posterior.json"))
+            if finished and os.path.isdir(fresh_points):
+                fresh = read_macros(os.path.join(a.out, name, "fresh"), *FRESH_SEEDS)
+                rows.append(dict(rock_result(truth, *calibration_files(cal), fresh), name=name))
+            continue
         lab = run_truth(a.build, a.scene, truth, space["fixed"], *TRUTH_SEEDS, os.path.join(a.out, name, "truth"), a.jobs)
         targets = lab_targets(lab)
         if targets is None:
@@ -198,18 +247,11 @@ def main():
         done = subprocess.run(cmd, env=env)
         if done.returncode not in (0, 3, 4):
             sys.exit(f"uncertainty_benchmark: {name}: the calibration failed (exit {done.returncode}); rerun to resume")
-        cal = os.path.join(a.out, "calibrations", name)
-        with open(os.path.join(cal, "solution.json")) as f:
-            solution = json.load(f)
-        with open(os.path.join(cal, "posterior.json")) as f:
-            posterior = json.load(f)
-        predictive = None
-        if os.path.exists(os.path.join(cal, "predictive.json")):
-            with open(os.path.join(cal, "predictive.json")) as f:
-                predictive = json.load(f)
         fresh = run_truth(a.build, a.scene, truth, space["fixed"], *FRESH_SEEDS, os.path.join(a.out, name, "fresh"),
                           a.jobs)
-        rows.append(dict(rock_result(truth, posterior, predictive, solution, fresh), name=name))
+        rows.append(dict(rock_result(truth, *calibration_files(cal), fresh), name=name))
+        write_summary(a.out, summary(rows), rows, f"# The Bayesian search on synthetic rocks ({a.scene})")
+    if a.summary_only:
         write_summary(a.out, summary(rows), rows, f"# The Bayesian search on synthetic rocks ({a.scene})")
     print(f"uncertainty_benchmark: {os.path.join(a.out, 'summary.md')}", file=sys.stderr)
 

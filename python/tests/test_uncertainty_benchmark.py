@@ -43,8 +43,12 @@ def test_the_summary_counts_identified_intervals_that_hold_the_truth():
     posterior = {"parameters": {"a": {"credible_90": [1.0, 2.0], "identified": True, "coded_width": 0.5},
                                 "b": {"credible_90": [1.0, 2.0], "identified": True, "coded_width": 0.8},
                                 "c": {"credible_90": [0.0, 9.0], "identified": False, "coded_width": 1.9}}}
-    predictive = {"outputs": {"E_GPa": {"posterior": {"interval_95": [9.0, 11.0]}},
-                              "nu": {"posterior": {"interval_95": [0.2, 0.3]}}}}
+    predictive = {"outputs": {"E_GPa": {"posterior": {"interval_95": [9.0, 11.0]}, "target": 10.0, "inside": True,
+                                        "verified_mean": 10.1, "exported": {"interval_95": [9.5, 10.5]}},
+                              "nu": {"posterior": {"interval_95": [0.2, 0.3]}, "target": 0.25, "inside": False,
+                                     "verified_mean": 0.35, "exported": {"interval_95": [0.22, 0.28]}},
+                              "sigma_t_MPa": {"posterior": {"interval_95": [4, 6]}, "target": None, "inside": True,
+                                              "verified_mean": 5.0, "exported": {"interval_95": [4.5, 5.5]}}}}
     fresh = [{"E_GPa": 10.0 + 0.1 * k, "nu": 0.35} for k in range(5)]
     row = m.rock_result({"a": 1.5, "b": 3.0, "c": 5.0}, posterior, predictive, {"status": "met", "dem_runs": 57},
                         fresh)
@@ -57,3 +61,7 @@ def test_the_summary_counts_identified_intervals_that_hold_the_truth():
     assert s["per_parameter"]["c"] == {"identified": 0, "inside": 0, "median_width_of_prior": pytest.approx(0.95)}
     assert s["dem_runs_median"] == 50 and s["dem_runs_max"] == 57
     assert s["predictive_inside"] == pytest.approx(0.5) and s["met"] == 2
+    # At the exported point: E in, nu out (targets); the untargeted tensile strength in, counted among all outputs.
+    assert s["exported_targets_inside"] == pytest.approx(0.5) and s["exported_target_checks"] == 4
+    assert s["exported_all_inside"] == pytest.approx(4 / 6) and s["exported_all_checks"] == 6
+
