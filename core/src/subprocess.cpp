@@ -15,6 +15,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/wall_timeout.hpp"
 
 namespace demcal {
 namespace {
@@ -147,7 +148,7 @@ CommandOutcome run_command(const std::vector<std::string>& argv, const std::stri
 
 std::string describe_outcome(const CommandOutcome& o, const std::string& program) {
   if (!o.started) return o.reason;
-  if (o.timed_out) return program + " " + o.reason;
+  if (o.timed_out) return wall_timeout_reason(program + " " + o.reason);
   if (o.signal != 0) return program + " was killed by signal " + std::to_string(o.signal) + " (" + strsignal(o.signal) + ")";
   return program + " exited with status " + std::to_string(o.exit_status);
 }

@@ -133,15 +133,20 @@ std::vector<json> run_points(const SceneSet& scene, const std::vector<PointSpec>
   if (options.jobs < 1) throw Error("--jobs must be at least 1");
   std::vector<json> results(points.size());
   std::vector<std::size_t> pending;
-  std::size_t stale = 0;
+  std::size_t stale = 0, timed_out = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (stored_result(points[i], results[i])) continue;
-    if (file_exists(points[i].file)) ++stale;
+    const Stored stored = stored_state(points[i], results[i]);
+    if (stored == Stored::reused) continue;
+    stale += stored == Stored::stale || (stored == Stored::none && file_exists(points[i].file));  // unreadable
+    timed_out += stored == Stored::wall_timeout;
     pending.push_back(i);
   }
   if (skipped) *skipped = points.size() - pending.size();
   if (stale > 0)
     log::warn(std::to_string(stale) + " stored point(s) were made with other parameter values, another scene or an older engine; "
+              "running them again");
+  if (timed_out > 0)
+    log::warn(std::to_string(timed_out) + " stored point(s) failed at a wall-clock limit, which the machine's load decides; "
               "running them again");
   if (pending.empty()) return results;
 

@@ -14,6 +14,7 @@
 #include "demcal/core/hdf5_file.hpp"
 #include "demcal/core/log.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/wall_timeout.hpp"
 #include "demcal/dem/result_json.hpp"
 #include "demcal/dem/lab_test.hpp"
 
@@ -140,9 +141,15 @@ bool same_point(const json& stored, const PointSpec& p) {
   return true;
 }
 
-bool stored_result(const PointSpec& point, json& out) {
-  return read_point_file(point.file, out) && same_point(out, point);
+Stored stored_state(const PointSpec& point, json& out) {
+  if (!read_point_file(point.file, out)) return Stored::none;
+  if (!same_point(out, point)) return Stored::stale;
+  if (out.value("status", std::string()) != "ok" && is_wall_timeout(out.value("reason", std::string())))
+    return Stored::wall_timeout;
+  return Stored::reused;
 }
+
+bool stored_result(const PointSpec& point, json& out) { return stored_state(point, out) == Stored::reused; }
 
 json failed_point(const PointSpec& p, const std::string& reason) {
   json out;

@@ -324,3 +324,26 @@ TEST(DemcalDemBatch, AFailedPointsReasonIsPrintedAsItHappens) {
       << r.err;
   EXPECT_EQ(r.err.find("run 1 seed 1"), std::string::npos) << r.err;
 }
+
+// A point stopped by a wall-clock limit (run.max_wall_s, loading.max_wall_s,
+// an external command's timeout_s) failed because of the machine's load, not
+// its physics: a resumed batch runs it again. A deterministic failure (a value
+// out of bounds) stays as stored.
+TEST(DemcalDemBatch, APointStoppedByAWallClockLimitRunsAgainOnResumeOthersFailuresStay) {
+  const std::string design = temp("timeout_design.csv"), out = temp("timeout.h5");
+  std::ofstream(design) << "run,pb_sigma_c_MPa,Ec_GPa\n1,10,16\n2,10,-5\n";
+  ASSERT_EQ(batch_into(kScene, design, out).code, 4);
+  const std::string first = out + ".points/run1_seed1.json", second = out + ".points/run2_seed1.json";
+  nlohmann::json stored = nlohmann::json::parse(read_text(first));
+  ASSERT_EQ(stored.at("status"), "ok");
+  stored["status"] = "failed";
+  stored["reason"] = "timeout: the ucs took longer than loading.max_wall_s 1 s";
+  stored["macro"] = nlohmann::json::object();
+  std::ofstream(first) << stored.dump();
+  const std::string deterministic = read_text(second);
+  const BatchRun again = batch_into(kScene, design, out);
+  EXPECT_EQ(again.code, 4);  // run 2 still fails
+  EXPECT_NE(again.err.find("1 stored point(s) failed at a wall-clock limit"), std::string::npos) << again.err;
+  EXPECT_EQ(nlohmann::json::parse(read_text(first)).at("status"), "ok");  // run again
+  EXPECT_EQ(read_text(second), deterministic);                           // kept
+}

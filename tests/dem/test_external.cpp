@@ -102,7 +102,7 @@ TEST(ExternalTest, AHangingCommandIsKilledAtItsTimeout) {
   TempDir dir;
   const json r = run_point(scene, {{"mode", 2}}, 1, dir / "p");
   EXPECT_EQ(r.at("status"), "failed");
-  EXPECT_EQ(r.at("reason"), "/usr/bin/python3 timed out after 1 s (its process group was killed); "
+  EXPECT_EQ(r.at("reason"), "timeout: /usr/bin/python3 timed out after 1 s (its process group was killed); "
                             "stderr: fake simulator on stderr");
   EXPECT_LT(r.at("wall_s").get<double>(), 5.0);
 }

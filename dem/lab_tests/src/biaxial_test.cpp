@@ -9,6 +9,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/wall_timeout.hpp"
 #include "demcal/dem/equilibrium.hpp"
 #include "demcal/dem/builtin_tests.hpp"
 #include "demcal/dem/confined_series.hpp"
@@ -56,7 +57,7 @@ std::string consolidate(World& world, double sigma_3_pa, double max_speed_m_s, s
     if (!unstable.empty()) return unstable + " while confining";
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (elapsed > loading.max_wall_s)
-      return "timeout after " + std::to_string(elapsed) + " s while confining (loading.max_wall_s)";
+      return wall_timeout_reason("after " + std::to_string(elapsed) + " s while confining (loading.max_wall_s)");
     const double W = width_m(world), H = height_m(world);
     servo(world, kBottom, sigma_3_pa, W, max_speed_m_s);
     servo(world, kTop, sigma_3_pa, W, max_speed_m_s);

@@ -9,6 +9,7 @@
 #include "demcal/core/json_fields.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/progress.hpp"
+#include "demcal/core/wall_timeout.hpp"
 #include "demcal/dem/world.hpp"
 
 namespace demcal::dem {
@@ -302,7 +303,7 @@ void run_recording(World& world, WaveRecord& record, const RecordedRun& run, Tes
     }
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - run.start).count() > run.max_wall_s) {
       result.ok = false;
-      result.reason = "timeout: the run took longer than run.max_wall_s " + format_double(run.max_wall_s) + " s";
+      result.reason = wall_timeout_reason("the run took longer than run.max_wall_s " + format_double(run.max_wall_s) + " s");
       break;
     }
     if (progress) {

@@ -7,6 +7,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/wall_timeout.hpp"
 #include "demcal/dem3d/sphere_scene.hpp"
 
 namespace demcal::dem3d {
@@ -118,8 +119,8 @@ PressuredSpecimen install_material_pressure(const dem::Scene& scene, const std::
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (elapsed > loading.max_wall_s) {
-      out.reason = "timeout after " + format_double(elapsed) + " s installing the material pressure of " + target +
-                   " (loading.max_wall_s)";
+      out.reason = wall_timeout_reason("after " + format_double(elapsed) + " s installing the material pressure of " +
+                                       target + " (loading.max_wall_s)");
       return out;
     }
   }

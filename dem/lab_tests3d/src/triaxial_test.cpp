@@ -15,6 +15,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/wall_timeout.hpp"
 #include "demcal/dem/loading_monitor.hpp"
 #include "demcal/dem/confined_series.hpp"
 #include "demcal/dem3d/lab_tests_3d.hpp"
@@ -73,7 +74,7 @@ std::string consolidate(World& world, double sigma_3_pa, double max_speed_m_s, s
     if (!unstable.empty()) return unstable + " while confining";
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (elapsed > loading.max_wall_s)
-      return "timeout after " + std::to_string(elapsed) + " s while confining (loading.max_wall_s)";
+      return wall_timeout_reason("after " + std::to_string(elapsed) + " s while confining (loading.max_wall_s)");
     set_servo_areas(world);
     world.run(kBlock);
     const bool held = std::abs(platen_stress_pa(world) - sigma_3_pa) <= 0.005 * sigma_3_pa &&

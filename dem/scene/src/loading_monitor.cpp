@@ -6,6 +6,7 @@
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
 #include "demcal/core/progress.hpp"
+#include "demcal/core/wall_timeout.hpp"
 
 namespace demcal::dem {
 namespace {
@@ -75,7 +76,7 @@ bool LoadingMonitor::record(const MonitoredWorld& world, const CurvePoint& point
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (elapsed > loading_.max_wall_s) {
-    result.reason = "timeout after " + std::to_string(elapsed) + " s (loading.max_wall_s)";
+    result.reason = wall_timeout_reason("after " + std::to_string(elapsed) + " s (loading.max_wall_s)");
     return false;
   }
   if (progress_) {

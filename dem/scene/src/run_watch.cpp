@@ -6,6 +6,7 @@
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
+#include "demcal/core/wall_timeout.hpp"
 
 namespace demcal::dem {
 
@@ -48,8 +49,8 @@ bool RunWatch::carry_on(double t) {
 }
 
 std::string RunWatch::timeout_reason() const {
-  return "timeout: the " + test_ + " took longer than run.max_wall_s " + format_double(max_wall_s_) +
-         " s of wall time";
+  return wall_timeout_reason("the " + test_ + " took longer than run.max_wall_s " + format_double(max_wall_s_) +
+                             " s of wall time");
 }
 
 void RunWatch::finish() {

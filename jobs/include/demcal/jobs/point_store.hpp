@@ -43,7 +43,14 @@ bool read_point_file(const std::string& path, nlohmann::json& out);
 // the same design values and the same scene (content and results version): a
 // changed design, an edited scene or a newer engine never reuses a stale result.
 bool same_point(const nlohmann::json& stored, const PointSpec& point);
-// The stored result of `point`, when there is one made with its values.
+// What is stored for `point`: nothing, its result (reused), a stale one
+// (other values, scene or engine) or a failure by a wall-clock limit, which
+// the machine's load decided and which is therefore run again (out holds what
+// was read in every case but `none`).
+enum class Stored { none, reused, stale, wall_timeout };
+Stored stored_state(const PointSpec& point, nlohmann::json& out);
+// The stored result of `point`, when there is one made with its values (a
+// wall-clock timeout is not kept).
 bool stored_result(const PointSpec& point, nlohmann::json& out);
 
 // Runs one point in this process (never throws: a failure is a failed result).
