@@ -55,17 +55,22 @@ double run_until_apart(World& world) {
   return 0;
 }
 
-// A floor (a steel wall of group 1 along y = 0) under disk 0, which then
-// falls on it at `speed_m_s`; runs until the disk has left the floor again
-// (the wall pair's force on the floor tells when it touches). Returns
-// whether it touched at all.
-bool bounce_off_a_floor(World& world, double speed_m_s) {
+// A floor: a wall of group 1 along y = 0, facing up.
+void add_floor(World& world) {
   Wall floor;
   floor.x0 = -1;
   floor.x1 = 1;
   floor.group = 1;
   floor.inward_ny = 1;
   world.walls.push_back(floor);
+}
+
+// A floor (a steel wall of group 1 along y = 0) under disk 0, which then
+// falls on it at `speed_m_s`; runs until the disk has left the floor again
+// (the wall pair's force on the floor tells when it touches). Returns
+// whether it touched at all.
+bool bounce_off_a_floor(World& world, double speed_m_s) {
+  add_floor(world);
   world.bodies.vy[0] = -speed_m_s;
   bool touched = false;
   for (int s = 0; s < 1000000; ++s) {
@@ -209,12 +214,7 @@ double pressed_disk_speed_m_s(double safety_factor) {
   World world(settings);
   world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create("hertz_mindlin", hertz(0.02), "test")));
   world.bodies.add_disk(0.0, kRadius, kRadius, kDensity, kThickness, 0);
-  Wall floor;
-  floor.x0 = -1;
-  floor.x1 = 1;
-  floor.group = 1;
-  floor.inward_ny = 1;
-  world.walls.push_back(floor);
+  add_floor(world);
   world.refresh();
   for (int k = 0; k < 20000; ++k) world.step();
   world.settings().safety_factor = safety_factor;
