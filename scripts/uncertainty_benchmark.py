@@ -189,6 +189,19 @@ def write_summary(out, s, rows, header):
              "|---|---|---|---|"]
     for name, e in sorted(s["per_parameter"].items()):
         lines.append(f"| {name} | {e['identified']} | {e['inside']} | {e['median_width_of_prior']:.2f} |")
+    # Per rock: its truth, what the search made of it, and which checks missed.
+    names = sorted({n for r in rows for n in r["parameters"]})
+    lines += ["", "| rock | " + " | ".join(names) + " | status | DEM runs | identified: truth inside | "
+              "predictive misses (at the truth; at the exported point) |",
+              "|---|" + "---|" * (len(names) + 4)]
+    for r in rows:
+        truth = " | ".join(f"{r['parameters'][n]['truth']:.3g}" if n in r["parameters"] else "-" for n in names)
+        held = ", ".join(f"{n} {'yes' if p['inside'] else 'NO'}" for n, p in sorted(r["parameters"].items())
+                         if p["identified"]) or "none identified"
+        misses = [f"{n} (truth)" for n, q in sorted(r["predictive"].items()) if not q["inside"]]
+        misses += [f"{n} (exported)" for n, q in sorted(r.get("exported", {}).items()) if not q["inside"]]
+        lines.append(f"| {r['name']} | {truth} | {r['status']} | {r['dem_runs']} | {held} | "
+                     f"{', '.join(misses) or 'none'} |")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 

@@ -65,3 +65,16 @@ def test_the_summary_counts_identified_intervals_that_hold_the_truth():
     assert s["exported_targets_inside"] == pytest.approx(0.5) and s["exported_target_checks"] == 4
     assert s["exported_all_inside"] == pytest.approx(4 / 6) and s["exported_all_checks"] == 6
 
+
+def test_the_summary_lists_each_rock_with_its_misses(tmp_path):
+    m = module()
+    posterior = {"parameters": {"a": {"credible_90": [1.0, 2.0], "identified": True, "coded_width": 0.5},
+                                "b": {"credible_90": [1.0, 2.0], "identified": False, "coded_width": 1.5}}}
+    predictive = {"outputs": {"E_GPa": {"posterior": {"interval_95": [9.0, 11.0]}, "target": 10.0, "inside": False,
+                                        "verified_mean": 12.0, "exported": {"interval_95": [9.5, 10.5]}}}}
+    row = dict(m.rock_result({"a": 3.0, "b": 1.5}, posterior, predictive, {"status": "budget", "dem_runs": 100},
+                             [{"E_GPa": 12.0}] * 5), name="rock01")
+    m.write_summary(str(tmp_path), m.summary([row]), [row], "# test")
+    text = (tmp_path / "summary.md").read_text()
+    assert "| rock01 | 3 | 1.5 | budget | 100 | a NO | E_GPa (truth), E_GPa (exported) |" in text, text
+
