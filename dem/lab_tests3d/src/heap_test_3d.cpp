@@ -65,14 +65,11 @@ struct HeapSpec3d {
   PowderStepping stepping;
   Brush brush;
 
-  // The cone's radius at height z above the platform.
-  double cone_radius_m(double z) const {
-    return 0.5 * outlet_diameter_m + (z - outlet_height_m) / std::tan(wall_angle_deg * M_PI / 180);
+  // The cone's radius `above_outlet_m` above the outlet.
+  double cone_radius_m(double above_outlet_m) const {
+    return 0.5 * outlet_diameter_m + above_outlet_m / std::tan(wall_angle_deg * M_PI / 180);
   }
-
-  double top_radius_m() const {
-    return 0.5 * outlet_diameter_m + funnel_height_m / std::tan(wall_angle_deg * M_PI / 180);
-  }
+  double top_radius_m() const { return cone_radius_m(funnel_height_m); }
   // The catch floor's depth below the platform: room for the whole fill
   // spread over the ring between pedestal and domain (twice its packed
   // volume), and at least four particle lengths.
@@ -84,9 +81,9 @@ struct HeapSpec3d {
   // The funnel's inside up to the fill height, within the facets (a polygon
   // inscribed in the circle reaches in to cos(pi / facets) of its radius).
   Frustum fill_region() const {
-    const double tan_a = std::tan(wall_angle_deg * M_PI / 180), inscribed = std::cos(M_PI / facets);
+    const double inscribed = std::cos(M_PI / facets);
     return {outlet_height_m, outlet_height_m + fill_height_m, inscribed * 0.5 * outlet_diameter_m,
-            inscribed * (0.5 * outlet_diameter_m + fill_height_m / tan_a)};
+            inscribed * cone_radius_m(fill_height_m)};
   }
 
   static HeapSpec3d from_scene(const Scene& scene, const std::map<std::string, double>& parameters);
@@ -203,7 +200,7 @@ void add_cone(std::vector<Wall>& walls, double z0, double r0, double z1, double 
 // The brush's blades (two triangles each), from the outlet up to its height, about the funnel's axis.
 void add_brush(std::vector<Wall>& walls, const HeapSpec3d& s) {
   const double z0 = s.outlet_height_m, z1 = z0 + s.brush.height_m, c = s.brush.clearance_m;
-  const double r0 = s.cone_radius_m(z0) - c, r1 = s.cone_radius_m(z1) - c;
+  const double r0 = s.cone_radius_m(0) - c, r1 = s.cone_radius_m(s.brush.height_m) - c;
   const auto blades = static_cast<int>(s.brush.blades);
   for (int k = 0; k < blades; ++k) {
     const double a = 2 * M_PI * k / blades;
