@@ -25,7 +25,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "python"))
 from demcal_study.calibrate_runs import one_point_batch  # noqa: E402
 from demcal_study.calibration_problem import Problem  # noqa: E402
 from demcal_study.commands import Tools  # noqa: E402
-from demcal_study.errors import StudyError  # noqa: E402
+from demcal_study.errors import StudyError, load_json  # noqa: E402
 from demcal_study.searches.bayes_search import global_design  # noqa: E402
 
 TARGETS = ("E_GPa", "nu", "sigma_u_MPa")
@@ -89,15 +89,10 @@ def read_macros(folder, first_seed, count):
 
 def calibration_files(cal):
     """(posterior, predictive or None, solution) of a finished calibration's folder."""
-    with open(os.path.join(cal, "solution.json")) as f:
-        solution = json.load(f)
-    with open(os.path.join(cal, "posterior.json")) as f:
-        posterior = json.load(f)
-    predictive = None
-    if os.path.exists(os.path.join(cal, "predictive.json")):
-        with open(os.path.join(cal, "predictive.json")) as f:
-            predictive = json.load(f)
-    return posterior, predictive, solution
+    predictive = os.path.join(cal, "predictive.json")
+    return (load_json(os.path.join(cal, "posterior.json"), "posterior"),
+            load_json(predictive, "predictive") if os.path.exists(predictive) else None,
+            load_json(os.path.join(cal, "solution.json"), "solution"))
 
 
 def lab_targets(macros):
@@ -270,4 +265,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except StudyError as e:  # a stored file that cannot be read, named
+        sys.exit(f"uncertainty_benchmark: {e}")

@@ -172,11 +172,13 @@ def verify(tools, scene, folder, parameters, targets, predicted, first_seed, see
                                               tolerance)
         write_target(out, json.dumps(v, indent=1) + "\n")
         # demcal-verify chose its seeds by the scalar targets: the curve's points may want more (it resumes).
-        if scale_resolution and "finer" in v:
-            finer_seeds = [x["seed"] for x in v["finer"].get("seeds", [])]
-            finer_curves = curve_targets.read_seed_curves(os.path.join(folder, "runs"), finer_seeds, "finer_runs.h5")
-            v = curve_targets.add_finer_shifts(v, finer_curves, curves)
-            write_target(out, json.dumps(v, indent=1) + "\n")
+        if scale_resolution:  # the finer check of a met point: its seeds were chosen before
+            if "finer" in v:
+                finer_seeds = [x["seed"] for x in v["finer"].get("seeds", [])]
+                finer_curves = curve_targets.read_seed_curves(os.path.join(folder, "runs"), finer_seeds,
+                                                              "finer_runs.h5")
+                v = curve_targets.add_finer_shifts(v, finer_curves, curves)
+                write_target(out, json.dumps(v, indent=1) + "\n")
             return v
         more = curve_targets.seeds_wanted(v, curves, tolerance, max_seeds)
         if more is None:
