@@ -6,7 +6,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell scripts/cpu_count.sh)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark yade-study boundary-calibration uncertainty-benchmark
+.PHONY: all deps configure build test demo bench sanitize clean study calibrate calibration-benchmark fidelity-benchmark yade-study liggghts-study liggghts-peer boundary-calibration uncertainty-benchmark
 
 all: build
 
@@ -82,6 +82,17 @@ bench: build
 yade-study: build
 	/usr/bin/python3 -c "import sys; sys.path.insert(0, 'scripts'); import debian_package; debian_package.ensure('yade', 'yade', 'make yade-study')"
 	@scripts/run_study.sh data/studies/yade_cpm.json $(BUILD) $(JOBS)
+
+# The whole chain on LIGGGHTS' rotating drum as an external simulator (docs/explanation/liggghts_peer.md); installs
+# Debian's liggghts on demand.
+liggghts-study: build
+	/usr/bin/python3 -c "import sys; sys.path.insert(0, 'scripts'); import debian_package; debian_package.ensure('liggghts', 'liggghts', 'make liggghts-study')"
+	@scripts/run_study.sh data/studies/liggghts_drum.json $(BUILD) $(JOBS)
+
+# Our drum against LIGGGHTS' on the same scene: angles over SEEDS (5) seeds and cost per particle-step, one thread
+# each; time it on a quiet machine. Summary: $(BUILD)/liggghts_peer/summary.md.
+liggghts-peer: build
+	scripts/liggghts_peer.py --build $(BUILD) --out $(BUILD)/liggghts_peer $(if $(SEEDS),--seeds $(SEEDS))
 
 sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDEMCAL_SANITIZE=ON $(CMAKE_ARGS)
