@@ -12,10 +12,14 @@ import json
 import os
 import statistics
 import subprocess
+import sys
 import time
 
 from measured_on import commit, machine, write_block
 from seed_statistics import macro_mean_cv
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from demcal_study.point_results import stored_point_results  # noqa: E402
 
 SCRIPT = "scripts/concrete_resolution_study.py"
 
@@ -63,7 +67,7 @@ for r_mean in [float(r) for r in args.radii_mm.split(",")]:
                     "--out", out, "--seeds", str(seeds), "--jobs", args.jobs, "--cache",
                     os.path.join(args.build, "cache"), "--quiet"], check=False)
     batch_wall = time.time() - start
-    points = [json.load(open(os.path.join(out + ".points", "run1_seed%d.json" % s))) for s in range(1, seeds + 1)]
+    points = stored_point_results(out, range(1, seeds + 1), "concrete_resolution_study")
     ok = [p for p in points if p["status"] == "ok"]
     row = {"r_mean_mm": r_mean, "seeds": seeds, "runs_ok": len(ok),
            "disks": statistics.mean(p["particles"] for p in ok) if ok else float("nan"),

@@ -17,6 +17,9 @@ import argparse, json, math, os, statistics, subprocess, sys, time
 from measured_on import commit, machine, write_block
 from seed_statistics import macro_mean_cv
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from demcal_study.point_results import stored_point_results  # noqa: E402
+
 parser = argparse.ArgumentParser()
 parser.add_argument("--build", default="build")
 parser.add_argument("--jobs", default="2")
@@ -67,7 +70,7 @@ for disks, velocity in cases:
     subprocess.run([os.path.join(args.build, "bin", "demcal-dem"), "batch", "--scene", scene, "--design", design,
                     "--out", out, "--seeds", str(args.seeds), "--jobs", args.jobs, "--cache",
                     os.path.join(args.build, "cache"), "--quiet"], check=False)
-    points = [json.load(open(os.path.join(out + ".points", "run1_seed%d.json" % s))) for s in range(1, args.seeds + 1)]
+    points = stored_point_results(out, range(1, args.seeds + 1), "resolution_study")
     ok = [p for p in points if p["status"] == "ok"]
     row = {"disks_planned": disks or 0, "platen_velocity_m_s": velocity, "runs_ok": len(ok),
            "disks": statistics.mean(p["particles"] for p in ok) if ok else float("nan"),

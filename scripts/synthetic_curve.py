@@ -20,6 +20,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 from demcal_study.calibrate_runs import one_point_batch  # noqa: E402
 from demcal_study.commands import Tools  # noqa: E402
 from demcal_study.errors import StudyError  # noqa: E402
+from demcal_study.point_results import stored_point_results  # noqa: E402
 
 ROWS = 60            # strains the mean curve is written at
 SPAN_OF_PEAK = 1.25  # up to this multiple of the mean peak strain
@@ -51,12 +52,8 @@ def main():
         out, _ = one_point_batch(tools, a.scene, work, values, a.first_seed, a.seeds, quiet=False)
     except StudyError as e:
         sys.exit(f"synthetic_curve: {e}; rerun to resume")
-    curves, macros = [], []
-    for s in range(a.first_seed, a.first_seed + a.seeds):
-        with open(f"{out}.points/run1_seed{s}.json") as f:
-            r = json.load(f)
-        curves.append(r["curve"])
-        macros.append(r["macro"])
+    results = stored_point_results(out, range(a.first_seed, a.first_seed + a.seeds), "synthetic_curve")
+    curves, macros = [r["curve"] for r in results], [r["macro"] for r in results]
     peak = float(np.mean([c["axial_strain"][int(np.argmax(c["stress_MPa"]))] for c in curves]))
     strain = np.linspace(0.0, SPAN_OF_PEAK * peak, ROWS)
     # Past a specimen's last point its last value stands (it failed there), as the calibration reads a DEM curve.

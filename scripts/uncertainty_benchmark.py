@@ -26,6 +26,7 @@ from demcal_study.calibrate_runs import one_point_batch  # noqa: E402
 from demcal_study.calibration_problem import Problem  # noqa: E402
 from demcal_study.commands import Tools  # noqa: E402
 from demcal_study.errors import StudyError, load_json  # noqa: E402
+from demcal_study.point_results import read_point_result  # noqa: E402
 from demcal_study.searches.bayes_search import global_design  # noqa: E402
 
 TARGETS = ("E_GPa", "nu", "sigma_u_MPa")
@@ -77,12 +78,8 @@ def read_macros(folder, first_seed, count):
     """The macro outputs of the seeds of a stored batch (one_point_batch's folder) that ran."""
     macros = []
     for seed in range(first_seed, first_seed + count):
-        try:
-            with open(os.path.join(folder, "responses.h5.points", f"run1_seed{seed}.json")) as f:
-                r = json.load(f)
-        except (OSError, ValueError):
-            continue
-        if r.get("status") == "ok":
+        r = read_point_result(os.path.join(folder, "responses.h5"), seed)
+        if r is not None and r.get("status") == "ok":
             macros.append(r["macro"])
     return macros
 

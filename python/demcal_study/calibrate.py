@@ -34,7 +34,7 @@ import numpy as np
 from . import calibrate_runs, commands, curve_targets, executables, lab_targets, outputs, posterior_predictive, trust_region
 from . import searches
 from .calibrate_limits import (EXIT_BUDGET, EXIT_FAILED, EXIT_MET, EXIT_UNREACHABLE,  # noqa: F401 (the exit codes)
-                               FIRST_VERIFICATION_SEEDS, INITIAL_RADIUS, MAX_ROUNDS, MAX_VERIFICATION_SEEDS)
+                               FIRST_VERIFICATION_SEEDS, INITIAL_RADIUS, MAX_VERIFICATION_SEEDS)
 from .calibrate_runner import Runner
 from .calibrate_verify import Verifier
 from .calibrate_report import report

@@ -9,6 +9,7 @@ import subprocess
 from . import commands, curve_targets
 from .errors import fail, load_json
 from .files import write_target
+from .point_results import read_point_result
 
 
 # A point computed again on resume may differ from the stored one in its last digits (floating-point sums in another
@@ -79,13 +80,8 @@ def outputs_of_row(row, names):
 
 def point_file(out, run):
     """A point's failure reason and its curve ({column: list}), from its result file beside the batch."""
-    path = f"{out}.points/run{run}_seed1.json"
-    try:
-        with open(path) as f:
-            r = json.load(f)
-        return {"reason": r.get("reason", ""), "curve": r.get("curve")}
-    except (OSError, ValueError):
-        return {"reason": "", "curve": None}
+    r = read_point_result(out, seed=1, run=run)
+    return {"reason": "", "curve": None} if r is None else {"reason": r.get("reason", ""), "curve": r.get("curve")}
 
 
 def one_point_batch(tools, scene, folder, parameters, first_seed, seeds, quiet):

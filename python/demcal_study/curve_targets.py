@@ -16,6 +16,8 @@ import os
 
 import numpy as np
 
+from .point_results import read_point_result
+
 POINTS = 8             # strains a curve is compared at
 DEFAULT_WINDOW = (0.1, 1.0)
 MIN_ROWS = 5
@@ -315,13 +317,9 @@ def add_finer_shifts(v, finer_curves, curves):
 def read_seed_curves(runs_folder, seeds, batch="runs.h5"):
     """{seed: the `curve` of runs_folder/BATCH.points/run1_seedS.json} for the seeds whose file is there (the
     folder demcal-verify ran them in: runs.h5, or finer_runs.h5 for its finer resolution)."""
-    import json
     out = {}
     for s in seeds:
-        path = os.path.join(runs_folder, f"{batch}.points", f"run1_seed{s}.json")
-        try:
-            with open(path) as f:
-                out[s] = json.load(f).get("curve")
-        except (OSError, ValueError):
-            pass
+        r = read_point_result(os.path.join(runs_folder, batch), s)
+        if r is not None:
+            out[s] = r.get("curve")
     return out
