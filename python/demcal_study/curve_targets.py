@@ -8,6 +8,12 @@ measurement, strains increasing. The window `A:B` is given in fractions of the m
 the largest stress). The points' names say where they are: `curve_MPa@0.0021` (a stress at axial strain 0.0021),
 `curve_lateral@0.0021`, prefixed by the test's label in a test list (`ucs.curve_MPa@0.0021`).
 
+A confined test's curve (a biaxial or triaxial series) adds the column `confining_stress_MPa`, the lab's sigma_3,
+the same on every row; its `axial_stress_MPa` is then the axial stress sigma_1. It is compared with the piece of
+the series' curve run at that sigma_3 (the scene must run it), the DEM's sigma_1 being its deviator plus its
+measured sigma_3; its points' names carry sigma_3 (`curve_s3_10_MPa@0.0021`, `curve_lateral_s3_10@0.0021`; 2.5 MPa
+is written 2p5).
+
 The DEM's curve is read at the same strains by linear interpolation; past the end of a DEM curve (a specimen that
 failed and stopped earlier) the curve's last value stands, which is what the failed specimen carries."""
 import csv
@@ -22,6 +28,7 @@ POINTS = 8             # strains a curve is compared at
 DEFAULT_WINDOW = (0.1, 1.0)
 MIN_ROWS = 5
 STRESS, LATERAL = "curve_MPa", "curve_lateral"
+CONFINEMENT_MATCH = 0.01  # a lab curve's sigma_3 and a scene's confinement within this share of each other
 
 
 def parse_spec(spec):
@@ -54,14 +61,15 @@ def read_curve(path, where, problems):
         problems.add(f"{where}: {path}: cannot be read ({e.strerror})")
         return None
     if not rows:
-        problems.add(f"{where}: {path}: empty; give the header axial_strain,axial_stress_MPa[,lateral_strain][,sd_MPa]")
+        problems.add(f"{where}: {path}: empty; give the header axial_strain,axial_stress_MPa[,lateral_strain][,sd_MPa]"
+                     "[,confining_stress_MPa]")
         return None
     header = [h.strip() for h in rows[0]]
-    known = ("axial_strain", "axial_stress_MPa", "lateral_strain", "sd_MPa")
+    known = ("axial_strain", "axial_stress_MPa", "lateral_strain", "sd_MPa", "confining_stress_MPa")
     bad = [h for h in header if h not in known]
     if bad or "axial_strain" not in header or "axial_stress_MPa" not in header:
         problems.add(f"{where}: {path}: header {','.join(header)}: give axial_strain,axial_stress_MPa and optionally "
-                     "lateral_strain and sd_MPa" + (f" (unknown: {', '.join(bad)})" if bad else ""))
+                     "lateral_strain, sd_MPa and confining_stress_MPa" + (f" (unknown: {', '.join(bad)})" if bad else ""))
         return None
     columns = {h: [] for h in header}
     for k, row in enumerate(rows[1:], start=2):
@@ -93,19 +101,30 @@ def read_curve(path, where, problems):
     if "sd_MPa" in curve and np.any(curve["sd_MPa"] <= 0):
         problems.add(f"{where}: {path}: sd_MPa must be positive on every line")
         return None
+    if "confining_stress_MPa" in curve:
+        s3 = curve["confining_stress_MPa"]
+        if np.any(s3 <= 0) or np.ptp(s3) > CONFINEMENT_MATCH * float(np.max(s3)):
+            problems.add(f"{where}: {path}: confining_stress_MPa must be one positive sigma_3 on every line (one "
+                         f"confinement per file; it spans {float(np.min(s3)):g} to {float(np.max(s3)):g})")
+            return None
     return curve
 
 
-def point_names(label, strains, lateral):
-    """The targets' names, stress points first: each strain with the digits that tell it from its neighbours."""
+def point_names(label, strains, lateral, confining_mpa=None):
+    """The targets' names, stress points first: each strain with the digits that tell it from its neighbours; a
+    confined curve's names carry its sigma_3 (a point in it written as p: no dot, which separates a label)."""
     prefix = f"{label}." if label else ""
     for digits in range(4, 12):
         texts = [f"{e:.{digits}g}" for e in strains]
         if len(set(texts)) == len(texts):
             break
-    names = [f"{prefix}{STRESS}@{t}" for t in texts]
+    stress, lateral_name = STRESS, LATERAL
+    if confining_mpa is not None:
+        s3 = f"{confining_mpa:g}".replace(".", "p")
+        stress, lateral_name = f"curve_s3_{s3}_MPa", f"{LATERAL}_s3_{s3}"
+    names = [f"{prefix}{stress}@{t}" for t in texts]
     if lateral:
-        names += [f"{prefix}{LATERAL}@{t}" for t in texts]
+        names += [f"{prefix}{lateral_name}@{t}" for t in texts]
     return names
 
 
@@ -128,7 +147,8 @@ def curve_target(spec, window, where, problems):
         return None
     at = np.linspace(lo, hi, POINTS)
     lateral = "lateral_strain" in curve
-    names = point_names(label, at, lateral)
+    confining = float(np.mean(curve["confining_stress_MPa"])) if "confining_stress_MPa" in curve else None
+    names = point_names(label, at, lateral, confining)
     sd = np.interp(at, strain, curve["sd_MPa"]) if "sd_MPa" in curve else [None] * POINTS
     points = [{"name": n, "strain": float(e), "kind": "stress", "value": float(v),
                "sd": None if s is None else float(s)}
@@ -142,7 +162,7 @@ def curve_target(spec, window, where, problems):
                          "(start the window later)")
             return None
     return {"spec": spec, "label": label, "path": path, "window": list(window), "peak_strain": peak,
-            "points": points}
+            "confining_stress_MPa": confining, "piece": None, "points": points}
 
 
 def read_curves(specs, window_text, problems, where, window_where, each_where=None, description=None):
@@ -165,8 +185,9 @@ def without_scatter(curve):
 
 
 def check_against_scene(curves, description, where, problems):
-    """A curve must name a test of a list by its label (and a single test takes none), and that test's curve must
-    be an axial stress against axial strain; a confined test's curve is not supported yet."""
+    """A curve must name a test of a list by its label (and a single test takes none). A curve without a
+    confining_stress_MPa column needs a test whose curve is an axial stress against axial strain; one with it a
+    confined series that runs its sigma_3, whose piece of the series' curve it then reads (c["piece"])."""
     tests = description.get("tests") if description.get("test") == "list" else None
     for c in curves:
         if tests is not None:
@@ -175,16 +196,33 @@ def check_against_scene(curves, description, where, problems):
                 problems.add(f"{where}: {c['spec']}: a test list's curve names its test, LABEL:{c['path']} "
                              f"(labels: {', '.join(labels)})")
                 continue
-            axes = next(t for t in tests if t["label"] == c["label"]).get("curve_axes", {})
+            test = next(t for t in tests if t["label"] == c["label"])
         else:
             if c["label"] is not None:
                 problems.add(f"{where}: {c['spec']}: the scene is a single test: give the curve without a label")
                 continue
-            axes = description.get("curve_axes", {})
-        if axes.get("x") != "axial strain" or not str(axes.get("y", "")).startswith("axial stress"):
-            problems.add(f"{where}: {c['spec']}: the test's curve is {axes.get('y', 'none')} against "
-                         f"{axes.get('x', 'none')}; a measured curve is compared with an axial stress against axial "
-                         "strain (a uniaxial test)")
+            test = description
+        axes = test.get("curve_axes") or {}
+        confinements = test.get("curve_confinements_MPa") or []
+        x, y = axes.get("x", "none"), str(axes.get("y", "none"))
+        s3 = c.get("confining_stress_MPa")
+        if s3 is None:
+            if x != "axial strain" or not y.startswith("axial stress"):
+                problems.add(f"{where}: {c['spec']}: the test's curve is {y} against {x}; a measured curve is compared "
+                             "with an axial stress against axial strain (a uniaxial test)" +
+                             ("; a confined series' curve gives its sigma_3 in a confining_stress_MPa column"
+                              if confinements else ""))
+        elif not confinements or x != "axial strain" or not y.startswith("deviatoric stress"):
+            problems.add(f"{where}: {c['spec']}: confining_stress_MPa {s3:g}: the test is not a confined series (its "
+                         f"curve is {y} against {x})")
+        else:
+            match = [k for k, s in enumerate(confinements) if abs(s - s3) <= CONFINEMENT_MATCH * max(s, s3)]
+            if not match:
+                problems.add(f"{where}: {c['spec']}: confining_stress_MPa {s3:g}: the scene's series runs sigma_3 of "
+                             f"{', '.join(f'{s:g}' for s in confinements)} MPa; add {s3:g} to its "
+                             "loading.confining_stresses_MPa")
+            else:
+                c["piece"] = match[0]
 
 
 def extend_description(description, curves):
@@ -212,17 +250,44 @@ def point_values(curve, curves):
         stress = curve.get(prefix + "stress_MPa") if curve else None
         if not strain or not stress or len(strain) != len(stress):
             continue
+        lateral = curve.get(prefix + "lateral_strain")
+        if lateral is not None and len(lateral) != len(strain):
+            lateral = None
+        if c.get("confining_stress_MPa") is not None:
+            piece = confined_piece(curve, prefix, c)
+            if piece is None:
+                continue
+            strain, stress, lateral = piece
         # A strain-controlled test's strain only grows; should a recorded strain step back, the largest reached so
         # far stands, so that interpolation reads the curve in the order it was loaded.
         strain, stress = np.maximum.accumulate(np.asarray(strain, float)), np.asarray(stress, float)
-        lateral = curve.get(prefix + "lateral_strain")
         for q in c["points"]:
             if q["kind"] == "stress":
                 out[q["name"]] = float(np.interp(q["strain"], strain, stress))
-            elif lateral is not None and len(lateral) == len(strain):
+            elif lateral is not None:
                 # The DEM counts a swelling specimen's lateral strain positive; the lab file compression positive.
                 out[q["name"]] = -float(np.interp(q["strain"], strain, np.asarray(lateral, float)))
     return out
+
+
+def confined_piece(curve, prefix, c):
+    """(strains, sigma_1, lateral strains or None) of the piece of a confined series' DEM curve that the lab curve
+    `c` is compared with (the series runs one specimen per confinement, each from zero strain, one after the other),
+    sigma_1 the deviator plus the measured sigma_3; None when the run did not reach that piece."""
+    strain = np.asarray(curve[prefix + "axial_strain"], float)
+    # A piece starts where the strain falls back to well below the last (a step back within a piece is small).
+    starts = [0] + [k for k in range(1, len(strain)) if strain[k] < 0.5 * strain[k - 1]]
+    if c.get("piece") is None or c["piece"] >= len(starts):
+        return None
+    a = starts[c["piece"]]
+    b = starts[c["piece"] + 1] if c["piece"] + 1 < len(starts) else len(strain)
+    deviator = np.asarray(curve[prefix + "stress_MPa"], float)[a:b]
+    measured = curve.get(prefix + "confining_stress_MPa")
+    sigma_3 = (np.asarray(measured, float)[a:b] if measured is not None and len(measured) == len(strain)
+               else np.full(b - a, c["confining_stress_MPa"]))
+    lateral = curve.get(prefix + "lateral_strain")
+    lateral = np.asarray(lateral, float)[a:b] if lateral is not None and len(lateral) == len(strain) else None
+    return strain[a:b], deviator + sigma_3, lateral
 
 
 def names(curves):

@@ -382,6 +382,19 @@ TEST(LabTests, DescribeFlagsHeadlinesModuliAndTheCurvesAxes) {
   EXPECT_TRUE(wave["curve_axes"].is_null());  // velocity histories, not a stress-strain curve
 }
 
+// A confined series says which sigma_3 each piece of its curve was run at, in
+// order, so that a lab curve at one confinement can be matched to its piece.
+TEST(LabTests, DescribeListsAConfinedSeriesSigma3InTheOrderOfItsCurve) {
+  json biaxial = describe_scene(Scene::load(source("data/scenes/biaxial_rock_pb.json")));
+  EXPECT_EQ(biaxial["curve_confinements_MPa"], json({1.0, 2.0, 4.0, 8.0}));
+  EXPECT_EQ(biaxial["curve_axes"]["y"], "deviatoric stress (MPa)");
+  json triaxial = describe_scene(Scene::load(source("data/scenes/triaxial_rock_pb_3d.json")));
+  EXPECT_EQ(triaxial["curve_confinements_MPa"], json({1.0, 2.0, 4.0, 8.0}));
+  EXPECT_TRUE(describe_scene(Scene::load(source("tests/data/ucs_small.json")))["curve_confinements_MPa"].is_null());
+  json list = describe_scene_set(SceneSet::load(source("tests/data/tests_small.json")));
+  for (const json& t : list["tests"]) EXPECT_TRUE(t.contains("curve_confinements_MPa")) << t.dump();
+}
+
 // The registries list every contact model's parameter keys (the reference
 // pages are checked against them) and a key a model does not take is refused
 // naming the allowed ones.

@@ -24,6 +24,15 @@ nlohmann::json axes_json(const LabTest& test) {
   return x.empty() ? nlohmann::json(nullptr) : nlohmann::json({{"x", x}, {"y", y}});
 }
 
+// A confined series' sigma_3 values (MPa), in the order its curve holds their
+// pieces; null for a test that is not confined.
+nlohmann::json confinements_json(const Scene& scene) {
+  if (!scene.lab_test().confined()) return nullptr;
+  nlohmann::json out = nlohmann::json::array();
+  for (double s : scene.loading().confining_stresses_pa) out.push_back(s / 1e6);
+  return out;
+}
+
 // An output with the flags its test gives it: a headline value, a modulus.
 nlohmann::json flagged_output_json(const OutputSpec& o, const Scene& scene);
 
@@ -71,6 +80,7 @@ nlohmann::json describe_scene(const Scene& scene) {
   out["outputs"] = json::object();
   for (const OutputSpec& o : scene.lab_test().outputs(scene)) out["outputs"][o.name] = flagged_output_json(o, scene);
   out["curve_axes"] = axes_json(scene.lab_test());
+  out["curve_confinements_MPa"] = confinements_json(scene);
   out["contacts"] = json::object();
   for (const ContactRole& role : scene.contact_roles())
     out["contacts"][role.name] = {{"model", scene.contacts().at(role.name).model}, {"description", role.description},
@@ -99,7 +109,8 @@ nlohmann::json describe_scene_set(const SceneSet& set) {
   for (std::size_t k = 0; k < set.size(); ++k) {
     const Scene& s = set.scenes()[k];
     out["tests"].push_back({{"scene", s.origin()}, {"name", s.name()}, {"test", s.test()}, {"label", set.label(k)},
-                            {"dimension", dimension_json(s.lab_test())}, {"curve_axes", axes_json(s.lab_test())}});
+                            {"dimension", dimension_json(s.lab_test())}, {"curve_axes", axes_json(s.lab_test())},
+                            {"curve_confinements_MPa", confinements_json(s)}});
   }
   // The list's dimension when its tests share one (null when they differ or none is ours).
   out["dimension"] = out["tests"][0]["dimension"];
