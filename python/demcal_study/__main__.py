@@ -142,7 +142,8 @@ def parser():
                           "one specimen)")
     cal.add_argument("--curve", action="append", metavar="[LABEL:]CURVE.csv",
                      help="a measured stress-strain curve as a target (repeatable): CSV axial_strain,axial_stress_MPa"
-                          "[,lateral_strain][,sd_MPa][,confining_stress_MPa] (a confined series: sigma_1 at that sigma_3), "
+                          "[,lateral_strain][,sd_MPa][,confining_stress_MPa][,specimen] (a confined series: sigma_1 at that sigma_3; "
+                          "specimen: several specimens' curves), "
                           "compression positive, strains as fractions; compared at 8 "
                           "strains over --curve-window; LABEL names the test of a test list")
     cal.add_argument("--curve-window", metavar="A:B",

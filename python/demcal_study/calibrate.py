@@ -589,6 +589,9 @@ def checked_command(args):
         if len(names) > 1 and not np.array_equal(r, np.eye(len(names))):
             lab_correlation = {"names": names, "matrix": r.tolist()}
     curves = measured_curves(args, targets, uncertainty, description, strategy, problems)
+    lab_correlation = lab_targets.joined_correlation(
+        [lab_correlation] + [{"names": [q["name"] for q in c["points"]], "matrix": c["correlation"]}
+                             for c in curves if c.get("correlation")])
     if description and curves:
         description = curve_targets.extend_description(description, curves)
     tests = outputs.tests_described(description) if description else 1
@@ -690,11 +693,12 @@ def measured_curves(args, targets, uncertainty, description, strategy, problems)
                 continue
             targets[q["name"]] = q["value"]
             if q["sd"] is not None:
-                uncertainty[q["name"]] = {"sd": q["sd"], "n": 1}
+                uncertainty[q["name"]] = {"sd": q["sd"], "n": q.get("n", 1)}
         if strategy == "bayes" and curve_targets.without_scatter(c):
             problems.add(f"--curve {c['spec']}: the Bayesian search weighs each point by the lab's scatter: give the "
-                         "curve an sd_MPa column" + (" and no lateral_strain column (it has no scatter column)"
-                                                     if any(q["kind"] == "lateral" for q in c["points"]) else ""))
+                         "curve a specimen column (several specimens' curves) or an sd_MPa column" +
+                         (" and no lateral_strain column (sd_MPa is the stress's)"
+                          if any(q["kind"] == "lateral" for q in c["points"]) else ""))
     return curves
 
 

@@ -5,7 +5,9 @@ the Bayesian one included, meets those as it meets any target.
 The curve file is CSV with a header, `axial_strain,axial_stress_MPa[,lateral_strain][,sd_MPa]`, compression
 positive and strains as fractions (so a specimen that swells has a negative lateral strain), one row per
 measurement, strains increasing. The window `A:B` is given in fractions of the measured peak strain (the strain at
-the largest stress). The points' names say where they are: `curve_MPa@0.0021` (a stress at axial strain 0.0021),
+the largest stress). A `specimen` column (instead of `sd_MPa`) holds several specimens' curves: the window is then
+taken on their mean curve, each point is their mean with their SD and count, and the points' correlation over the
+specimens is kept for the Bayesian likelihood. The points' names say where they are: `curve_MPa@0.0021` (a stress at axial strain 0.0021),
 `curve_lateral@0.0021`, prefixed by the test's label in a test list (`ucs.curve_MPa@0.0021`).
 
 A confined test's curve (a biaxial or triaxial series) adds the column `confining_stress_MPa`, the lab's sigma_3,
@@ -53,7 +55,8 @@ def parse_window(text, where, problems):
 
 
 def read_curve(path, where, problems):
-    """The measured curve as {column: numpy array}, or None with one problem per defect."""
+    """The measured curve as {column: numpy array}; with a `specimen` column, {"specimens": [one such curve per
+    specimen, in the file's order]}; or None with one problem per defect."""
     try:
         with open(path, newline="") as f:
             rows = list(csv.reader(f))
@@ -62,16 +65,21 @@ def read_curve(path, where, problems):
         return None
     if not rows:
         problems.add(f"{where}: {path}: empty; give the header axial_strain,axial_stress_MPa[,lateral_strain][,sd_MPa]"
-                     "[,confining_stress_MPa]")
+                     "[,confining_stress_MPa][,specimen]")
         return None
     header = [h.strip() for h in rows[0]]
-    known = ("axial_strain", "axial_stress_MPa", "lateral_strain", "sd_MPa", "confining_stress_MPa")
+    known = ("axial_strain", "axial_stress_MPa", "lateral_strain", "sd_MPa", "confining_stress_MPa", "specimen")
     bad = [h for h in header if h not in known]
     if bad or "axial_strain" not in header or "axial_stress_MPa" not in header:
         problems.add(f"{where}: {path}: header {','.join(header)}: give axial_strain,axial_stress_MPa and optionally "
-                     "lateral_strain, sd_MPa and confining_stress_MPa" + (f" (unknown: {', '.join(bad)})" if bad else ""))
+                     "lateral_strain, sd_MPa, confining_stress_MPa and specimen" +
+                     (f" (unknown: {', '.join(bad)})" if bad else ""))
         return None
-    columns = {h: [] for h in header}
+    if "specimen" in header and "sd_MPa" in header:
+        problems.add(f"{where}: {path}: give a specimen column or an sd_MPa column, not both (the specimens give the SD)")
+        return None
+    numeric = [h for h in header if h != "specimen"]
+    columns, lines, specimen_of = {h: [] for h in numeric}, [], []
     for k, row in enumerate(rows[1:], start=2):
         if not any(cell.strip() for cell in row):
             continue
@@ -79,6 +87,12 @@ def read_curve(path, where, problems):
             problems.add(f"{where}: {path}: line {k} has {len(row)} values, the header {len(header)}")
             return None
         for h, cell in zip(header, row):
+            if h == "specimen":
+                if not cell.strip():
+                    problems.add(f"{where}: {path}: line {k}: specimen is empty")
+                    return None
+                specimen_of.append(cell.strip())
+                continue
             try:
                 x = float(cell)
             except ValueError:
@@ -87,26 +101,44 @@ def read_curve(path, where, problems):
                 problems.add(f"{where}: {path}: line {k}: {h} \"{cell.strip()}\" is not a number")
                 return None
             columns[h].append(x)
-    curve = {h: np.array(v) for h, v in columns.items()}
-    n = len(curve["axial_strain"])
-    if n < MIN_ROWS:
-        problems.add(f"{where}: {path}: {n} point(s); a curve needs at least {MIN_ROWS}")
-        return None
-    steps = np.diff(curve["axial_strain"])
-    if np.any(steps <= 0):
-        k = int(np.argmax(steps <= 0)) + 3  # the file's line of the first strain not above the one before
-        problems.add(f"{where}: {path}: line {k}: axial_strain {curve['axial_strain'][k - 2]:g} is not above the one "
-                     f"before ({curve['axial_strain'][k - 3]:g}): strains must increase")
-        return None
-    if "sd_MPa" in curve and np.any(curve["sd_MPa"] <= 0):
-        problems.add(f"{where}: {path}: sd_MPa must be positive on every line")
-        return None
-    if "confining_stress_MPa" in curve:
-        s3 = curve["confining_stress_MPa"]
+        lines.append(k)
+    if "confining_stress_MPa" in columns and columns["confining_stress_MPa"]:
+        s3 = np.array(columns["confining_stress_MPa"])
         if np.any(s3 <= 0) or np.ptp(s3) > CONFINEMENT_MATCH * float(np.max(s3)):
             problems.add(f"{where}: {path}: confining_stress_MPa must be one positive sigma_3 on every line (one "
                          f"confinement per file; it spans {float(np.min(s3)):g} to {float(np.max(s3)):g})")
             return None
+    if "specimen" not in header:
+        return checked_curve({h: np.array(v) for h, v in columns.items()}, lines, f"{where}: {path}", problems)
+    specimens = []
+    for name in dict.fromkeys(specimen_of):  # in the file's order
+        rows_of = [i for i, s in enumerate(specimen_of) if s == name]
+        one = checked_curve({h: np.array([v[i] for i in rows_of]) for h, v in columns.items()},
+                            [lines[i] for i in rows_of], f"{where}: {path}: specimen {name}", problems)
+        if one is None:
+            return None
+        specimens.append(one)
+    if len(specimens) < 2:
+        problems.add(f"{where}: {path}: one specimen gives no scatter; give at least 2 (or an sd_MPa column)")
+        return None
+    return {"specimens": specimens}
+
+
+def checked_curve(curve, lines, where, problems):
+    """One curve's checks (enough points, strains increasing, a positive SD); the curve, or None with a problem."""
+    n = len(curve["axial_strain"])
+    if n < MIN_ROWS:
+        problems.add(f"{where}: {n} point(s); a curve needs at least {MIN_ROWS}")
+        return None
+    steps = np.diff(curve["axial_strain"])
+    if np.any(steps <= 0):
+        k = int(np.argmax(steps <= 0)) + 1  # the first strain not above the one before
+        problems.add(f"{where}: line {lines[k]}: axial_strain {curve['axial_strain'][k]:g} is not above the one "
+                     f"before ({curve['axial_strain'][k - 1]:g}): strains must increase")
+        return None
+    if "sd_MPa" in curve and np.any(curve["sd_MPa"] <= 0):
+        problems.add(f"{where}: sd_MPa must be positive on every line")
+        return None
     return curve
 
 
@@ -129,40 +161,73 @@ def point_names(label, strains, lateral, confining_mpa=None):
 
 
 def curve_target(spec, window, where, problems):
-    """A curve target as the calibration stores it: {"spec", "label", "path", "window", "peak_strain", "points":
-    [{"name", "strain", "kind", "value", "sd"}]}, or None with problems added."""
+    """A curve target as the calibration stores it: {"spec", "label", "path", "window", "peak_strain",
+    "confining_stress_MPa", "piece", "specimens", "correlation", "points": [{"name", "strain", "kind", "value", "sd",
+    "n"}]}, or None with problems added. From several specimens, each point is their mean with their SD (n of them),
+    and `correlation` is the points' correlation over the specimens (the identity below 3 specimens)."""
     label, path = parse_spec(spec)
     curve = read_curve(path, where, problems)
     if curve is None or window is None:
         return None
-    strain, stress = curve["axial_strain"], curve["axial_stress_MPa"]
+    specimens = curve.get("specimens")
+    if specimens:
+        # The mean curve over the strains every specimen reached sets the peak and bounds the window.
+        first = max(float(c["axial_strain"][0]) for c in specimens)
+        last = min(float(c["axial_strain"][-1]) for c in specimens)
+        if not last > first:
+            problems.add(f"{where}: {path}: the specimens' curves share no strains")
+            return None
+        strain = np.linspace(first, last, 401)
+        stress = np.mean([np.interp(strain, c["axial_strain"], c["axial_stress_MPa"]) for c in specimens], axis=0)
+        one = specimens[0]
+    else:
+        strain, stress, one = curve["axial_strain"], curve["axial_stress_MPa"], curve
     peak = float(strain[int(np.argmax(stress))])
     if peak <= 0:
         problems.add(f"{where}: {path}: the peak stress is at strain {peak:g}; a curve needs its peak at a positive strain")
         return None
     lo, hi = window[0] * peak, window[1] * peak
     if lo < strain[0] or hi > strain[-1]:
+        whose = "the specimens' common" if specimens else "the curve's"
         problems.add(f"{where}: {path}: the window {window[0]:g}:{window[1]:g} of the peak strain {peak:g} spans "
-                     f"strains {lo:g} to {hi:g}, outside the curve's {strain[0]:g} to {strain[-1]:g}")
+                     f"strains {lo:g} to {hi:g}, outside {whose} {strain[0]:g} to {strain[-1]:g}")
         return None
     at = np.linspace(lo, hi, POINTS)
-    lateral = "lateral_strain" in curve
-    confining = float(np.mean(curve["confining_stress_MPa"])) if "confining_stress_MPa" in curve else None
+    lateral = "lateral_strain" in one
+    confining = float(np.mean(one["confining_stress_MPa"])) if "confining_stress_MPa" in one else None
     names = point_names(label, at, lateral, confining)
-    sd = np.interp(at, strain, curve["sd_MPa"]) if "sd_MPa" in curve else [None] * POINTS
-    points = [{"name": n, "strain": float(e), "kind": "stress", "value": float(v),
-               "sd": None if s is None else float(s)}
-              for n, e, v, s in zip(names, at, np.interp(at, strain, stress), sd)]
-    if lateral:
-        points += [{"name": n, "strain": float(e), "kind": "lateral", "value": float(v), "sd": None}
-                   for n, e, v in zip(names[POINTS:], at, np.interp(at, strain, curve["lateral_strain"]))]
+    kinds = ["stress"] * POINTS + ["lateral"] * (POINTS if lateral else 0)
+    correlation = None
+    if specimens:
+        # Each specimen's values at the points: stresses, then lateral strains.
+        values = np.array([np.concatenate([np.interp(at, c["axial_strain"], c["axial_stress_MPa"])] +
+                                          ([np.interp(at, c["axial_strain"], c["lateral_strain"])] if lateral else []))
+                           for c in specimens])
+        mean, sd = values.mean(axis=0), values.std(axis=0, ddof=1)
+        for q, s in zip(names, sd):
+            if not s > 0:
+                problems.add(f"{where}: {path}: every specimen gives the same value at {q}: no scatter to weigh it by")
+                return None
+        if len(specimens) >= 3:
+            correlation = np.corrcoef(values.T).tolist()
+        points = [{"name": n, "strain": float(e), "kind": k, "value": float(v), "sd": float(d), "n": len(specimens)}
+                  for n, e, k, v, d in zip(names, np.concatenate([at] * (2 if lateral else 1)), kinds, mean, sd)]
+    else:
+        sd = np.interp(at, strain, curve["sd_MPa"]) if "sd_MPa" in curve else [None] * POINTS
+        points = [{"name": n, "strain": float(e), "kind": "stress", "value": float(v),
+                   "sd": None if d is None else float(d), "n": 1}
+                  for n, e, v, d in zip(names, at, np.interp(at, strain, stress), sd)]
+        if lateral:
+            points += [{"name": n, "strain": float(e), "kind": "lateral", "value": float(v), "sd": None, "n": 1}
+                       for n, e, v in zip(names[POINTS:], at, np.interp(at, strain, curve["lateral_strain"]))]
     for q in points:
         if q["value"] == 0:
             problems.add(f"{where}: {path}: the {q['kind']} at strain {q['strain']:g} is 0; a target must be non-zero "
                          "(start the window later)")
             return None
     return {"spec": spec, "label": label, "path": path, "window": list(window), "peak_strain": peak,
-            "confining_stress_MPa": confining, "piece": None, "points": points}
+            "confining_stress_MPa": confining, "piece": None, "specimens": len(specimens) if specimens else 1,
+            "correlation": correlation, "points": points}
 
 
 def read_curves(specs, window_text, problems, where, window_where, each_where=None, description=None):
@@ -179,8 +244,8 @@ def read_curves(specs, window_text, problems, where, window_where, each_where=No
 
 
 def without_scatter(curve):
-    """Whether a point of the curve has no SD from the lab (no sd_MPa column, or a lateral strain: none has one),
-    which the Bayesian search cannot weigh."""
+    """Whether a point of the curve has no SD from the lab (neither an sd_MPa column nor specimens, or a lateral
+    strain without specimens: sd_MPa is the stress's), which the Bayesian search cannot weigh."""
     return any(q["sd"] is None for q in curve["points"])
 
 

@@ -156,6 +156,21 @@ def specimen_correlation(names, specimen_of):
     return r
 
 
+def joined_correlation(blocks):
+    """One {"names", "matrix"} of several such blocks (None among them: skipped), uncorrelated across blocks (each
+    from other specimens); None when there is none."""
+    blocks = [b for b in blocks if b]
+    if not blocks:
+        return None
+    names = [n for b in blocks for n in b["names"]]
+    r, at = np.eye(len(names)), 0
+    for b in blocks:
+        k = len(b["names"])
+        r[at:at + k, at:at + k] = np.asarray(b["matrix"], dtype=float)
+        at += k
+    return {"names": names, "matrix": r.tolist()}
+
+
 def gaussian_log_likelihood(targets, dem_means, dem_standard_errors, lab_correlation=None, dem_correlation=None):
     """log p(lab means | DEM): the lab means and the DEM's seed means of the same outputs, in the order of `targets`,
     each mean with its own standard error; the covariance of their difference is the lab's (its standard errors with

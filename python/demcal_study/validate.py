@@ -119,7 +119,7 @@ def validate_trust_region(study, where):
 
 def check_curves(study, where, scene):
     """Each curve file reads, holds the window and belongs to a uniaxial test of the scene; the bayes search needs
-    its sd_MPa column; a discrepancy needs the bayes search. The first problem fails, naming the field."""
+    its scatter (a specimen or an sd_MPa column); a discrepancy needs the bayes search. The first problem fails, naming the field."""
     if "curve_window" in study and "curves" not in study:
         fail(f"{where}: curve_window: give the curves it applies to (\"curves\")")
     if "model_discrepancy" in study and study.get("search") != "bayes":
@@ -134,7 +134,8 @@ def check_curves(study, where, scene):
         for c in curves:
             if curve_targets.without_scatter(c):
                 problems.add(f"curves: {c['spec']}: the bayes search weighs each point by the lab's scatter: give it "
-                             "an sd_MPa column and no lateral_strain column")
+                             "a specimen column (several specimens' curves), or an sd_MPa column and no lateral_strain "
+                             "column")
     if problems:
         fail(f"{where}: {problems.messages[0]}")
 

@@ -242,10 +242,11 @@ def test_the_bayesian_search_takes_a_curve_with_its_sd_and_weighs_each_point_by_
         assert uncertainty[q["name"]] == {"sd": pytest.approx(0.5 + 200 * q["strain"]), "n": 1}
     _, _, _, problems = curves_of(bare, "bayes")
     assert problems == [f"--curve {bare}: the Bayesian search weighs each point by the lab's scatter: give the curve "
-                        "an sd_MPa column"]
+                        "a specimen column (several specimens' curves) or an sd_MPa column"]
     _, _, _, problems = curves_of(lateral, "bayes")
     assert problems == [f"--curve {lateral}: the Bayesian search weighs each point by the lab's scatter: give the "
-                        "curve an sd_MPa column and no lateral_strain column (it has no scatter column)"]
+                        "curve a specimen column (several specimens' curves) or an sd_MPa column and no lateral_strain "
+                        "column (sd_MPa is the stress's)"]
     _, targets, _, problems = curves_of(lateral, "trust-region")
     assert not problems and len(targets) == 1 + 16
 
