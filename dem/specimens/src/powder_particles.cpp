@@ -110,13 +110,26 @@ std::vector<PowderParticle> place_powder(const PowderSpec& spec, const std::vect
   std::vector<PowderParticle> out;
   std::vector<double> disk_x, disk_y, disk_r;  // every placed disk
   const double target = spec.solids_fraction * region_area;
-  double covered = 0;
-  int misses = 0;
+  // The sizes first, until their area reaches the target, then placed the
+  // largest first (as LIGGGHTS' insert/pack): drawing a size per try instead
+  // let the small ones, which fit more easily, take the crowded end of a fill.
+  std::vector<PowderParticle> sized;
   const bool clumps = spec.clump_aspect_ratio > 1.0;
-  while (covered < target) {
+  for (double drawn = 0; drawn < target;) {
     PowderParticle p;
     p.radius = rng.uniform(spec.radius_min_m, spec.radius_max_m);
     p.clump = clumps && rng.uniform() < spec.clump_fraction;
+    drawn += particle_area_m2(p.radius, spec.clump_aspect_ratio, p.clump);
+    sized.push_back(p);
+  }
+  std::stable_sort(sized.begin(), sized.end(), [&](const PowderParticle& a, const PowderParticle& b) {
+    return particle_area_m2(a.radius, spec.clump_aspect_ratio, a.clump) >
+           particle_area_m2(b.radius, spec.clump_aspect_ratio, b.clump);
+  });
+  double covered = 0;
+  int misses = 0;
+  for (std::size_t next = 0; next < sized.size();) {
+    PowderParticle p = sized[next];
     p.angle_rad = rng.uniform(0.0, M_PI);
     p.x = rng.uniform(lo_x, hi_x);
     p.y = rng.uniform(lo_y, hi_y);
@@ -149,6 +162,7 @@ std::vector<PowderParticle> place_powder(const PowderSpec& spec, const std::vect
       continue;
     }
     misses = 0;
+    ++next;
     for (int m = 0; m < members; ++m) {
       grid[key(cx[m], cy[m])].push_back(disk_x.size());
       disk_x.push_back(cx[m]);

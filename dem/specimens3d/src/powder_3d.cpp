@@ -110,13 +110,26 @@ std::vector<PowderParticle3d> place_in(const PowderSpec3d& spec, const Region& r
   std::vector<Vec3> centres;
   std::vector<double> radii;
   const double target = spec.solids_fraction * region.volume_m3();
-  double filled = 0;
-  int misses = 0;
+  // The sizes first, until their volume reaches the target, then placed the
+  // largest first (as LIGGGHTS' insert/pack): drawing a size per try instead
+  // let the small ones, which fit more easily, take the crowded end of a fill
+  // (the drum's mean radius came out 1.2 % small, 5 standard errors).
+  std::vector<PowderParticle3d> sized;
   const bool clumps = spec.clump_aspect_ratio > 1.0;
-  while (filled < target) {
+  for (double drawn = 0; drawn < target;) {
     PowderParticle3d p;
     p.radius_m = rng.uniform(spec.radius_min_m, spec.radius_max_m);
     p.clump = clumps && rng.uniform() < spec.clump_fraction;
+    drawn += particle_volume_m3(p, spec.clump_aspect_ratio);
+    sized.push_back(p);
+  }
+  std::stable_sort(sized.begin(), sized.end(), [&](const PowderParticle3d& a, const PowderParticle3d& b) {
+    return particle_volume_m3(a, spec.clump_aspect_ratio) > particle_volume_m3(b, spec.clump_aspect_ratio);
+  });
+  double filled = 0;
+  int misses = 0;
+  for (std::size_t next = 0; next < sized.size();) {
+    PowderParticle3d p = sized[next];
     p.orientation = random_orientation(rng);
     p.centre_m = {rng.uniform(-half_x, half_x), rng.uniform(-half_y, half_y), rng.uniform(region.z_bottom_m, region.z_top_m)};
     bool ok = true;
@@ -152,6 +165,7 @@ std::vector<PowderParticle3d> place_in(const PowderSpec3d& spec, const Region& r
       continue;
     }
     misses = 0;
+    ++next;
     for (const Vec3& c : members) {
       std::int64_t ci, cj, ck;
       cell_of(c, ci, cj, ck);
