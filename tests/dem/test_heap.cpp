@@ -52,6 +52,15 @@ TestResult run(const json& scene_json, std::uint64_t seed = 1) {
   return run_test(scene, scene.resolve({}), options);
 }
 
+PowderSpec powder_of(double radius_min_m, double radius_max_m, double clump_aspect_ratio) {
+  PowderSpec spec;
+  spec.radius_min_m = radius_min_m;
+  spec.radius_max_m = radius_max_m;
+  spec.density_kg_m3 = 1000;
+  spec.clump_aspect_ratio = clump_aspect_ratio;
+  return spec;
+}
+
 }  // namespace
 
 TEST(PowderParticles, AClumpsAreaAndInertiaAreThoseOfTheUnionOfItsDisks) {
@@ -85,10 +94,7 @@ TEST(PowderParticles, AClumpsAreaAndInertiaAreThoseOfTheUnionOfItsDisks) {
 // the small ones, which fit more easily). The mean within 3 standard errors of
 // a uniform's.
 TEST(PowderParticles, TheSizesStayUniformInACrowdedFill) {
-  PowderSpec spec;
-  spec.radius_min_m = 0.5e-3;
-  spec.radius_max_m = 1.5e-3;
-  spec.density_kg_m3 = 1000;
+  PowderSpec spec = powder_of(0.5e-3, 1.5e-3, 1.0);
   spec.solids_fraction = 0.45;
   const std::vector<double> square = {0, 0, 0.12, 0, 0.12, 0.12, 0, 0.12};
   const auto fill = place_powder(spec, square, 5);
@@ -100,11 +106,7 @@ TEST(PowderParticles, TheSizesStayUniformInACrowdedFill) {
 }
 
 TEST(PowderParticles, PlacementFillsTheRegionWithoutOverlapAndIsSeeded) {
-  PowderSpec spec;
-  spec.radius_min_m = 0.9e-3;
-  spec.radius_max_m = 1.1e-3;
-  spec.density_kg_m3 = 1000;
-  spec.clump_aspect_ratio = 1.3;
+  PowderSpec spec = powder_of(0.9e-3, 1.1e-3, 1.3);
   const std::vector<double> square = {0, 0, 0.05, 0, 0.05, 0.05, 0, 0.05};
   const auto a = place_powder(spec, square, 7), b = place_powder(spec, square, 7), c = place_powder(spec, square, 8);
   ASSERT_EQ(a.size(), b.size());
