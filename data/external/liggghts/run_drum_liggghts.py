@@ -300,8 +300,11 @@ def steady_angle(angles, tolerance_deg):
     mean = sum(angles) / n
     sd = math.sqrt(sum((a - mean) ** 2 for a in angles) / (n - 1))
     if abs(first - second) > tolerance_deg:
+        chance = sd * math.sqrt(1 / half + 1 / (n - half))
         raise Refused(f"no steady state: the surface's angle moved from {first:.4g} to {second:.4g} deg between the "
-                      "halves of the measuring window")
+                      f"halves of the measuring window (run.steady_tolerance_deg {tolerance_deg:g}); the samples "
+                      f"scatter by {sd:.3g} deg (SD), so the halves of a steady flow differ by about {chance:.2g} deg "
+                      "or more")
     return mean, sd, first, second
 
 

@@ -260,9 +260,16 @@ dem::TestResult run_drum_3d(const Scene& scene, const std::map<std::string, doub
   result.specimen_info["aor_second_half_deg"] = second;
   result.specimen_info["samples"] = static_cast<double>(n);
   if (std::abs(first - second) > s.steady_tolerance_deg) {
+    // What two halves of independent samples of this scatter would differ
+    // by (1 SD): a tolerance near it fails steady runs by chance.
+    const double sd = std::sqrt(sum2 / static_cast<double>(n - 1));
+    const double chance = sd * std::sqrt(1.0 / static_cast<double>(half_n) + 1.0 / static_cast<double>(n - half_n));
     fail("no steady state: the surface's angle moved from " + format_double(first) + " to " + format_double(second) +
          " deg between the halves of the measuring window (run.steady_tolerance_deg " +
-         format_double(s.steady_tolerance_deg) + "); start measuring later (run.measure_from_s)");
+         format_double(s.steady_tolerance_deg) + "); start measuring later (run.measure_from_s). The samples scatter " +
+         "by " + format_double(sd) + " deg (SD), so the halves of a steady flow differ by about " +
+         format_double(chance) + " deg or more: a tolerance below 2.5 times that, or a short window, fails steady " +
+         "runs by chance");
     return result;
   }
   result.macro["aor_deg"] = mean;
