@@ -118,8 +118,9 @@ def validate_trust_region(study, where):
 
 
 def check_curves(study, where, scene):
-    """Each curve file reads, holds the window and belongs to a uniaxial test of the scene; the bayes search needs
-    its scatter (a specimen or an sd_MPa column); a discrepancy needs the bayes search. The first problem fails, naming the field."""
+    """Each curve file reads, holds the window and belongs to a uniaxial test of the scene (or, with a confining
+    stress, to a confined series that runs it); the bayes search needs its scatter (a specimen or an sd_MPa column);
+    a discrepancy needs the bayes search. The first problem fails, naming the field."""
     if "curve_window" in study and "curves" not in study:
         fail(f"{where}: curve_window: give the curves it applies to (\"curves\")")
     if "model_discrepancy" in study and study.get("search") != "bayes":
