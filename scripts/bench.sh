@@ -56,6 +56,9 @@ echo
 # And YADE's CPM concrete in compression (another model, 3D): per particle-step only.
 echo
 /usr/bin/python3 scripts/bench_yade.py --build "$build"
+# LIGGGHTS (installed on demand) on the rotating drum both codes run the same way: angles and cost, one seed each.
+echo
+/usr/bin/python3 scripts/liggghts_peer.py --build "$build" --seeds 1 --out "$tmp/liggghts_peer"
 
 # Batches: the same 16 design points one at a time, two processes at once, and
 # over MPI ranks (rank 0 hands out, 2 worker ranks run); specimens cached first.
