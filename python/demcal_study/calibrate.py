@@ -577,10 +577,13 @@ def checked_command(args):
             problems.add(f"--check-test: {path} does not exist")
 
     description = problems.check(executables.describe, args.scene) if scene_ok else None
+    lab_names = {}  # a lab specimen file's names as the targets name them
     if measured is not None:  # the lab's specimens join the targets, named as the scene's outputs
+        file_names = measured[1]
         if description:
             measured = lab_targets.named_as_outputs(measured, description["outputs"])
         by_name, names, r = measured
+        lab_names = dict(zip(file_names, names))
         for name, t in by_name.items():
             if name in targets:
                 problems.add(f"--lab-specimens {args.lab_specimens}: {name} is also a --target: give it once")
@@ -589,9 +592,8 @@ def checked_command(args):
         if len(names) > 1 and not np.array_equal(r, np.eye(len(names))):
             lab_correlation = {"names": names, "matrix": r.tolist()}
     curves = measured_curves(args, targets, uncertainty, description, strategy, problems)
-    lab_correlation = lab_targets.joined_correlation(
-        [lab_correlation] + [{"names": [q["name"] for q in c["points"]], "matrix": c["correlation"]}
-                             for c in curves if c.get("correlation")])
+    if any(c.get("by_specimen") for c in curves):
+        lab_correlation = specimens_correlation(curves, lab_names, args, targets) or lab_correlation
     if description and curves:
         description = curve_targets.extend_description(description, curves)
     tests = outputs.tests_described(description) if description else 1
@@ -670,6 +672,24 @@ def checked_command(args):
                                  f"settings); remove {out} or give --name")
     problems.raise_if_any()
     return config, out, replace
+
+
+def specimens_correlation(curves, lab_names, args, targets):
+    """{"names", "matrix"}: the correlation over the lab's specimens of every target measured specimen by specimen,
+    its curves' points and, where the specimen file names the same specimens, its scalar outputs (a specimen's
+    peak and its curve's last point move together); None when it is the identity."""
+    specimen_of = {}
+    if lab_names:
+        for (name, specimen), value in lab_targets.specimen_values(args.lab_specimens).items():
+            specimen_of[(lab_names.get(name, name), specimen)] = value
+    for c in curves:
+        for specimen, values in (c.get("by_specimen") or {}).items():
+            for name, value in values.items():
+                specimen_of[(name, specimen)] = value
+    measured = {name for name, _ in specimen_of}
+    names = [n for n in targets if n in measured]
+    r = lab_targets.specimen_correlation(names, specimen_of)
+    return {"names": names, "matrix": r.tolist()} if len(names) > 1 and not np.array_equal(r, np.eye(len(names))) else None
 
 
 def measured_curves(args, targets, uncertainty, description, strategy, problems):

@@ -121,7 +121,7 @@ def read_curve(path, where, problems):
     if len(specimens) < 2:
         problems.add(f"{where}: {path}: one specimen gives no scatter; give at least 2 (or an sd_MPa column)")
         return None
-    return {"specimens": specimens}
+    return {"specimens": specimens, "specimen_names": list(dict.fromkeys(specimen_of))}
 
 
 def checked_curve(curve, lines, where, problems):
@@ -162,9 +162,10 @@ def point_names(label, strains, lateral, confining_mpa=None):
 
 def curve_target(spec, window, where, problems):
     """A curve target as the calibration stores it: {"spec", "label", "path", "window", "peak_strain",
-    "confining_stress_MPa", "piece", "specimens", "correlation", "points": [{"name", "strain", "kind", "value", "sd",
+    "confining_stress_MPa", "piece", "specimens", "by_specimen", "points": [{"name", "strain", "kind", "value", "sd",
     "n"}]}, or None with problems added. From several specimens, each point is their mean with their SD (n of them),
-    and `correlation` is the points' correlation over the specimens (the identity below 3 specimens)."""
+    and `by_specimen` holds each specimen's values ({specimen: {point name: value}}), whose correlation the Bayesian
+    likelihood takes."""
     label, path = parse_spec(spec)
     curve = read_curve(path, where, problems)
     if curve is None or window is None:
@@ -197,7 +198,7 @@ def curve_target(spec, window, where, problems):
     confining = float(np.mean(one["confining_stress_MPa"])) if "confining_stress_MPa" in one else None
     names = point_names(label, at, lateral, confining)
     kinds = ["stress"] * POINTS + ["lateral"] * (POINTS if lateral else 0)
-    correlation = None
+    by_specimen = None
     if specimens:
         # Each specimen's values at the points: stresses, then lateral strains.
         values = np.array([np.concatenate([np.interp(at, c["axial_strain"], c["axial_stress_MPa"])] +
@@ -208,8 +209,8 @@ def curve_target(spec, window, where, problems):
             if not s > 0:
                 problems.add(f"{where}: {path}: every specimen gives the same value at {q}: no scatter to weigh it by")
                 return None
-        if len(specimens) >= 3:
-            correlation = np.corrcoef(values.T).tolist()
+        by_specimen = {sid: {n: float(v) for n, v in zip(names, row)}
+                       for sid, row in zip(curve["specimen_names"], values)}
         points = [{"name": n, "strain": float(e), "kind": k, "value": float(v), "sd": float(d), "n": len(specimens)}
                   for n, e, k, v, d in zip(names, np.concatenate([at] * (2 if lateral else 1)), kinds, mean, sd)]
     else:
@@ -227,7 +228,7 @@ def curve_target(spec, window, where, problems):
             return None
     return {"spec": spec, "label": label, "path": path, "window": list(window), "peak_strain": peak,
             "confining_stress_MPa": confining, "piece": None, "specimens": len(specimens) if specimens else 1,
-            "correlation": correlation, "points": points}
+            "by_specimen": by_specimen, "points": points}
 
 
 def read_curves(specs, window_text, problems, where, window_where, each_where=None, description=None):

@@ -83,6 +83,28 @@ def read_specimens(path):
     row's output, prefixed `TEST.` when the test column is not empty (a scene list names an output shared by several
     tests so). Fails with one line naming the file, row and field on a bad row, and on an output with fewer than 2
     specimens (no SD to take)."""
+    by_name, specimen_of = _measurements(path)
+    targets = {}
+    for name, values in by_name.items():
+        if len(values) < 2:
+            fail(f"{path}: {name}: one specimen gives no scatter; give at least 2, or write --target "
+                 f"{name}=MEAN+-SD/n=N")
+        sd = float(np.std(values, ddof=1))
+        if not sd > 0:
+            fail(f"{path}: {name}: every specimen measured {values[0]:g}: no scatter to weigh it by")
+        targets[name] = LabTarget(name, float(np.mean(values)), sd, len(values))
+    names = list(targets)
+    return targets, names, specimen_correlation(names, specimen_of)
+
+
+def specimen_values(path):
+    """{(name, specimen): value} of the rows of a CSV of the lab's specimens that name their specimen (read_specimens
+    has checked the file)."""
+    return _measurements(path)[1]
+
+
+def _measurements(path):
+    """({name: [values]}, {(name, specimen): value}) of a CSV of the lab's specimens; a bad file fails naming it."""
     try:
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
@@ -112,17 +134,7 @@ def read_specimens(path):
             if key in specimen_of:
                 fail(f"{path}: line {number}: specimen {specimen} has {name} twice")
             specimen_of[key] = value
-    targets = {}
-    for name, values in by_name.items():
-        if len(values) < 2:
-            fail(f"{path}: {name}: one specimen gives no scatter; give at least 2, or write --target "
-                 f"{name}=MEAN+-SD/n=N")
-        sd = float(np.std(values, ddof=1))
-        if not sd > 0:
-            fail(f"{path}: {name}: every specimen measured {values[0]:g}: no scatter to weigh it by")
-        targets[name] = LabTarget(name, float(np.mean(values)), sd, len(values))
-    names = list(targets)
-    return targets, names, specimen_correlation(names, specimen_of)
+    return by_name, specimen_of
 
 
 def named_as_outputs(measured, outputs):
@@ -154,21 +166,6 @@ def specimen_correlation(names, specimen_of):
             if np.std(x) > 0 and np.std(y) > 0:
                 r[a, b] = r[b, a] = float(np.corrcoef(x, y)[0, 1])
     return r
-
-
-def joined_correlation(blocks):
-    """One {"names", "matrix"} of several such blocks (None among them: skipped), uncorrelated across blocks (each
-    from other specimens); None when there is none."""
-    blocks = [b for b in blocks if b]
-    if not blocks:
-        return None
-    names = [n for b in blocks for n in b["names"]]
-    r, at = np.eye(len(names)), 0
-    for b in blocks:
-        k = len(b["names"])
-        r[at:at + k, at:at + k] = np.asarray(b["matrix"], dtype=float)
-        at += k
-    return {"names": names, "matrix": r.tolist()}
 
 
 def gaussian_log_likelihood(targets, dem_means, dem_standard_errors, lab_correlation=None, dem_correlation=None):

@@ -1,10 +1,11 @@
 """Several specimens' curves in one file (a `specimen` column): each point's target is their mean with their SD
-and count, and the points' correlation over the specimens joins the lab's correlation, so the Bayesian likelihood
-does not count eight points of one curve as eight independent measurements."""
+and count, and the points' correlation over the specimens (with the scalar outputs of the same specimens, when the
+lab's specimen file names them) joins the lab's correlation, so the Bayesian likelihood does not count eight points
+of one curve, or a peak and its curve, as independent measurements."""
 import numpy as np
 import pytest
 
-from demcal_study import calibrate, curve_targets, executables, lab_targets
+from demcal_study import calibrate, curve_targets, executables
 from demcal_study.errors import Problems
 from test_calibrate import DESCRIPTION
 from test_calibrate_input import command
@@ -45,9 +46,11 @@ def test_each_point_is_the_specimens_mean_with_their_sd_and_correlation(tmp_path
                        for rows in (specimen_rows(f"s{k}", s, b) for k, (s, b) in enumerate(FACTORS))])
     for q, mean, sd in zip(c["points"], values.mean(axis=0), values.std(axis=0, ddof=1)):
         assert (q["value"], q["sd"], q["n"]) == (pytest.approx(mean, rel=1e-12), pytest.approx(sd, rel=1e-12), 4)
-    assert np.array(c["correlation"]) == pytest.approx(np.corrcoef(values.T), abs=1e-12)
+    names = [q["name"] for q in c["points"]]
+    assert list(c["by_specimen"]) == ["s1", "s2", "s3", "s4"]
+    assert np.array([[c["by_specimen"][s][n] for n in names] for s in c["by_specimen"]]) == pytest.approx(values, rel=1e-12)
     # The stresses of one specimen move together: neighbouring points correlate strongly.
-    assert c["correlation"][3][4] > 0.9
+    assert np.corrcoef(values.T)[3][4] > 0.9
     # The window follows the mean curve's peak strain.
     mean_peak = c["peak_strain"]
     assert at[-1] == pytest.approx(mean_peak) and 0.0027 < mean_peak < 0.0033
@@ -63,23 +66,37 @@ def test_the_calibration_weighs_the_points_by_the_specimens_and_joins_their_corr
     assert all(config["target_uncertainty"][n]["n"] == 4 for n in names)
     stored = config["lab_correlation"]
     assert stored["names"] == names
-    problems = Problems()
-    (c,) = curve_targets.read_curves([lab], "0.2:1.0", problems, "--curve", "--curve-window", description=UCS)
-    assert np.array(stored["matrix"]) == pytest.approx(np.array(c["correlation"]), abs=1e-12)
+    (c,) = config["curves"]
+    values = np.array([[c["by_specimen"][s][n] for n in names] for s in c["by_specimen"]])
+    assert np.array(stored["matrix"]) == pytest.approx(np.corrcoef(values.T), abs=1e-12)
 
 
-def test_correlation_blocks_join_uncorrelated_with_each_other():
-    joined = lab_targets.joined_correlation([None, {"names": ["a", "b"], "matrix": [[1, 0.5], [0.5, 1]]},
-                                             {"names": ["c"], "matrix": [[1]]}])
-    assert joined == {"names": ["a", "b", "c"], "matrix": [[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]]}
-    assert lab_targets.joined_correlation([None, None]) is None
+def test_a_specimens_peak_and_its_curve_are_correlated_across_the_two_files(monkeypatch, tmp_path):
+    # The lab's specimen file gives each specimen's UCS; the curve file the same specimens' curves. A specimen's
+    # peak and its curve's last point (at the peak strain) move together: the likelihood must know it.
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: UCS)
+    lab = lab_file(tmp_path)
+    peaks = {f"s{k + 1}": max(r[2] for r in specimen_rows(f"s{k + 1}", s, b)) for k, (s, b) in enumerate(FACTORS)}
+    scalars = tmp_path / "specimens_ucs.csv"
+    scalars.write_text("test,output,value,specimen\n" + "".join(f",sigma_u_MPa,{v},{s}\n" for s, v in peaks.items()))
+    config, _, _ = calibrate.checked_command(command(tmp_path, "--lab-specimens", str(scalars), "--strategy", "bayes",
+                                                     "--curve", lab, "--curve-window", "0.2:1.0"))
+    stored = config["lab_correlation"]
+    assert stored["names"][0] == "sigma_u_MPa" and len(stored["names"]) == 17
+    (c,) = config["curves"]
+    last = [q["name"] for q in c["points"] if q["kind"] == "stress"][-1]
+    expected = np.corrcoef([peaks[s] for s in c["by_specimen"]], [c["by_specimen"][s][last] for s in c["by_specimen"]])
+    k = stored["names"].index(last)
+    assert stored["matrix"][0][k] == pytest.approx(expected[0, 1], abs=1e-12) and stored["matrix"][0][k] > 0.9
 
 
-def test_two_specimens_give_a_scatter_but_no_correlation(tmp_path):
-    problems = Problems()
-    (c,) = curve_targets.read_curves([lab_file(tmp_path, FACTORS[:2])], "0.2:1.0", problems, "--curve",
-                                     "--curve-window", description=UCS)
-    assert problems.messages == [] and c["correlation"] is None and c["points"][0]["n"] == 2
+def test_two_specimens_give_a_scatter_but_no_correlation(monkeypatch, tmp_path):
+    monkeypatch.setattr(executables, "describe", lambda scene, space=None: UCS)
+    lab = lab_file(tmp_path, FACTORS[:2])
+    config, _, _ = calibrate.checked_command(command(tmp_path, "--target", "nu=0.2+-0.02/n=4", "--strategy", "bayes",
+                                                     "--curve", lab, "--curve-window", "0.2:1.0"))
+    assert "lab_correlation" not in config  # 2 specimens cannot tell a correlation
+    assert config["curves"][0]["points"][0]["n"] == 2
 
 
 @pytest.mark.parametrize("rows, header, message", [
