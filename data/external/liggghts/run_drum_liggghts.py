@@ -155,7 +155,8 @@ def steps_for(time_s, dt_s):
 
 
 def write_input(path, particles, drum, run, contacts, dt_s, seed):
-    """The LIGGGHTS input: returns the steps of its phases (settle, to the first sample, measure) and the sampling."""
+    """Writes the LIGGGHTS input; returns the step of the first surface sample, the last step, the steps between
+    samples and the loose fill's solids fraction."""
     pp, pw = contacts["particle-particle"], contacts["particle-wall"]
     radius, length = 0.5 * drum["inner_diameter_m"], drum["length_m"]
     r_min, r_max = particles["radius_min_m"], particles["radius_max_m"]
