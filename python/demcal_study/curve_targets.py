@@ -162,9 +162,10 @@ def point_names(label, strains, lateral, confining_mpa=None):
 
 def curve_target(spec, window, where, problems):
     """A curve target as the calibration stores it: {"spec", "label", "path", "window", "peak_strain",
-    "confining_stress_MPa", "piece", "specimens", "by_specimen", "points": [{"name", "strain", "kind", "value", "sd",
-    "n"}]}, or None with problems added. From several specimens, each point is their mean with their SD (n of them),
-    and `by_specimen` holds each specimen's values ({specimen: {point name: value}}), whose correlation the Bayesian
+    "points": [{"name", "strain", "kind", "value", "sd"}]}, or None with problems added. A confined curve adds
+    "confining_stress_MPa" and "piece" (its piece of the series' curve, set by check_against_scene). From several
+    specimens, each point is their mean with their SD and their number "n", and the target adds "specimens" and
+    "by_specimen", each specimen's values ({specimen: {point name: value}}), whose correlation the Bayesian
     likelihood takes."""
     label, path = parse_spec(spec)
     curve = read_curve(path, where, problems)
@@ -216,19 +217,24 @@ def curve_target(spec, window, where, problems):
     else:
         sd = np.interp(at, strain, curve["sd_MPa"]) if "sd_MPa" in curve else [None] * POINTS
         points = [{"name": n, "strain": float(e), "kind": "stress", "value": float(v),
-                   "sd": None if d is None else float(d), "n": 1}
+                   "sd": None if d is None else float(d)}
                   for n, e, v, d in zip(names, at, np.interp(at, strain, stress), sd)]
         if lateral:
-            points += [{"name": n, "strain": float(e), "kind": "lateral", "value": float(v), "sd": None, "n": 1}
+            points += [{"name": n, "strain": float(e), "kind": "lateral", "value": float(v), "sd": None}
                        for n, e, v in zip(names[POINTS:], at, np.interp(at, strain, curve["lateral_strain"]))]
     for q in points:
         if q["value"] == 0:
             problems.add(f"{where}: {path}: the {q['kind']} at strain {q['strain']:g} is 0; a target must be non-zero "
                          "(start the window later)")
             return None
-    return {"spec": spec, "label": label, "path": path, "window": list(window), "peak_strain": peak,
-            "confining_stress_MPa": confining, "piece": None, "specimens": len(specimens) if specimens else 1,
-            "by_specimen": by_specimen, "points": points}
+    target = {"spec": spec, "label": label, "path": path, "window": list(window), "peak_strain": peak,
+              "points": points}
+    # Only what a curve has (a stored calibration of a plain curve keeps its settings, and resumes).
+    if confining is not None:
+        target.update(confining_stress_MPa=confining, piece=None)
+    if specimens:
+        target.update(specimens=len(specimens), by_specimen=by_specimen)
+    return target
 
 
 def read_curves(specs, window_text, problems, where, window_where, each_where=None, description=None):

@@ -119,3 +119,14 @@ def test_a_small_step_back_within_a_piece_does_not_split_it(tmp_path):
     curve["axial_strain"][5] = curve["axial_strain"][4] * 0.99  # the first piece's strain steps back a little
     values = curve_targets.point_values(curve, curves)
     assert values[curves[0]["points"][0]["name"]] == pytest.approx(2e4 * curves[0]["points"][0]["strain"] + 2.5)
+
+
+def test_a_plain_curve_is_stored_with_the_keys_it_always_had(tmp_path):
+    # A calibration's settings hold its curves; one begun before confined and several-specimen curves existed must
+    # find the same settings and resume.
+    path = write(tmp_path / "ucs.csv", [r[:3] for r in lab_rows(0.0)][1:], "axial_strain,axial_stress_MPa,lateral_strain")
+    problems = Problems()
+    (c,) = curve_targets.read_curves([path], "0.25:1.0", problems, "--curve", "--curve-window", description=UCS)
+    assert problems.messages == []
+    assert set(c) == {"spec", "label", "path", "window", "peak_strain", "points"}
+    assert all(set(q) == {"name", "strain", "kind", "value", "sd"} for q in c["points"])
