@@ -13,7 +13,6 @@ import datetime
 import json
 import math
 import os
-import platform
 import statistics
 import subprocess
 import sys
@@ -22,6 +21,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "python"))
 import debian_package  # noqa: E402
+from measured_on import commit, machine  # noqa: E402
 from demcal_study.trust_region import t975  # noqa: E402
 
 OURS = "data/scenes/drum_spheres_3d.json"
@@ -69,8 +69,8 @@ def interval(values):
 
 
 def summary(rows, seeds, out_dir):
-    lines = [f"Measured {datetime.date.today().isoformat()} at commit {commit()} on {os.cpu_count()} cores, "
-             f"{platform.machine()}, {platform.platform()}; LIGGGHTS {debian_package.version('liggghts')}; "
+    lines = [f"Measured {datetime.date.today().isoformat()} at commit {commit()} on {machine()}; "
+             f"LIGGGHTS {debian_package.version('liggghts')}; "
              f"{OURS} at its defaults, seeds 1-{seeds}, one process and one thread each.", "",
              "| code | runs ok | aor_deg, mean (95 % interval) | SD over seeds | samples' SD, mean | particles | steps | "
              "wall s per run | particle-steps/s (whole run) | particle-steps/s (LIGGGHTS' loop) |",
@@ -99,11 +99,6 @@ def summary(rows, seeds, out_dir):
     with open(os.path.join(out_dir, "summary.md"), "w") as f:
         f.write(text)
     return text
-
-
-def commit():
-    done = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    return done.stdout.strip() or "unknown"
 
 
 def main():
