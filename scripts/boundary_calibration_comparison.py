@@ -7,8 +7,8 @@ the rockfill slope data/spaces/ma2022_slope_boundary.json, six) on a scene (seed
 candidate), the fitness Ma's total recovery time over the scene's fixed-boundary reference (demcal-invert
 --objective minimise). Each optimiser runs with the same budget of DEM runs and several optimiser seeds; a finished
 run is kept (the folder is resumable: rerunning skips it, and an interrupted one reuses its DEM runs). Writes
-OUT/summary.md (per optimiser: best total recovery time and the DEM runs it took to come within 5 % of that best,
-medians and ranges over the seeds, and the coefficients of the best run) and, with --figure, the best-so-far
+OUT/summary.md (per optimiser: best total recovery time, the DEM runs it took to come within 5 % of that best and
+of the best any run found, medians and ranges over the seeds, and the coefficients of the best run) and, with --figure, the best-so-far
 against DEM runs (each optimiser's median over its seeds and their range).
 
     scripts/boundary_calibration_comparison.py --build build [--scene S] [--budget N] [--seeds 3] [--figure F.png]
@@ -71,12 +71,23 @@ def history(path):
     return [(int(r["evaluations"]), float(r["best_objective"])) for r in rows]
 
 
-def runs_to_within(points, fraction):
-    best = points[-1][1]
+def runs_to_within(points, fraction, best=None):
+    """DEM runs until the best-so-far came within fraction of best (default: the run's own best); None if never."""
+    best = points[-1][1] if best is None else best
     for evaluations, value in points:
         if value <= best * (1 + fraction):
             return evaluations
-    return points[-1][0]
+    return None
+
+
+def median_and_range(counts):
+    """'median (low-high)' of DEM-run counts where None (never) ranks above every count."""
+    ranked = sorted(counts, key=lambda c: float("inf") if c is None else c)
+    half = len(ranked) // 2
+    middle = ranked[half - 1:half + 1] if len(ranked) % 2 == 0 else [ranked[half]]
+    median = None if None in middle else sum(middle) / len(middle)
+    show = lambda c: "never" if c is None else f"{c:g}"
+    return f"{show(median)} ({show(ranked[0])}-{show(ranked[-1])})"
 
 
 def main():
@@ -129,23 +140,27 @@ def main():
             points = history(hist)
             result = json.load(open(solution))
             table.setdefault(algo, []).append({"seed": seed, "best_s": points[-1][1] * ref, "runs": points[-1][0],
-                                               "to_5pct": runs_to_within(points, 0.05), "x": result.get("x"),
+                                               "to_own_5pct": runs_to_within(points, 0.05), "x": result.get("x"),
                                                "points": points})
+    best_any = min(r["best_s"] for rows in table.values() for r in rows)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     lines = [f"Measured {datetime.date.today()} at commit {commit or 'unknown'} on {os.cpu_count()} cores, "
              f"{platform.processor() or platform.machine()}, {platform.system()} {platform.release()}; "
              f"{args.scene}, budget {budget} DEM runs, {args.seeds} optimiser seeds; fixed boundary {ref:.3f} s.", "",
-             f"| optimiser | best total recovery s, median (range) | DEM runs to within 5 % of its best, median (range) | "
+             f"| optimiser | best total recovery s, median (range) | DEM runs to within 5 % of its own best, median "
+             f"(range) | DEM runs to within 5 % of the best any run found ({best_any:.3f} s), median (range) | "
              f"coefficients of the best run ({', '.join(coefficients)}) |",
-             "|---|---|---|---|"]
+             "|---|---|---|---|---|"]
     for algo, rows in table.items():
         best = [r["best_s"] for r in rows]
-        to5 = [r["to_5pct"] for r in rows]
+        to_own = [r["to_own_5pct"] for r in rows]
+        # The common mark: every run measured against the best of all (in the fitness's unit, as the history).
+        to_any = [runs_to_within(r["points"], 0.05, best_any / ref) for r in rows]
         top = min(rows, key=lambda r: r["best_s"])
         x = top["x"] or {}
         values = ", ".join(f"{x.get(k, float('nan')):.2f}" for k in coefficients)
         lines.append(f"| {algo} | {statistics.median(best):.3f} ({min(best):.3f}-{max(best):.3f}) | "
-                     f"{statistics.median(to5):.0f} ({min(to5)}-{max(to5)}) | {values} |")
+                     f"{median_and_range(to_own)} | {median_and_range(to_any)} | {values} |")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

@@ -1,5 +1,5 @@
-"""scripts/boundary_calibration_comparison.py: the runs an optimiser took to come within 5 % of its own best, and bad
-arguments as one-line errors (the DEM runs themselves are `make boundary-calibration`'s)."""
+"""scripts/boundary_calibration_comparison.py: the runs an optimiser took to come within 5 % of its own best and of the
+best of all, and bad arguments as one-line errors (the DEM runs themselves are `make boundary-calibration`'s)."""
 import os
 import subprocess
 import sys
@@ -19,6 +19,22 @@ def test_runs_to_within_a_share_of_the_final_best():
     assert m.runs_to_within(points, 0.05) == 40  # 0.52 is within 5 % of 0.5
     assert m.runs_to_within(points, 0.01) == 120
     assert m.runs_to_within([(7, 0.3)], 0.05) == 7
+
+
+def test_runs_to_within_a_share_of_a_common_best_or_never():
+    m = module()
+    points = [(1, 1.0), (20, 0.6), (40, 0.52), (120, 0.5)]
+    assert m.runs_to_within(points, 0.05, best=0.48) == 120  # 0.5 is within 5 % of 0.48, 0.52 is not
+    assert m.runs_to_within(points, 0.05, best=0.40) is None  # this run never came near the best of all
+
+
+def test_medians_of_run_counts_rank_never_above_every_count():
+    m = module()
+    assert m.median_and_range([105, 64, 161]) == "105 (64-161)"
+    assert m.median_and_range([None, 81, 360]) == "360 (81-never)"
+    assert m.median_and_range([None, 104, None]) == "never (104-never)"
+    assert m.median_and_range([10, 20]) == "15 (10-20)"
+    assert m.median_and_range([10, None]) == "never (10-never)"
 
 
 def test_bad_arguments_are_one_line_errors(tmp_path):
