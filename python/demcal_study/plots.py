@@ -140,7 +140,7 @@ def comparison_png(rows, out_png):
         ylabel = "largest verified relative error (%)"
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     strategies = [r["strategy"] for r, _ in points]
-    for r, y in points:
+    for index, (r, y) in enumerate(points):
         # Two studies of one strategy (other scenes, say) are told apart by their names.
         label = r["strategy"] if strategies.count(r["strategy"]) == 1 else f"{r['name']}\n({r['strategy']})"
         bar = None
@@ -152,7 +152,9 @@ def comparison_png(rows, out_png):
             if x is None:
                 continue
             ax.errorbar(x, y, yerr=bar, fmt="o", capsize=3)
-            ax.annotate(label, (x, y), fontsize=8, xytext=(4, 4), textcoords="offset points")
+            # Labels alternate above and below their points, so two studies of like cost do not overprint.
+            ax.annotate(label, (x, y), fontsize=8, xytext=(4, 4 if index % 2 == 0 else -14),
+                        textcoords="offset points")
     largest = [max([r["dem_runs"] for r, _ in points] + [1]),
                max([r["wall_s"] / 60 for r, _ in points if r["wall_s"] is not None] + [1])]
     if minimised:
