@@ -60,3 +60,19 @@ def test_takes_the_curve_from_a_csv_when_the_result_has_none(tmp_path):
     done = run(tmp_path / "bare.json", "--curves", tmp_path / "a.csv", "--out", out)
     assert done.returncode == 0, done.stderr
     assert out.exists()
+
+
+def test_named_points_of_a_slope_result_and_a_missing_one_as_one_line(tmp_path):
+    t = [0.01 * k for k in range(100)]
+    result = {"status": "ok", "macro": {"total_recovery_time_s": 8.0, "recovery_time_s_2_1": 1.06},
+              "curve": {"time_s": t, "vy_2_1_m_s": [math.sin(x) for x in t], "vx_2_1_m_s": [0.0] * len(t)}}
+    path = tmp_path / "slope.json"
+    path.write_text(json.dumps(result))
+    out = tmp_path / "slope.png"
+    done = run(path, "--points", "2-1", "--component", "vy", "--out", out)
+    assert done.returncode == 0, done.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    done = run(path, "--points", "2-1", "9-9", "--out", tmp_path / "x.png")
+    assert done.returncode == 2
+    assert "no time_s or no vx column for point(s) 9-9" in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1
