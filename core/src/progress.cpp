@@ -48,7 +48,13 @@ std::string Progress::line() const {
                   units_name_.empty() ? "units" : units_name_.c_str());
     text += buffer;
   }
+  if (!note_.empty()) text += "; " + note_;
   return text;
+}
+
+void Progress::set_note(std::string note) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  note_ = std::move(note);
 }
 
 void Progress::advance(std::uint64_t count, double units) {

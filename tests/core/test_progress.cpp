@@ -23,3 +23,14 @@ TEST(Progress, DurationsReadAsAPersonWouldWriteThem) {
   EXPECT_EQ(demcal::format_duration(3720), "1h02m");
   EXPECT_EQ(demcal::format_duration(-1), "?");
 }
+
+TEST(Progress, ANoteSaysWhatTheLoopIsDoingAtTheLinesEnd) {
+  demcal::Progress progress("heap", 100);
+  progress.advance(10);
+  EXPECT_EQ(progress.line().find(';'), std::string::npos) << progress.line();  // no note: no trailing part
+  progress.set_note("discharging: 40 of 100 particles out");
+  const std::string line = progress.line();
+  const std::string tail = "; discharging: 40 of 100 particles out";
+  ASSERT_GE(line.size(), tail.size());
+  EXPECT_EQ(line.substr(line.size() - tail.size()), tail) << line;
+}

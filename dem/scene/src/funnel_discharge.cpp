@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "demcal/core/error.hpp"
 #include "demcal/core/number_format.hpp"
@@ -46,15 +47,19 @@ FunnelDischarge::Next FunnelDischarge::after_fill(double t) {
   if (t < run_.fill_time_s) return Next::step_on;
   opened_at_s_ = last_drop_at_s_ = t;
   stage_ = Stage::discharge;
+  watch_.set_note("discharging");
   return Next::open_gate;
 }
 
 FunnelDischarge::Next FunnelDischarge::after_count(double t, std::size_t in_funnel) {
   if (in_funnel < remaining_) last_drop_at_s_ = t;
   remaining_ = in_funnel;
+  watch_.set_note("discharging: " + std::to_string(total_ - remaining_) + " of " + std::to_string(total_) + " " +
+                  words_.particles + " out");
   if (remaining_ <= left_behind_) {
     flow_time_s_ = t - opened_at_s_;
     stage_ = Stage::settle;
+    watch_.set_note("settling");
   } else if (t - last_drop_at_s_ > run_.jam_time_s) {
     return fail("the funnel jammed: " + std::to_string(remaining_) + " of " + std::to_string(total_) + " " +
                 words_.particles + " still in it " + format_double(t - opened_at_s_) +
@@ -65,6 +70,10 @@ FunnelDischarge::Next FunnelDischarge::after_count(double t, std::size_t in_funn
 }
 
 bool FunnelDischarge::settled(double kinetic_j, double potential_j) {
+  char ratio[32];
+  std::snprintf(ratio, sizeof(ratio), "%.2g", kinetic_j / potential_j);
+  watch_.set_note(std::string("settling: kinetic / potential energy ") + ratio + ", asked below " +
+                  format_double(run_.settle_kinetic_ratio));
   if (!(kinetic_j < run_.settle_kinetic_ratio * potential_j)) return false;
   settled_ratio_ = kinetic_j / potential_j;
   return true;

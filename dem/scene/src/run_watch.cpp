@@ -53,6 +53,10 @@ std::string RunWatch::timeout_reason() const {
                              " s of wall time");
 }
 
+void RunWatch::set_note(std::string note) {
+  if (progress_) progress_->set_note(std::move(note));
+}
+
 void RunWatch::finish() {
   if (progress_) progress_->finish();
 }

@@ -16,6 +16,8 @@ class Progress {
   // Thread-safe; `units` is an extra count shown as a rate (e.g. particle-steps).
   void advance(std::uint64_t count = 1, double units = 0.0);
   void set_units_name(std::string name) { units_name_ = std::move(name); }
+  // What the loop is doing now ("discharging: 40 % out"), shown at the line's end; thread-safe.
+  void set_note(std::string note);
   void finish();
   std::string line() const;  // the text of the current line
 
@@ -24,6 +26,7 @@ class Progress {
 
   std::string label_;
   std::string units_name_;
+  std::string note_;
   std::uint64_t total_;
   std::uint64_t done_ = 0;
   double units_ = 0.0;

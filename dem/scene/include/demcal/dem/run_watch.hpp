@@ -37,6 +37,8 @@ class RunWatch {
   // At simulated time t: false once past max_wall_s (timeout_reason() says so), else true after moving the line on.
   bool carry_on(double t);
   std::string timeout_reason() const;
+  // The stage the run is in, at the progress line's end.
+  void set_note(std::string note);
   void finish();
 
  private:
