@@ -127,3 +127,46 @@ TEST(Clumps3D, DensityScalingReachesTheAskedStepWithClumps) {
   hertz.settings().density_scaling_dt_s = 1e-4;
   EXPECT_THROW(hertz.refresh(), demcal::Error);
 }
+
+// Enough clumps that their integration splits over threads: layers of them settling on a plane and on each other
+// give the same bits on one thread and on two.
+TEST(Clumps3D, ManyClumpsGiveTheSameBitsOnOneAndTwoThreads) {
+  auto settle = [](int threads) {
+    WorldSettings settings;
+    settings.threads = threads;
+    settings.min_spheres_per_thread = 1;
+    settings.damping = 0.1;
+    settings.gravity_m_s2 = {0, 0, -9.81};
+    World world(settings);
+    const int side = 8, layers = 6;  // 384 clumps, 768 spheres
+    const double pitch = 3.4 * kRadius;
+    for (int l = 0; l < layers; ++l)
+      for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b) {
+          // Lying clumps, each layer just touching the one below and shifted against it, the first on the plane.
+          const Vec3 centre = {a * pitch + 0.4 * kRadius * (l % 2), b * pitch, (1 + 2 * l) * kRadius};
+          const Vec3 axis = {1.0, 0.15 * ((a + b + l) % 5), 0.0};
+          const Vec3 half = (0.65 * kRadius / norm(axis)) * axis;
+          const std::size_t first = world.spheres.size();
+          world.spheres.add_sphere(centre - half, kRadius, kDensity, 0);
+          world.spheres.add_sphere(centre + half, kRadius, kDensity, 0);
+          const ClumpShape shape = clump_of_spheres({centre - half, centre + half}, {kRadius, kRadius}, kDensity);
+          world.add_clump({first, first + 1}, shape.mass_kg, shape.principal_inertia_kg_m2, shape.orientation,
+                          shape.centre_m);
+        }
+    world.assign(0, 1, world.add_model(ContactModelRegistry::instance().create(
+                           "linear", {{"modulus_pa", 1e8}, {"kn_ks", 1.5}, {"friction", 0.5}}, "test")));
+    world.walls.push_back(make_plane({0, 0, 0}, {0, 0, 1}));
+    world.run(1500);
+    EXPECT_EQ(world.threads_in_use(), threads);
+    return world;
+  };
+  const World one = settle(1), two = settle(2);
+  ASSERT_EQ(one.clumps().size(), 384u);
+  ASSERT_EQ(one.spheres.size(), two.spheres.size());
+  for (std::size_t i = 0; i < one.spheres.size(); ++i) {
+    ASSERT_EQ(std::memcmp(&one.spheres.z[i], &two.spheres.z[i], sizeof(double)), 0) << i;
+    ASSERT_EQ(std::memcmp(&one.spheres.vx[i], &two.spheres.vx[i], sizeof(double)), 0) << i;
+  }
+  EXPECT_LT(one.walls[0].force_n.z, 0.0);  // the layers press on the plane: contacts, not free flight, were compared
+}

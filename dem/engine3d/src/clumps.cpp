@@ -43,7 +43,13 @@ void World::integrate_clumps(double& max_move2) {
   auto damped = [alpha](double rate, double load) {
     return load - alpha * std::abs(load) * (rate > 0 ? 1.0 : (rate < 0 ? -1.0 : 0.0));
   };
-  for (std::size_t k = 0; k < clumps_.size(); ++k) {
+  // Each clump writes only its own members, so the clumps split over threads as they come; the largest move is
+  // a maximum, the same in any order: the bits do not depend on the thread count.
+  const auto count = static_cast<std::ptrdiff_t>(clumps_.size());
+  const int team = threads_in_use_;
+#pragma omp parallel for num_threads(team) if (team > 1 && count > 256) schedule(static) reduction(max : max_move2)
+  for (std::ptrdiff_t kk = 0; kk < count; ++kk) {
+    const auto k = static_cast<std::size_t>(kk);
     Clump& c = clumps_[k];
     // The members' forces and moments about the centre, in member order.
     Vec3 force = c.mass_kg * settings_.gravity_m_s2, moment;
