@@ -8,8 +8,8 @@ candidate), the fitness Ma's total recovery time over the scene's fixed-boundary
 --objective minimise). Each optimiser runs with the same budget of DEM runs and several optimiser seeds; a finished
 run is kept (the folder is resumable: rerunning skips it, and an interrupted one reuses its DEM runs). Writes
 OUT/summary.md (per optimiser: best total recovery time, the DEM runs it took to come within 5 % of that best and
-of the best any run found, medians and ranges over the seeds, and the coefficients of the best run) and, with --figure, the best-so-far
-against DEM runs (each optimiser's median over its seeds and their range).
+of the best any run found, medians and ranges over the seeds, and the coefficients of the best run) and, with
+--figure, the best-so-far against DEM runs (each optimiser's median over its seeds and their range).
 
     scripts/boundary_calibration_comparison.py --build build [--scene S] [--budget N] [--seeds 3] [--figure F.png]
 

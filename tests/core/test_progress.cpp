@@ -25,6 +25,7 @@ TEST(Progress, DurationsReadAsAPersonWouldWriteThem) {
 }
 
 TEST(Progress, ANoteSaysWhatTheLoopIsDoingAtTheLinesEnd) {
+  demcal::log::set_level(demcal::log::Level::Quiet);  // keep the test output clean
   demcal::Progress progress("heap", 100);
   progress.advance(10);
   EXPECT_EQ(progress.line().find(';'), std::string::npos) << progress.line();  // no note: no trailing part
@@ -33,4 +34,5 @@ TEST(Progress, ANoteSaysWhatTheLoopIsDoingAtTheLinesEnd) {
   const std::string tail = "; discharging: 40 of 100 particles out";
   ASSERT_GE(line.size(), tail.size());
   EXPECT_EQ(line.substr(line.size() - tail.size()), tail) << line;
+  demcal::log::set_level(demcal::log::Level::Normal);
 }
