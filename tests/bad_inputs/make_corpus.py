@@ -215,6 +215,12 @@ case("scene/3d_box_for_a_cylinder_test",
 case("scene/3d_negative_diameter",
      describe(write(S, "3d_negative_diameter.json", edited(scene3d, lambda d: d["specimen"].update(diameter_m=-0.01)))),
      path(S, "3d_negative_diameter.json"), "diameter_m")
+tension3d = load("tests/data/tension_small_3d.json")
+tension3d["extends"] = "../../data/ucs_small_3d.json"
+case("scene/3d_tension_grip_of_no_length",
+     describe(write(S, "3d_tension_grip_of_no_length.json",
+                    edited(tension3d, lambda d: d.update(grips={"length_m": 0})))),
+     path(S, "3d_tension_grip_of_no_length.json"), "grips.length_m")
 triaxial3d = load("tests/data/triaxial_small_3d.json")
 triaxial3d["extends"] = "../../data/ucs_small_3d.json"
 case("scene/3d_confining_stress_zero",

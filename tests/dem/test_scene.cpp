@@ -227,7 +227,7 @@ TEST(Scene, TestsAndContactRolesComeFromTheRegistries) {
   json unknown_test = small_scene();
   unknown_test["test"] = "triaxial_3d";
   std::string e = error_of([&] { Scene::from_json(unknown_test, "s.json"); });
-  EXPECT_NE(e.find("\"test\" must be one of \"ucs\", \"brazilian\", \"biaxial\", \"external\", \"heap\", \"wave_strip\", \"slope\", \"ucs_3d\", \"brazilian_3d\", \"triaxial\", \"heap_3d\", \"drum_3d\", \"baffle_lift_3d\" (got \"triaxial_3d\")"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"test\" must be one of \"ucs\", \"brazilian\", \"biaxial\", \"external\", \"heap\", \"wave_strip\", \"slope\", \"ucs_3d\", \"brazilian_3d\", \"triaxial\", \"heap_3d\", \"drum_3d\", \"baffle_lift_3d\", \"direct_tension_3d\" (got \"triaxial_3d\")"), std::string::npos) << e;
 
   json extra_role = small_scene();
   extra_role["contacts"]["disk-wall"] = extra_role["contacts"]["particle-platen"];
@@ -333,7 +333,7 @@ TEST(LabTests, DescribeListsParametersOutputsAndContacts) {
   EXPECT_EQ(rock["parameters"]["R_max_over_R_min"]["shapes_specimen"], true);
   EXPECT_EQ(rock["parameters"]["cb_sigma_c_mean_Pa"]["shapes_specimen"], false);
   json registries = describe_registries();
-  EXPECT_EQ(registries["tests"], json({"ucs", "brazilian", "biaxial", "external", "heap", "wave_strip", "slope", "ucs_3d", "brazilian_3d", "triaxial", "heap_3d", "drum_3d", "baffle_lift_3d"}));
+  EXPECT_EQ(registries["tests"], json({"ucs", "brazilian", "biaxial", "external", "heap", "wave_strip", "slope", "ucs_3d", "brazilian_3d", "triaxial", "heap_3d", "drum_3d", "baffle_lift_3d", "direct_tension_3d"}));
   // Each engine whose tests are registered, with its own models.
   EXPECT_EQ(registries["contact_models"],
             json({{"2d", {"linear", "parallel_bond", "contact_bond", "flat_joint", "hertz_mindlin", "jkr"}},

@@ -529,8 +529,8 @@ inline void rolling_friction_spin(double& wx, double& wy, double& wz, double slo
 }
 
 // Spheres [lo, hi) after a step under their summed forces and moments, as one
-// vectorised loop: a fixed sphere stops, a clump's member waits for its clump
-// (both by selects, not branches). Returns the largest squared move since the
+// vectorised loop: a fixed sphere moves at its own velocity whatever the
+// forces, a clump's member waits for its clump (both by selects, not branches). Returns the largest squared move since the
 // last build.
 // With rolling limits the spin takes rolling_friction_spin (a separate
 // instance of the loop: without them the arithmetic, and so the bits, stay).
@@ -558,15 +558,15 @@ double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, dou
   // Each sphere's motion as a 64-bit word: a byte-wide load in the loop below
   // would make the compiler take 32 spheres a vector and the last 32 of a
   // chunk one by one (it peels for the sums' unused slots).
-  alignas(64) std::int64_t still_of[kUpdateChunk], moves_of[kUpdateChunk];
+  alignas(64) std::int64_t driven_of[kUpdateChunk], moves_of[kUpdateChunk];
   for (std::size_t i = lo; i < hi; ++i) {
-    still_of[i - lo] = a.fixed[i] != 0;
+    driven_of[i - lo] = a.fixed[i] != 0;
     moves_of[i - lo] = (a.fixed[i] == 0) & (a.clump[i] < 0);
   }
   double largest = 0;
 #pragma omp simd reduction(max : largest)
   for (std::size_t i = lo; i < hi; ++i) {
-    const bool still = still_of[i - lo] != 0, moves = moves_of[i - lo] != 0;
+    const bool driven = driven_of[i - lo] != 0, moves = moves_of[i - lo] != 0;
     const double m = mass[i];
     const double to_v = inverse_mass[i] * dt, to_w = inverse_inertia[i] * dt;
     const double new_vx = damped_velocity(vx[i], sums[kSumStride * (i - lo) + kSumFx] + m * g.x, alpha, to_v);
@@ -577,17 +577,19 @@ double update_spheres(std::size_t lo, std::size_t hi, const SphereArrays& a, dou
     double new_wz = damped_velocity(wz[i], sums[kSumStride * (i - lo) + kSumMz], alpha, to_w);
     if constexpr (kRollingLimits) rolling_friction_spin(new_wx, new_wy, new_wz, rolling_limit[i] * to_w);
     const double new_x = x[i] + new_vx * dt, new_y = y[i] + new_vy * dt, new_z = z[i] + new_vz * dt;
-    vx[i] = dem::select(moves, new_vx, dem::select(still, 0.0, vx[i]));
-    vy[i] = dem::select(moves, new_vy, dem::select(still, 0.0, vy[i]));
-    vz[i] = dem::select(moves, new_vz, dem::select(still, 0.0, vz[i]));
-    wx[i] = dem::select(moves, new_wx, dem::select(still, 0.0, wx[i]));
-    wy[i] = dem::select(moves, new_wy, dem::select(still, 0.0, wy[i]));
-    wz[i] = dem::select(moves, new_wz, dem::select(still, 0.0, wz[i]));
-    x[i] = dem::select(moves, new_x, x[i]);
-    y[i] = dem::select(moves, new_y, y[i]);
-    z[i] = dem::select(moves, new_z, z[i]);
-    const double dx = new_x - x_built[i], dy = new_y - y_built[i], dz = new_z - z_built[i];
-    const double move2 = dem::select(moves, dx * dx + dy * dy + dz * dz, 0.0);
+    // A fixed sphere keeps its velocity and spin and moves at that velocity (a grip, a driven boundary).
+    vx[i] = dem::select(moves, new_vx, vx[i]);
+    vy[i] = dem::select(moves, new_vy, vy[i]);
+    vz[i] = dem::select(moves, new_vz, vz[i]);
+    wx[i] = dem::select(moves, new_wx, wx[i]);
+    wy[i] = dem::select(moves, new_wy, wy[i]);
+    wz[i] = dem::select(moves, new_wz, wz[i]);
+    const double to_x = dem::select(moves, new_x, dem::select(driven, x[i] + vx[i] * dt, x[i]));
+    const double to_y = dem::select(moves, new_y, dem::select(driven, y[i] + vy[i] * dt, y[i]));
+    const double to_z = dem::select(moves, new_z, dem::select(driven, z[i] + vz[i] * dt, z[i]));
+    x[i] = to_x, y[i] = to_y, z[i] = to_z;
+    const double dx = to_x - x_built[i], dy = to_y - y_built[i], dz = to_z - z_built[i];
+    const double move2 = dem::select(moves || driven, dx * dx + dy * dy + dz * dz, 0.0);
     largest = largest < move2 ? move2 : largest;
   }
   return largest;
@@ -718,6 +720,24 @@ double World::force_ratio() const {
   }
   if (free_spheres == 0) return 0.0;
   return (unbalanced_sum / static_cast<double>(free_spheres)) / (contact_sum / static_cast<double>(touching));
+}
+
+Vec3 World::contact_force(std::size_t i) const {
+  const Internals& in = *internals_;
+  const PairForceArrays& sp = in.sphere_pair_forces;
+  const PairForceArrays& wp = in.wall_pair_forces;
+  Vec3 f;
+  if (i + 1 >= in.sum_begin.size() || sp.fx.size() != pairs_.size() || wp.fx.size() != wall_pairs_.size()) return f;
+  for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
+    const std::size_t k = in.sum_entry[e] >> 1;
+    const Vec3 pair_force = {sp.fx[k], sp.fy[k], sp.fz[k]};
+    f = (in.sum_entry[e] & 1u) ? f - pair_force : f + pair_force;
+  }
+  for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
+    const std::size_t k = in.wall_entry[e];
+    f = f + Vec3{wp.fx[k], wp.fy[k], wp.fz[k]};
+  }
+  return f;
 }
 
 double World::wall_contact_stiffness_n_m(std::size_t w) const {

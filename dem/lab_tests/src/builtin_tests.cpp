@@ -31,6 +31,7 @@ void register_builtin_tests(LabTestRegistry& registry) {
   dem3d::register_heap_test_3d(registry);
   dem3d::register_drum_test_3d(registry);
   dem3d::register_baffle_lift_test_3d(registry);
+  dem3d::register_direct_tension_test_3d(registry);
 }
 
 }  // namespace demcal::dem

@@ -18,7 +18,9 @@ struct Spheres {
   std::vector<double> mass;     // kg
   std::vector<double> inertia;  // kg m^2 (2/5 m R^2 for a solid sphere)
   std::vector<std::uint8_t> group;  // material group, picks the contact model per pair
-  std::vector<std::uint8_t> fixed;  // 1: the sphere does not move
+  // 1: the sphere ignores its forces and moves at its own velocity (a grip; at
+  // rest when that is zero), its spin kept as set
+  std::vector<std::uint8_t> fixed;
   std::vector<std::int32_t> clump;  // the rigid clump the sphere belongs to, -1 for a free sphere
   // Stable identity: what orders pairs and keys per-contact random draws, so
   // reordering the arrays (spatial sorting, threads) changes no result.

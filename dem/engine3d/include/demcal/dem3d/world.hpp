@@ -127,6 +127,10 @@ class World {
   // touching pairs; 0 when nothing touches. Summed in storage order (set by
   // the state alone), so a stop on it is the same on any number of threads.
   double force_ratio() const;
+  // The force on sphere i from its contacts (spheres and walls) in the last
+  // step, N, summed in pair order (gravity and damping not included): what a
+  // driven (fixed) sphere's neighbours push it with.
+  Vec3 contact_force(std::size_t i) const;
   // Kinetic energy (translational + rotational), summed in id order, J.
   double kinetic_energy() const;
   // Index of the sphere with id `id` now (the world reorders the arrays).

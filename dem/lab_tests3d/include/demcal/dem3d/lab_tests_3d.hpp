@@ -7,6 +7,7 @@ namespace demcal::dem3d {
 
 void register_ucs_test_3d(dem::LabTestRegistry& registry);
 void register_brazilian_test_3d(dem::LabTestRegistry& registry);
+void register_direct_tension_test_3d(dem::LabTestRegistry& registry);
 void register_triaxial_test(dem::LabTestRegistry& registry);
 void register_heap_test_3d(dem::LabTestRegistry& registry);
 void register_drum_test_3d(dem::LabTestRegistry& registry);
