@@ -71,7 +71,7 @@ uncertainty-benchmark: build
 	scripts/uncertainty_benchmark.py --build $(BUILD) --jobs $(JOBS) --out $(BUILD)/uncertainty_benchmark \
 	  $(if $(ROCKS),--rocks $(ROCKS)) $(GIVEN_BUDGET)
 
-# Our DEM at published PFC2D parameter sets (docs/explanation/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
+# Our DEM at published PFC2D and PFC3D parameter sets (docs/explanation/fidelity.md); hours, resumable (QUICK=1: the L64 on 16 points, 1 seed).
 fidelity-benchmark: build
 	scripts/fidelity_benchmark.py --build $(BUILD) --jobs $(JOBS) $(if $(ONLY),--only $(ONLY)) $(if $(QUICK),--quick) $(if $(FIGURE),--figure $(FIGURE))
 

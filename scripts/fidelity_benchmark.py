@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The PFC fidelity benchmark (docs/explanation/fidelity.md): our DEM at the micro-parameters of published PFC2D runs, against
-what PFC2D gave there.
+"""The PFC fidelity benchmark (docs/explanation/fidelity.md): our DEM at the micro-parameters of published PFC2D and PFC3D
+runs, against what PFC gave there.
 
   l64            the 64 parameter sets of Su et al. 2021's L64 plan (data/literature/su2021_L64_orthogonal.csv)
                  at the default concrete resolution (data/scenes/ucs_concrete.json), 3 seeds each;
@@ -9,7 +9,10 @@ what PFC2D gave there.
   reference      the reference set (the concrete scene's defaults) at the default resolution, 5 seeds;
   reference_fine the reference set at the published resolution, 3 seeds;
   rock           Wang & Cao 2017's calibrated sandstone (data/scenes/ucs_rock_cb.json defaults), 5 seeds,
-                 against their PFC2D run (data/literature/wang2017_rock_sa.json).
+                 against their PFC2D run (data/literature/wang2017_rock_sa.json);
+  sandstone_3d   Itasca's published PFC3D parallel-bonded sandstone (data/literature/itasca2016_pfc3d_sandstone_pb.json)
+                 in uniaxial compression (data/scenes/ucs_pfc3d_sandstone_pb_3d.json), 5 seeds;
+  sandstone_3d_tension  the same material in direct tension (data/scenes/tension_pfc3d_sandstone_pb_3d.json), 5 seeds.
 
 The summary also gives the resolution shift: fine over default for the same parameter set and seed, where both
 l64 and l64_fine (or both reference parts) hold it; the default resolution's comparison is judged within it.
@@ -42,11 +45,14 @@ WANG2017 = os.path.join(REPO, "data", "literature", "wang2017_rock_sa.json")
 CONCRETE = os.path.join(REPO, "data", "scenes", "ucs_concrete.json")
 CONCRETE_FINE = os.path.join(REPO, "data", "scenes", "bench", "ucs_concrete_fine.json")
 ROCK = os.path.join(REPO, "data", "scenes", "ucs_rock_cb.json")
+ITASCA2016 = os.path.join(REPO, "data", "literature", "itasca2016_pfc3d_sandstone_pb.json")
+SANDSTONE_3D = os.path.join(REPO, "data", "scenes", "ucs_pfc3d_sandstone_pb_3d.json")
+SANDSTONE_3D_TENSION = os.path.join(REPO, "data", "scenes", "tension_pfc3d_sandstone_pb_3d.json")
 OUTPUTS = ["sigma_u_MPa", "E_GPa", "nu"]
 # Our output compared with each published one: Su et al. 2021 define nu as the secant at half the peak (our nu50;
 # our nu is the tangent there).
-OURS = {"sigma_u_MPa": "sigma_u_MPa", "E_GPa": "E_GPa", "nu": "nu50"}
-PARTS = ["l64", "l64_fine", "reference", "reference_fine", "rock"]
+OURS = {"sigma_u_MPa": "sigma_u_MPa", "E_GPa": "E_GPa", "nu": "nu50", "sigma_t_direct_MPa": "sigma_t_direct_MPa"}
+PARTS = ["l64", "l64_fine", "reference", "reference_fine", "rock", "sandstone_3d", "sandstone_3d_tension"]
 
 
 def fail(message):
@@ -80,7 +86,8 @@ def scene_parameters(scene_path, bin_dir):
 
 
 def reference_values():
-    """PFC2D's responses at the reference sets: the concrete (Su 2021) and the sandstone (Wang & Cao 2017)."""
+    """PFC's responses at the reference sets: the concrete (Su 2021) and the sandstone (Wang & Cao 2017) in PFC2D,
+    Itasca's sandstone in PFC3D (compression, and direct tension)."""
     ref = read_json(SU2021, "Su et al. 2021").get("reference_result_pfc2d", {})
     concrete = {o: ref.get(o) for o in OUTPUTS}
     if any(v is None for v in concrete.values()):
@@ -88,7 +95,12 @@ def reference_values():
     macro = read_json(WANG2017, "Wang & Cao 2017").get("detailed_example", {}).get("result_macro", {})
     if "ucs_MPa" not in macro or "E_GPa" not in macro:
         fail(f"{WANG2017}: detailed_example.result_macro lacks ucs_MPa or E_GPa")
-    return concrete, {"sigma_u_MPa": macro["ucs_MPa"], "E_GPa": macro["E_GPa"]}
+    itasca = read_json(ITASCA2016, "Itasca's PFC3D sandstone").get("macro_results", {})
+    if any(k not in itasca for k in ("ucs_Pa", "E_Pa", "direct_tensile_strength_Pa")):
+        fail(f"{ITASCA2016}: macro_results lacks ucs_Pa, E_Pa or direct_tensile_strength_Pa")
+    return (concrete, {"sigma_u_MPa": macro["ucs_MPa"], "E_GPa": macro["E_GPa"]},
+            {"sigma_u_MPa": itasca["ucs_Pa"] / 1e6, "E_GPa": itasca["E_Pa"] / 1e9,
+             "sigma_t_direct_MPa": itasca["direct_tensile_strength_Pa"] / 1e6})
 
 
 def part_plan(part, bin_dir, quick=False):
@@ -105,7 +117,8 @@ def part_plan(part, bin_dir, quick=False):
     if part in ("reference", "reference_fine"):
         scene = CONCRETE if part == "reference" else CONCRETE_FINE
         return scene, [{"run": "1", **scene_parameters(scene, bin_dir)}], 5 if part == "reference" else 3
-    return ROCK, [{"run": "1", **scene_parameters(ROCK, bin_dir)}], 5
+    scene = {"rock": ROCK, "sandstone_3d": SANDSTONE_3D, "sandstone_3d_tension": SANDSTONE_3D_TENSION}[part]
+    return scene, [{"run": "1", **scene_parameters(scene, bin_dir)}], 5
 
 
 def run_part(part, build, jobs, quick):
@@ -142,7 +155,7 @@ def stored_runs(part, build):
             if row["status"] != "ok":  # "failed: <reason>"
                 failed.append((row["run"], row["seed"], row["status"].removeprefix("failed: ")))
                 continue
-            values = {o: float(row[OURS[o]]) for o in OUTPUTS if row.get(OURS[o]) not in (None, "")}
+            values = {o: float(row[ours]) for o, ours in OURS.items() if row.get(ours) not in (None, "")}
             ok[(row["run"], row["seed"])] = {o: v for o, v in values.items() if math.isfinite(v)}
     return ok, failed
 
@@ -234,7 +247,8 @@ def reference_row(part, build, pfc, outputs):
 
 
 def specimen_facts(part, build):
-    """Mean porosity, bonds per disk and locked-in stress of a part's runs (from the point files)."""
+    """Mean porosity, bonds per particle (disk or sphere) and locked-in stress of a part's runs (from the point
+    files)."""
     folder = os.path.join(build, "fidelity_benchmark", part, "responses.h5.points")
     if not os.path.isdir(folder):
         return None
@@ -253,6 +267,8 @@ def specimen_facts(part, build):
         for k in ("bonds_per_disk", "locked_in_stress_MPa"):
             if k in r.get("specimen", {}):
                 facts[k].append(r["specimen"][k])
+        if "bonds_per_sphere" in r.get("specimen", {}):  # a 3D specimen's
+            facts["bonds_per_disk"].append(r["specimen"]["bonds_per_sphere"])
     return {k: statistics.fmean(v) for k, v in facts.items() if v}
 
 
@@ -280,7 +296,7 @@ def figure(points, path):
 
 def summary(build, figure_copy):
     published = {r["run"]: {o: float(r[o]) for o in OUTPUTS} for r in l64_rows()}
-    concrete_ref, rock_ref = reference_values()
+    concrete_ref, rock_ref, sandstone_3d_ref = reference_values()
     root = os.path.join(build, "fidelity_benchmark")
     commits = {}
     for part in PARTS:
@@ -301,9 +317,11 @@ def summary(build, figure_copy):
         points[part] = pts
         failures[part] = failed
     lines += ["", "At the reference sets (mean over seeds, CV % in brackets; nu is our nu50 again):", "",
-              "| part | output | seeds ok | ours | PFC2D | ratio |", "|---|---|---|---|---|---|"]
+              "| part | output | seeds ok | ours | PFC (2D, or 3D for the _3d parts) | ratio |", "|---|---|---|---|---|---|"]
     for part, ref, outs in (("reference", concrete_ref, OUTPUTS), ("reference_fine", concrete_ref, OUTPUTS),
-                            ("rock", rock_ref, ["sigma_u_MPa", "E_GPa"])):
+                            ("rock", rock_ref, ["sigma_u_MPa", "E_GPa"]),
+                            ("sandstone_3d", sandstone_3d_ref, ["sigma_u_MPa", "E_GPa"]),
+                            ("sandstone_3d_tension", sandstone_3d_ref, ["sigma_t_direct_MPa"])):
         rows, failed = reference_row(part, build, ref, outs)
         lines += rows
         failures[part] = failed
@@ -311,7 +329,7 @@ def summary(build, figure_copy):
               "", "| parts | output | pairs | median | range |", "|---|---|---|---|---|"]
     lines += resolution_rows(build)
     lines += ["", "The specimens (means over the stored runs):", "",
-              "| part | disks | porosity | bonds per disk | locked-in stress MPa |", "|---|---|---|---|---|"]
+              "| part | particles | porosity | bonds per particle | locked-in stress MPa |", "|---|---|---|---|---|"]
     for part in PARTS:
         f = specimen_facts(part, build)
         if f:
