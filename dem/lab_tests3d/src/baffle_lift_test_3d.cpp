@@ -152,8 +152,9 @@ std::string escaped(const World& world, const BaffleSpec& s) {
       return "a particle's position or velocity is not finite at t = " + format_double(world.time_s()) + " s";
     if (x.z < -margin || std::hypot(x.x, x.y) > reach || x.z > 10 * s.height_m)
       return "a particle left the domain through a wall at t = " + format_double(world.time_s()) + " s (x " +
-             format_double(x.x) + ", y " + format_double(x.y) + ", z " + format_double(x.z) +
-             " m): the time step is too large for the contacts";
+             format_double(x.x) + ", y " + format_double(x.y) + ", z " + format_double(x.z) + " m, moving at " +
+             format_double(norm(v)) + " m/s): thrown faster than the walls' contacts stop it, or the time step is "
+             "too large for the contacts";
   }
   return "";
 }
