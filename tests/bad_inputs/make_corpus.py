@@ -698,9 +698,13 @@ study_case("top_level_array.json", [study])
 study_case("unknown_field.json", edited(study, lambda d: d.update(surogate=d.pop("surrogate"))), "surogate")
 study_case("missing_scene.json", edited(study, lambda d: d.pop("scene")), "scene")
 study_case("name_number.json", edited(study, lambda d: d.update(name=5)), "name")
-study_case("target_nan_token.json", study_text.replace('"sigma_u_MPa": 12', '"sigma_u_MPa": NaN'), "sigma_u_MPa",
+# The study's own target as written, so the token cases edit it whatever its value (a replace that finds
+# nothing would leave a valid study).
+target_text = f'"sigma_u_MPa": {json.dumps(study["targets"]["sigma_u_MPa"])}'
+assert target_text in study_text, target_text
+study_case("target_nan_token.json", study_text.replace(target_text, '"sigma_u_MPa": NaN'), "sigma_u_MPa",
            note="Python's json reads NaN")
-study_case("target_overflow.json", study_text.replace('"sigma_u_MPa": 12', '"sigma_u_MPa": 1e999'), "sigma_u_MPa",
+study_case("target_overflow.json", study_text.replace(target_text, '"sigma_u_MPa": 1e999'), "sigma_u_MPa",
            note="Python's json reads 1e999 as inf")
 study_case("target_string.json", edited(study, lambda d: d.update(targets={"sigma_u_MPa": "12"})), "sigma_u_MPa")
 study_case("target_unknown_output.json", edited(study, lambda d: d.update(targets={"density": 2400})), "density")
