@@ -272,31 +272,6 @@ TEST(HeapTest3d, TheBrushTurnsWhileTheFunnelDischargesOnly) {
   EXPECT_GT(with.specimen_info.at("settled_at_s") - 0.01 - flow_s, 0.1);  // it stood still that long
 }
 
-// A brush behind a slip clutch: a torque limit it never reaches changes
-// nothing, bit for bit; one any touch exceeds holds it still for most of the
-// discharge (it turns on only while nothing presses on it).
-TEST(HeapTest3d, TheBrushSlipsAboveItsTorqueLimit) {
-  nlohmann::json s = small_heap();
-  s["run"]["discharged_fraction"] = 0.6;
-  s["run"]["settle_kinetic_ratio"] = 1e-2;
-  s["brush"] = {{"rpm", 120}};
-  const dem::TestResult free_brush = run_small(s, "heap_3d_free_brush.json");
-  s["brush"]["max_torque_nm"] = 1e6;
-  const dem::TestResult never_slips = run_small(s, "heap_3d_never_slips.json");
-  s["brush"]["max_torque_nm"] = 1e-12;
-  const dem::TestResult slips = run_small(s, "heap_3d_slips.json");
-  ASSERT_TRUE(free_brush.ok) << free_brush.reason;
-  ASSERT_TRUE(never_slips.ok) << never_slips.reason;
-  EXPECT_EQ(never_slips.macro, free_brush.macro);
-  EXPECT_EQ(never_slips.steps, free_brush.steps);
-  EXPECT_EQ(never_slips.specimen_info.at("brush_turns"), free_brush.specimen_info.at("brush_turns"));
-  EXPECT_EQ(never_slips.specimen_info.at("brush_stalled_fraction"), 0.0);
-  EXPECT_EQ(free_brush.specimen_info.count("brush_stalled_fraction"), 0u);
-  ASSERT_TRUE(slips.ok) << slips.reason;
-  EXPECT_GT(slips.specimen_info.at("brush_stalled_fraction"), 0.5);
-  EXPECT_LT(slips.specimen_info.at("brush_turns"), 0.5 * 2.0 * slips.macro.at("flow_time_s"));
-}
-
 TEST(HeapTest3d, BadBrushesNameTheField) {
   nlohmann::json s = small_heap();
   s["brush"] = {{"rpm", 0}};
@@ -305,8 +280,6 @@ TEST(HeapTest3d, BadBrushesNameTheField) {
   EXPECT_NE(scene_error(s).find("brush.blades must be a whole number"), std::string::npos) << scene_error(s);
   s["brush"] = {{"rpm", 60}, {"clearance_m", 0.01}};
   EXPECT_NE(scene_error(s).find("brush.clearance_m must lie in"), std::string::npos) << scene_error(s);
-  s["brush"] = {{"rpm", 60}, {"max_torque_nm", 0}};
-  EXPECT_NE(scene_error(s).find("brush.max_torque_nm must be positive"), std::string::npos) << scene_error(s);
   s["brush"] = {{"rpm", 60}, {"speed", 1}};
   EXPECT_NE(scene_error(s).find("speed"), std::string::npos) << scene_error(s);
 }

@@ -15,8 +15,7 @@
 //                 "solids_fraction" (default 0.25), "platform_diameter_m", "domain_diameter_m" (default 3 x platform),
 //                 "facets" (around the funnel and the platform, default 48)},
 //   "brush":     optional: {"rpm", "blades" (default 2), "clearance_m" (from the cone, default one particle
-//                 length), "height_m" (its top above the outlet, default the fill height), "max_torque_nm"
-//                 (a slip clutch: above it the brush stands; default none)},
+//                 length), "height_m" (its top above the outlet, default the fill height)},
 //   "run":       {"max_time_s", "fill_time_s", "check_every_s", "settle_kinetic_ratio", "jam_time_s",
 //                 "discharged_fraction", "local_damping", "max_wall_s", "bin_width_diameters", "sections",
 //                 "safety_factor", "rayleigh_fraction" (a fixed step as this fraction of the Rayleigh step)}
@@ -51,15 +50,10 @@ constexpr std::int32_t kFunnelMesh = 0, kGateMesh = 1, kPlatformMesh = 2, kBrush
 // the axis to `clearance_m` short of the cone, from the outlet up to
 // `height_m`; it turns from the gate's opening until the funnel has
 // discharged, then stops where it is (a turning blade would keep the powder
-// caught on it moving and the heap from settling). With `max_torque_nm` it
-// turns as through a slip clutch: a step after which the powder holds it back
-// with more than that torque, it stands; it turns on once the powder lets go.
-// A rigid blade that keeps turning into a sphere wedged against the cone
-// presses it with any force it takes and can throw it out of the funnel; real
-// bristles bend instead.
+// caught on it moving and the heap from settling).
 struct Brush {
   bool present = false;
-  double rpm = 0, blades = 2, clearance_m = 0, height_m = 0, max_torque_nm = 0;  // 0: no limit
+  double rpm = 0, blades = 2, clearance_m = 0, height_m = 0;
 };
 
 struct HeapSpec3d {
@@ -120,7 +114,7 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
 
   if (scene.has_section("brush")) {
     const nlohmann::json& b = scene.section("brush");
-    require_known_fields(b, {"rpm", "blades", "clearance_m", "height_m", "max_torque_nm", "note"}, origin + ": brush");
+    require_known_fields(b, {"rpm", "blades", "clearance_m", "height_m", "note"}, origin + ": brush");
     s.brush.present = true;
     s.brush.clearance_m = s.powder.longest_m();
     s.brush.height_m = s.fill_height_m;
@@ -128,11 +122,6 @@ HeapSpec3d HeapSpec3d::from_scene(const Scene& scene, const std::map<std::string
     number("brush", b, "blades", s.brush.blades, false);
     number("brush", b, "clearance_m", s.brush.clearance_m, false);
     number("brush", b, "height_m", s.brush.height_m, false);
-    if (b.contains("max_torque_nm")) {
-      number("brush", b, "max_torque_nm", s.brush.max_torque_nm, true);
-      if (!(s.brush.max_torque_nm > 0))
-        throw Error(origin + ": brush.max_torque_nm must be positive (leave it out: no limit)");
-    }
   }
 
   const nlohmann::json& r = scene.section("run");
@@ -282,15 +271,6 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   const auto turn_brush = [&](double rad_s) {
     for (std::size_t w = gate_end; w < brush_end; ++w) world.walls[w].spin_rad_s = {0, 0, rad_s};
   };
-  const double brush_rad_s = s.brush.rpm * 2 * M_PI / 60;
-  bool brush_driven = false;                       // from the gate's opening until the funnel has discharged
-  std::uint64_t driven_steps = 0, stalled_steps = 0;  // under a slip clutch (brush.max_torque_nm)
-  // The torque the powder holds the turning brush back with, N m (its moments about points on the axis).
-  const auto brush_resistance_nm = [&] {
-    double m = 0;
-    for (std::size_t w = gate_end; w < brush_end; ++w) m += world.walls[w].moment_nm.z;
-    return -m;
-  };
   // The turns the brush made, from its first blade's outer corner (each check's angle unwrapped).
   double brush_turns = 0, brush_angle = 0;
   const auto count_brush_turns = [&] {
@@ -331,36 +311,19 @@ dem::TestResult run_heap_3d(const Scene& scene, const std::map<std::string, doub
   stages.run(
       result,
       [&] {
-        if (s.brush.present && stages.flow_time_s() >= 0) {  // discharged: the brush stops
-          turn_brush(0.0);
-          brush_driven = false;
-        }
-        if (brush_driven && s.brush.max_torque_nm > 0) {
-          for (std::uint64_t k = 0; k < steps_per_check; ++k) {
-            world.step();
-            const bool stall = brush_resistance_nm() > s.brush.max_torque_nm;
-            turn_brush(stall ? 0.0 : brush_rad_s);
-            ++driven_steps;
-            stalled_steps += stall;
-          }
-        } else {
-          world.run(steps_per_check);
-        }
+        if (s.brush.present && stages.flow_time_s() >= 0) turn_brush(0.0);  // discharged: the brush stops
+        world.run(steps_per_check);
         count_brush_turns();
         return world.time_s();
       },
       [&] { return escaped(world, s, floor_z, funnel_top); },
       [&] {
         for (std::size_t w = gate_begin; w < gate_end; ++w) world.walls[w].active = false;
-        if (s.brush.present) turn_brush(brush_rad_s);
-        brush_driven = s.brush.present;
+        if (s.brush.present) turn_brush(s.brush.rpm * 2 * M_PI / 60);
         world.refresh();
       },
       in_funnel_now, energies);
   if (s.brush.present) result.specimen_info["brush_turns"] = brush_turns;
-  if (s.brush.max_torque_nm > 0)
-    result.specimen_info["brush_stalled_fraction"] =
-        driven_steps > 0 ? static_cast<double>(stalled_steps) / static_cast<double>(driven_steps) : 0.0;
   finish_powder_run(world, scene, parameters, s.powder, options, start, loading_start, result);
   if (!result.ok) return result;
 
