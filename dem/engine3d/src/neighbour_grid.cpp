@@ -183,9 +183,12 @@ void World::reorder_spheres() {
 void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t>& keys) {
   const Spheres& s = spheres;
   const std::size_t n = s.size();
+  NeighbourScratch& scratch = internals_->search;  // every array below is refilled before it is read
   // Each model's pairs as (first, second) storage indices, first < second,
   // in (first, second) order.
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(models_.size());
+  auto& found = scratch.found;
+  found.resize(models_.size());
+  for (auto& list : found) list.clear();
   if (n > 1) {
     const Grid& g = internals_->grid;  // reorder_spheres made it at this rebuild
     const auto cells = static_cast<std::size_t>(g.nx * g.ny * g.nz);
@@ -193,7 +196,10 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
     // start[c + 1]), and a row of cells along x is one run of entries. Their
     // centres and reaches are copied in that order, so the search below reads
     // runs of memory.
-    std::vector<std::uint32_t> start(cells + 1, 0), by_cell(n), cell_of(n);
+    auto &start = scratch.start, &by_cell = scratch.by_cell, &cell_of = scratch.cell_of;
+    start.assign(cells + 1, 0);
+    by_cell.resize(n);
+    cell_of.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       cell_of[i] = static_cast<std::uint32_t>(g.index(g.coordinate(s.x[i], g.x0, g.nx),
                                                       g.coordinate(s.y[i], g.y0, g.ny),
@@ -202,13 +208,15 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
     }
     for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
     {
-      std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+      auto& next = scratch.next;
+      next.assign(start.begin(), start.end() - 1);
       for (std::size_t i = 0; i < n; ++i) by_cell[next[cell_of[i]]++] = static_cast<std::uint32_t>(i);
     }
     // Padded by a lane group of entries that no sphere reaches (infinitely far,
     // radius 0), so a scan may read a whole group past its run.
-    std::vector<double> cx(n + kLanes, INFINITY), cy(n + kLanes, INFINITY), cz(n + kLanes, INFINITY),
-        cr(n + kLanes, 0.0);
+    auto &cx = scratch.cx, &cy = scratch.cy, &cz = scratch.cz, &cr = scratch.cr;
+    cx.assign(n + kLanes, INFINITY), cy.assign(n + kLanes, INFINITY), cz.assign(n + kLanes, INFINITY);
+    cr.assign(n + kLanes, 0.0);
     for (std::size_t e = 0; e < n; ++e) {
       const std::uint32_t i = by_cell[e];
       cx[e] = s.x[i], cy[e] = s.y[i], cz[e] = s.z[i], cr[e] = s.radius[i];
@@ -216,7 +224,8 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
     // Each pair once, from the entry that comes first in cell order: the rest
     // of its own cell and the next one along x, the row above in y, and the
     // three rows above in z (13 of the 26 neighbour cells).
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> close;  // (first, second) storage indices
+    auto& close = scratch.close;  // (first, second) storage indices
+    close.clear();
     close.reserve(8 * n);
     const RunScanner scanner{cx.data(), cy.data(), cz.data(), cr.data(), skin_m_};
     for (std::size_t e = 0; e < n; ++e) {
@@ -238,12 +247,15 @@ void World::build_sphere_pairs(dem::ContactSet& fresh, std::vector<std::uint64_t
         for (std::int64_t ry = std::max<std::int64_t>(y - 1, 0); ry <= std::min(y + 1, g.ny - 1); ++ry) row(ry, z + 1);
     }
     // In (first, second) order: by first (a counting sort), then each first's short row by second.
-    std::vector<std::uint32_t> row_start(n + 1, 0);
+    auto& row_start = scratch.row_start;
+    row_start.assign(n + 1, 0);
     for (const auto& [a, b] : close) ++row_start[a + std::size_t{1}];
     for (std::size_t i = 0; i < n; ++i) row_start[i + 1] += row_start[i];
-    std::vector<std::uint32_t> second(close.size());
+    auto& second = scratch.second;
+    second.resize(close.size());
     {
-      std::vector<std::uint32_t> next(row_start.begin(), row_start.end() - 1);
+      auto& next = scratch.next;
+      next.assign(row_start.begin(), row_start.end() - 1);
       for (const auto& [a, b] : close) second[next[a]++] = b;
     }
     for (auto& list : found) list.reserve(close.size());

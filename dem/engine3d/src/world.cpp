@@ -89,18 +89,19 @@ void World::rebuild() {
       v->assign(clumps_.empty() ? 0 : n, 0.0);
     in.clump_force.assign(clumps_.size(), Vec3{});
   }
-  dem::ContactSet fresh, fresh_walls;
-  std::vector<std::uint64_t> keys, wall_keys;
+  // The new lists go into the storage of the build before last, then change places with the old ones.
+  dem::ContactSet &fresh = in.spare_pairs, &fresh_walls = in.spare_wall_pairs;
+  std::vector<std::uint64_t> &keys = in.spare_keys, &wall_keys = in.spare_wall_keys;
   fresh.set_layout(layout_);
   fresh_walls.set_layout(layout_);
   build_sphere_pairs(fresh, keys);
   build_wall_pairs(fresh_walls, wall_keys);
   carry_state(fresh, keys, pairs_, pair_keys_);
   carry_state(fresh_walls, wall_keys, wall_pairs_, wall_keys_);
-  pairs_ = std::move(fresh);
-  wall_pairs_ = std::move(fresh_walls);
-  pair_keys_ = std::move(keys);
-  wall_keys_ = std::move(wall_keys);
+  std::swap(pairs_, fresh);
+  std::swap(wall_pairs_, fresh_walls);
+  std::swap(pair_keys_, keys);
+  std::swap(wall_keys_, wall_keys);
   run_models_.clear();
   wall_run_models_.clear();
   for (std::size_t m = 0; m < models_.size(); ++m) {

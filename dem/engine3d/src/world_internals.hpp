@@ -3,6 +3,7 @@
 // lab test uses).
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "demcal/dem3d/contact_model.hpp"
@@ -47,10 +48,24 @@ struct CellGrid {
   std::int64_t index(std::int64_t cx, std::int64_t cy, std::int64_t cz) const { return (cz * ny + cy) * nx + cx; }
 };
 
+// The neighbour search's working arrays, kept from one rebuild to the next:
+// a released specimen rebuilds every few steps, and fresh arrays of this size
+// cost page faults and zeroing each time (neighbour_grid.cpp says what each holds).
+struct NeighbourScratch {
+  std::vector<std::uint32_t> start, by_cell, cell_of, next, row_start, second;
+  std::vector<double> cx, cy, cz, cr;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> close;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found;
+};
+
 struct World::Internals {
   // The grid reorder_spheres made at this rebuild: the search reuses it (a
   // reorder moves no sphere, so the bounding box is the same).
   CellGrid grid;
+  NeighbourScratch search;
+  // The lists of the build before last, whose storage the next build fills.
+  dem::ContactSet spare_pairs, spare_wall_pairs;
+  std::vector<std::uint64_t> spare_keys, spare_wall_keys;
   PairForceArrays sphere_pair_forces, wall_pair_forces;
   WallGeometryArrays wall_geometry;
   // Per sphere, its sphere pairs in pair order: entries [sum_begin[i],
