@@ -706,17 +706,7 @@ double World::force_ratio() const {
   for (const Vec3& f : in.clump_force) unbalanced_sum += norm(f), ++free_spheres;
   for (std::size_t i = 0; i + 1 < in.sum_begin.size(); ++i) {
     if (spheres.fixed[i] || spheres.clump[i] >= 0) continue;
-    Vec3 f = spheres.mass[i] * settings_.gravity_m_s2;
-    for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
-      const std::size_t k = in.sum_entry[e] >> 1;
-      const Vec3 pair_force = {sp.fx[k], sp.fy[k], sp.fz[k]};
-      f = (in.sum_entry[e] & 1u) ? f - pair_force : f + pair_force;
-    }
-    for (std::uint32_t e = in.wall_begin[i]; e < in.wall_begin[i + 1]; ++e) {
-      const std::size_t k = in.wall_entry[e];
-      f = f + Vec3{wp.fx[k], wp.fy[k], wp.fz[k]};
-    }
-    unbalanced_sum += norm(f);
+    unbalanced_sum += norm(add_contact_forces(i, spheres.mass[i] * settings_.gravity_m_s2));
     ++free_spheres;
   }
   if (free_spheres == 0) return 0.0;
@@ -725,10 +715,16 @@ double World::force_ratio() const {
 
 Vec3 World::contact_force(std::size_t i) const {
   const Internals& in = *internals_;
+  if (i + 1 >= in.sum_begin.size() || in.sphere_pair_forces.fx.size() != pairs_.size() ||
+      in.wall_pair_forces.fx.size() != wall_pairs_.size())
+    return {};
+  return add_contact_forces(i, {});
+}
+
+Vec3 World::add_contact_forces(std::size_t i, Vec3 f) const {
+  const Internals& in = *internals_;
   const PairForceArrays& sp = in.sphere_pair_forces;
   const PairForceArrays& wp = in.wall_pair_forces;
-  Vec3 f;
-  if (i + 1 >= in.sum_begin.size() || sp.fx.size() != pairs_.size() || wp.fx.size() != wall_pairs_.size()) return f;
   for (std::uint32_t e = in.sum_begin[i]; e < in.sum_begin[i + 1]; ++e) {
     const std::size_t k = in.sum_entry[e] >> 1;
     const Vec3 pair_force = {sp.fx[k], sp.fy[k], sp.fz[k]};

@@ -154,6 +154,8 @@ class World {
   void integrate();
   void integrate_clumps(double& max_move2);
   std::uint8_t model_for(std::uint8_t a, std::uint8_t b) const;
+  // f plus sphere i's pair and wall forces of the last step, in pair order.
+  Vec3 add_contact_forces(std::size_t i, Vec3 f) const;
 
   WorldSettings settings_;
   std::vector<std::unique_ptr<ContactModel>> models_;
